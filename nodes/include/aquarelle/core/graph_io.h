@@ -1,0 +1,53 @@
+// Reading, validating and writing version-1 graph files (see DESIGN.md, "Graph file format").
+//
+// Reading reports every problem at once, each with the node id, the port or parameter, and
+// the place in the file (line and column, and the JSON pointer). Writing is canonical (stable
+// key order, one node per block) and atomic (temporary file, flush, rename).
+#pragma once
+
+#include <aquarelle/core/graph.h>
+#include <aquarelle/core/registry.h>
+#include <aquarelle/core/result.h>
+
+#include <string>
+#include <vector>
+
+namespace aq {
+
+struct Problem {
+  std::string file;     // may be empty for text not read from a file
+  int line = 0;         // 1-based; 0 when unknown
+  int column = 0;       // 1-based; 0 when unknown
+  std::string pointer;  // JSON pointer, e.g. "/nodes/blur/params/sigma"
+  std::string node;     // node id, when the problem belongs to a node
+  std::string field;    // port or parameter name, or a settings key
+  std::string message;  // what is wrong and how to fix it
+};
+
+// "graph.json:12:7: node 'blur', parameter 'sigma': expected a number, got a string"
+std::string format_problem(const Problem& problem);
+std::string format_problems(const std::vector<Problem>& problems);
+
+struct ReadResult {
+  Graph graph;
+  std::vector<Problem> problems;  // empty when the graph is valid
+  bool ok() const { return problems.empty(); }
+};
+
+// Parses and validates. `file` names the source in messages and becomes graph.source_path.
+ReadResult read_graph_text(const std::string& text, const Registry& registry,
+                           const std::string& file = "");
+ReadResult read_graph_file(const std::string& path, const Registry& registry);
+
+// Validates a graph model (e.g. after editing); locations are JSON pointers only.
+std::vector<Problem> validate_graph(const Graph& graph, const Registry& registry);
+
+// Canonical JSON text: keys sorted, one node per block, two-space indent, trailing newline.
+std::string write_graph_text(const Graph& graph);
+// Atomic: writes PATH.tmp-XXXX next to it, flushes, fsyncs, renames over PATH.
+Status save_graph_file(const Graph& graph, const std::string& path);
+
+// Resolved value of a parameter: the graph's value or the type's default, as JSON.
+nlohmann::json param_value_or_default(const Node& node, const ParamInfo& param);
+
+}  // namespace aq

@@ -1,0 +1,271 @@
+/*
+ * Aquarelle plugin ABI, version 1.
+ *
+ * This header is the whole contract between the host (the `aquarelle` executable, the editor,
+ * the tests) and a plugin (a shared library holding one or more node types). It is plain C so
+ * that a plugin built by another compiler, or against another release, either loads or is
+ * refused with a clear message: nothing C++ crosses the boundary.
+ *
+ *   host                                plugin (.so)
+ *   ----                                ------------
+ *   dlopen(plugin)
+ *   aquarelle_plugin_entry(ABI) ──────► returns aq_plugin_desc (static data)
+ *   reads node descriptions             ports, params, flags: data, no side effects
+ *   per node instance: create(host) ──► instance state (GL objects the node owns)
+ *   per evaluation:    process(ctx) ──► binds inputs, draws through the host services
+ *   destroy(instance)
+ *
+ * Rules:
+ *  - Every GL call a plugin makes goes through functions loaded with host->get_proc_address
+ *    (the C++ helper does this with glad). The host may switch context backends; when
+ *    ctx->gl_generation changes the plugin must reload its GL functions.
+ *  - A plugin keeps no GL state bound between calls (programs, framebuffers, textures).
+ *  - Errors are values: process returns AQ_OK or AQ_ERROR after calling host->fail with a
+ *    message that says what went wrong and how to fix it. Nothing is thrown across the ABI.
+ *  - Structs carry struct_size so either side can grow them at the end without breaking the
+ *    other; a change that is not append-only bumps AQ_ABI_VERSION.
+ */
+#ifndef AQUARELLE_PLUGIN_H
+#define AQUARELLE_PLUGIN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define AQ_ABI_VERSION 1u
+#define AQ_PLUGIN_ENTRY_NAME "aquarelle_plugin_entry"
+
+#if defined(_WIN32)
+#define AQ_PLUGIN_EXPORT __declspec(dllexport)
+#else
+#define AQ_PLUGIN_EXPORT __attribute__((visibility("default")))
+#endif
+
+enum { AQ_OK = 0, AQ_ERROR = 1 };
+
+/* ---- Port and value types ------------------------------------------------------------ */
+
+typedef enum aq_port_type {
+  AQ_PORT_IMAGE = 1, /* a 2D texture */
+  AQ_PORT_SCENE = 2  /* meshes, camera, light: CPU data (aq_scene) */
+} aq_port_type;
+
+enum {
+  AQ_PORT_OPTIONAL = 1u << 0 /* an input that may stay unconnected */
+};
+
+typedef enum aq_format {
+  AQ_FORMAT_RGBA16F = 1,
+  AQ_FORMAT_RGBA32F = 2,
+  AQ_FORMAT_R32F = 3,
+  AQ_FORMAT_DEPTH32F = 4, /* depth attachment (shadow maps, z-buffers) */
+  AQ_FORMAT_R32UI = 5     /* integer ids */
+} aq_format;
+
+typedef enum aq_precision { AQ_PRECISION_HALF = 0, AQ_PRECISION_FLOAT = 1 } aq_precision;
+
+typedef struct aq_image {
+  uint32_t texture; /* GL texture name, GL_TEXTURE_2D, clamp-to-edge, linear filter */
+  int32_t width;
+  int32_t height;
+  uint32_t format; /* aq_format */
+} aq_image;
+
+/* ---- Scenes: what flows on a `scene` port ------------------------------------------- */
+
+typedef struct aq_mesh {
+  const float* positions; /* xyz per vertex, object space */
+  const float* normals;   /* xyz per vertex, unit length */
+  const float* colors;    /* rgb per vertex, linear albedo */
+  const uint32_t* indices;
+  uint32_t vertex_count;
+  uint32_t index_count; /* triangles: 3 indices each */
+  float model[16];      /* object to world, column-major */
+  uint32_t object_id;   /* >= 1; 0 means background */
+  uint32_t flags;       /* reserved, 0 */
+  /* Changes whenever the vertex data changes, so consumers re-upload only then. Unique
+   * across meshes of one process. */
+  uint64_t geometry_revision;
+} aq_mesh;
+
+typedef struct aq_camera {
+  float position[3];
+  float target[3];
+  float up[3];
+  float fov_y_degrees;
+  float near_plane;
+  float far_plane;
+} aq_camera;
+
+typedef struct aq_light {
+  float direction[3]; /* direction the light travels (from the light into the scene), unit */
+  float color[3];     /* linear */
+  float ambient[3];   /* linear */
+} aq_light;
+
+typedef struct aq_scene {
+  uint32_t struct_size;
+  const aq_mesh* meshes;
+  uint32_t mesh_count;
+  aq_camera camera;
+  aq_light light;
+  float bounds_min[3]; /* world-space box holding every mesh */
+  float bounds_max[3];
+  double time; /* seconds */
+  float water_height; /* world y of the water surface (caustic projection) */
+} aq_scene;
+
+/* ---- Node descriptions: data the host reads without running anything ---------------- */
+
+typedef struct aq_port_desc {
+  const char* name;
+  uint32_t type;  /* aq_port_type */
+  uint32_t flags; /* AQ_PORT_* */
+  const char* description;
+} aq_port_desc;
+
+typedef enum aq_param_type {
+  AQ_PARAM_FLOAT = 1,
+  AQ_PARAM_INT = 2,
+  AQ_PARAM_BOOL = 3,
+  AQ_PARAM_ENUM = 4,   /* value is an index into enum_values; files store the name */
+  AQ_PARAM_STRING = 5,
+  AQ_PARAM_PATH = 6,   /* a file path, resolved relative to the graph file */
+  AQ_PARAM_COLOR = 7,  /* rgb, linear */
+  AQ_PARAM_VEC3 = 8
+} aq_param_type;
+
+typedef struct aq_param_desc {
+  const char* name;
+  uint32_t type;         /* aq_param_type */
+  double default_value[3]; /* float/int/bool/enum use [0]; color and vec3 use all three */
+  double min_value;      /* range for float and int (and each component of vec3/color) */
+  double max_value;
+  double step;           /* UI hint: slider step, 0 for continuous */
+  const char* default_string; /* string and path defaults; NULL for none */
+  const char* enum_values;    /* "gaussian|strided": names for AQ_PARAM_ENUM */
+  const char* ui_hint;        /* "slider", "log", "angle", "color", "file", or NULL */
+  const char* description;
+} aq_param_desc;
+
+enum {
+  AQ_NODE_TIME_DEPENDENT = 1u << 0, /* output changes with time: re-run every frame */
+  AQ_NODE_POINTWISE = 1u << 1       /* output pixel depends only on the same input pixel */
+};
+
+struct aq_host;
+struct aq_process_ctx;
+
+typedef struct aq_node_desc {
+  uint32_t struct_size;
+  const char* type_name; /* unique, [a-z0-9_]+ */
+  const char* category;  /* "Scene", "Light", "Watercolor", "Filter", "Color", "Texture" */
+  const char* description;
+  uint32_t flags; /* AQ_NODE_* */
+  const aq_port_desc* inputs;
+  uint32_t input_count;
+  const aq_port_desc* outputs;
+  uint32_t output_count;
+  const aq_param_desc* params;
+  uint32_t param_count;
+  /* Returns the node instance (may be NULL only on failure, after host->fail is impossible:
+   * log instead). Called with a current GL context. */
+  void* (*create)(const struct aq_host* host);
+  void (*destroy)(void* instance);
+  /* Runs the node. Returns AQ_OK, or AQ_ERROR after calling ctx->host->fail. */
+  int (*process)(void* instance, struct aq_process_ctx* ctx);
+} aq_node_desc;
+
+typedef struct aq_plugin_desc {
+  uint32_t abi_version; /* AQ_ABI_VERSION the plugin was built against */
+  uint32_t struct_size;
+  const char* plugin_name;
+  const char* plugin_version;
+  const aq_node_desc* const* nodes;
+  uint32_t node_count;
+} aq_plugin_desc;
+
+/* The one symbol a plugin exports. host_abi_version lets a plugin refuse an older host. */
+typedef const aq_plugin_desc* (*aq_plugin_entry_fn)(uint32_t host_abi_version);
+
+/* ---- Evaluation --------------------------------------------------------------------- */
+
+typedef struct aq_input_value {
+  uint32_t type;      /* aq_port_type */
+  uint32_t connected; /* 0 for an optional input left unconnected */
+  aq_image image;     /* when type == AQ_PORT_IMAGE and connected */
+  const aq_scene* scene; /* when type == AQ_PORT_SCENE and connected; owned by the producer */
+} aq_input_value;
+
+typedef struct aq_param_value {
+  double f[3];       /* float (f[0]), color, vec3 */
+  int64_t i;         /* int, bool (0/1), enum index */
+  const char* s;     /* string, path (already resolved against the graph file's folder) */
+} aq_param_value;
+
+typedef struct aq_shader_source {
+  const char* name; /* file name shown in errors, e.g. "tint.frag" */
+  const char* text; /* GLSL without #version; may `#include "aquarelle/<lib>.glsl"` */
+  const char* path; /* absolute source path at build time, for hot reload; may be NULL */
+} aq_shader_source;
+
+typedef struct aq_process_ctx {
+  uint32_t struct_size;
+  const struct aq_host* host;
+  void* host_data; /* pass back to every host call */
+  const char* node_id;
+  const aq_input_value* inputs; /* in description order */
+  uint32_t input_count;
+  const aq_param_value* params; /* in description order */
+  uint32_t param_count;
+  int32_t width; /* the graph's output resolution */
+  int32_t height;
+  uint32_t precision;      /* aq_precision */
+  uint32_t working_format; /* AQ_FORMAT_RGBA16F or AQ_FORMAT_RGBA32F, from precision */
+  double time;             /* seconds: (frame - first frame) / fps */
+  int32_t frame;
+  double fps;
+  uint32_t gl_generation; /* changes when the GL context (and its functions) changed */
+  uint32_t quality;       /* 0 draft, 1 preview, 2 final */
+} aq_process_ctx;
+
+typedef struct aq_host {
+  uint32_t abi_version;
+  uint32_t struct_size;
+  /* GL function lookup for the current context. */
+  void* (*get_proc_address)(const char* name);
+  /* Records an error for the node being processed; the message should say how to fix it. */
+  void (*fail)(void* host_data, const char* message);
+  void (*log)(void* host_data, int level /* 0 info, 1 warning */, const char* message);
+  /* Compiles and links (cached by source; a program lives as long as the host). vertex may be
+   * NULL for the host's full-screen triangle, which passes `in vec2 v_uv` (0..1) to the
+   * fragment shader. Returns 0 on error, already reported with node, file and line. */
+  uint32_t (*program)(void* host_data, const aq_shader_source* vertex,
+                      const aq_shader_source* fragment);
+  /* Allocates output `index` from the texture pool. */
+  int (*output_image)(void* host_data, uint32_t index, int32_t width, int32_t height,
+                      uint32_t format, aq_image* out);
+  /* Makes output `index` the very texture of input `input_index` (a no-op node, no copy). */
+  int (*pass_through)(void* host_data, uint32_t index, uint32_t input_index);
+  /* Publishes a scene on output `index`; the data must stay valid until the next process or
+   * destroy of this instance. */
+  int (*output_scene)(void* host_data, uint32_t index, const aq_scene* scene);
+  /* A scratch texture from the pool, returned to it when process returns. */
+  int (*scratch_image)(void* host_data, int32_t width, int32_t height, uint32_t format,
+                       aq_image* out);
+  /* Binds a framebuffer with these colour attachments (and optional depth) and sets the
+   * viewport to their size. */
+  int (*bind_targets)(void* host_data, const aq_image* colors, uint32_t color_count,
+                      const aq_image* depth);
+  /* Draws the full-screen triangle into the bound targets with the bound program. */
+  void (*draw_fullscreen)(void* host_data);
+} aq_host;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* AQUARELLE_PLUGIN_H */

@@ -1,0 +1,299 @@
+// Header-only C++ helper over the C ABI in plugin.h, so that a node reads like this:
+//
+//   constexpr aq_port_desc kIn[] = {aq::image_port("image", "colour to tint")};
+//   constexpr aq_port_desc kOut[] = {aq::image_port("image", "tinted colour")};
+//   constexpr aq_param_desc kParams[] = {aq::float_param("amount", 0.75, 0, 1, "mix factor")};
+//   struct Tint {
+//     int process(aq::Context& ctx) { ... bind inputs, one shader, ctx.draw(out) ... }
+//   };
+//   AQ_NODE(kTint, Tint, "tint", "Color", "Mixes towards a colour", AQ_NODE_POINTWISE,
+//           kIn, kOut, kParams);
+//   AQ_PLUGIN("tint", "1.0", &kTint)
+//
+// Everything here is inline and compiled into the plugin; only plugin.h types cross the
+// boundary. GL calls go through glad, loaded from the host's get_proc_address and reloaded
+// whenever the host says the context changed (ctx.gl_generation).
+#pragma once
+
+#include <glad/gl.h>
+
+#include <aquarelle/plugin.h>
+
+#include <cstdio>
+#include <new>
+#include <string>
+
+namespace aq {
+
+// ---- Description helpers (constexpr, so tables stay static data) ----------------------
+
+constexpr aq_port_desc image_port(const char* name, const char* description,
+                                  uint32_t flags = 0) {
+  return aq_port_desc{name, AQ_PORT_IMAGE, flags, description};
+}
+constexpr aq_port_desc optional_image_port(const char* name, const char* description) {
+  return aq_port_desc{name, AQ_PORT_IMAGE, AQ_PORT_OPTIONAL, description};
+}
+constexpr aq_port_desc scene_port(const char* name, const char* description) {
+  return aq_port_desc{name, AQ_PORT_SCENE, 0, description};
+}
+
+constexpr aq_param_desc float_param(const char* name, double def, double min, double max,
+                                    const char* description, double step = 0.0,
+                                    const char* ui_hint = "slider") {
+  return aq_param_desc{name, AQ_PARAM_FLOAT, {def, 0, 0}, min, max, step, nullptr, nullptr,
+                       ui_hint, description};
+}
+constexpr aq_param_desc int_param(const char* name, int64_t def, int64_t min, int64_t max,
+                                  const char* description) {
+  return aq_param_desc{name,
+                       AQ_PARAM_INT,
+                       {static_cast<double>(def), 0, 0},
+                       static_cast<double>(min),
+                       static_cast<double>(max),
+                       1.0,
+                       nullptr,
+                       nullptr,
+                       "slider",
+                       description};
+}
+constexpr aq_param_desc bool_param(const char* name, bool def, const char* description) {
+  return aq_param_desc{name,    AQ_PARAM_BOOL, {def ? 1.0 : 0.0, 0, 0}, 0, 1, 1, nullptr,
+                       nullptr, "checkbox",    description};
+}
+// `values` is "a|b|c"; `def` is the index of the default.
+constexpr aq_param_desc enum_param(const char* name, const char* values, int def,
+                                   const char* description) {
+  return aq_param_desc{name, AQ_PARAM_ENUM, {static_cast<double>(def), 0, 0}, 0, 0, 0, nullptr,
+                       values, "combo", description};
+}
+constexpr aq_param_desc color_param(const char* name, double r, double g, double b,
+                                    const char* description) {
+  return aq_param_desc{name,    AQ_PARAM_COLOR, {r, g, b}, 0.0, 1.0, 0, nullptr,
+                       nullptr, "color",        description};
+}
+constexpr aq_param_desc vec3_param(const char* name, double x, double y, double z, double min,
+                                   double max, const char* description) {
+  return aq_param_desc{name, AQ_PARAM_VEC3, {x, y, z}, min, max, 0, nullptr, nullptr, "drag",
+                       description};
+}
+constexpr aq_param_desc string_param(const char* name, const char* def,
+                                     const char* description) {
+  return aq_param_desc{name, AQ_PARAM_STRING, {0, 0, 0}, 0, 0, 0, def, nullptr, "text",
+                       description};
+}
+constexpr aq_param_desc path_param(const char* name, const char* description) {
+  return aq_param_desc{name, AQ_PARAM_PATH, {0, 0, 0}, 0, 0, 0, "", nullptr, "file",
+                       description};
+}
+
+// ---- GL loading ----------------------------------------------------------------------
+
+inline const aq_host*& current_host() {
+  static const aq_host* host = nullptr;
+  return host;
+}
+inline void* load_gl_function(const char* name) {
+  return current_host()->get_proc_address(name);
+}
+// Loads glad for this plugin when the host's context generation changed. Each plugin holds its
+// own copy of glad (hidden symbols), so this is per plugin.
+inline bool ensure_gl(const aq_process_ctx* ctx) {
+  static uint32_t loaded_generation = 0;
+  if (loaded_generation == ctx->gl_generation && loaded_generation != 0) return true;
+  current_host() = ctx->host;
+  if (gladLoadGL(reinterpret_cast<GLADloadfunc>(&load_gl_function)) == 0) return false;
+  loaded_generation = ctx->gl_generation;
+  return true;
+}
+
+// ---- Per-call context ----------------------------------------------------------------
+
+class Context {
+ public:
+  explicit Context(aq_process_ctx* raw) : raw_(raw) {}
+
+  aq_process_ctx* raw() const { return raw_; }
+  const char* node_id() const { return raw_->node_id; }
+  int width() const { return raw_->width; }
+  int height() const { return raw_->height; }
+  double time() const { return raw_->time; }
+  int frame() const { return raw_->frame; }
+  uint32_t working_format() const { return raw_->working_format; }
+  bool precise() const { return raw_->precision == AQ_PRECISION_FLOAT; }
+  uint32_t quality() const { return raw_->quality; }
+
+  bool connected(uint32_t input) const {
+    return input < raw_->input_count && raw_->inputs[input].connected != 0;
+  }
+  aq_image input_image(uint32_t input) const {
+    return connected(input) ? raw_->inputs[input].image : aq_image{0, 0, 0, 0};
+  }
+  const aq_scene* input_scene(uint32_t input) const {
+    return connected(input) ? raw_->inputs[input].scene : nullptr;
+  }
+
+  double param_float(uint32_t p) const { return raw_->params[p].f[0]; }
+  int64_t param_int(uint32_t p) const { return raw_->params[p].i; }
+  bool param_bool(uint32_t p) const { return raw_->params[p].i != 0; }
+  int64_t param_enum(uint32_t p) const { return raw_->params[p].i; }
+  const double* param_vec3(uint32_t p) const { return raw_->params[p].f; }
+  const char* param_string(uint32_t p) const {
+    return raw_->params[p].s != nullptr ? raw_->params[p].s : "";
+  }
+
+  // Records an error; always returns AQ_ERROR so `return ctx.fail(...)` reads naturally.
+  int fail(const std::string& message) const {
+    raw_->host->fail(raw_->host_data, message.c_str());
+    return AQ_ERROR;
+  }
+  void warn(const std::string& message) const {
+    raw_->host->log(raw_->host_data, 1, message.c_str());
+  }
+
+  GLuint program(const aq_shader_source& fragment) const {
+    return raw_->host->program(raw_->host_data, nullptr, &fragment);
+  }
+  GLuint program(const aq_shader_source& vertex, const aq_shader_source& fragment) const {
+    return raw_->host->program(raw_->host_data, &vertex, &fragment);
+  }
+
+  bool output(uint32_t index, int w, int h, uint32_t format, aq_image* out) const {
+    return raw_->host->output_image(raw_->host_data, index, w, h, format, out) == AQ_OK;
+  }
+  // An output the size of `like`, in the working format.
+  bool output_like(uint32_t index, const aq_image& like, aq_image* out) const {
+    return output(index, like.width, like.height, raw_->working_format, out);
+  }
+  bool pass_through(uint32_t index, uint32_t input) const {
+    return raw_->host->pass_through(raw_->host_data, index, input) == AQ_OK;
+  }
+  bool output_scene(uint32_t index, const aq_scene* scene) const {
+    return raw_->host->output_scene(raw_->host_data, index, scene) == AQ_OK;
+  }
+  bool scratch(int w, int h, uint32_t format, aq_image* out) const {
+    return raw_->host->scratch_image(raw_->host_data, w, h, format, out) == AQ_OK;
+  }
+  bool bind_targets(const aq_image* colors, uint32_t count, const aq_image* depth = nullptr) const {
+    return raw_->host->bind_targets(raw_->host_data, colors, count, depth) == AQ_OK;
+  }
+  // Draws the bound program as a full-screen triangle into `target`.
+  bool draw(const aq_image& target) const {
+    if (!bind_targets(&target, 1, nullptr)) return false;
+    raw_->host->draw_fullscreen(raw_->host_data);
+    return true;
+  }
+
+ private:
+  aq_process_ctx* raw_;
+};
+
+// ---- Uniform helpers (bound program) ---------------------------------------------------
+
+inline void bind_texture(GLuint program, const char* name, GLuint unit, const aq_image& image) {
+  glActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(GL_TEXTURE_2D, image.texture);
+  glUniform1i(glGetUniformLocation(program, name), static_cast<GLint>(unit));
+}
+inline void set_float(GLuint program, const char* name, double v) {
+  glUniform1f(glGetUniformLocation(program, name), static_cast<float>(v));
+}
+inline void set_int(GLuint program, const char* name, int v) {
+  glUniform1i(glGetUniformLocation(program, name), v);
+}
+inline void set_vec2(GLuint program, const char* name, double x, double y) {
+  glUniform2f(glGetUniformLocation(program, name), static_cast<float>(x), static_cast<float>(y));
+}
+inline void set_vec3(GLuint program, const char* name, const double* v) {
+  glUniform3f(glGetUniformLocation(program, name), static_cast<float>(v[0]),
+              static_cast<float>(v[1]), static_cast<float>(v[2]));
+}
+inline void set_vec3(GLuint program, const char* name, const float* v) {
+  glUniform3f(glGetUniformLocation(program, name), v[0], v[1], v[2]);
+}
+inline void set_mat4(GLuint program, const char* name, const float* m) {
+  glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, m);
+}
+// Unbinds what a node typically binds, so no GL state leaks into the next node.
+inline void unbind_textures(GLuint units) {
+  for (GLuint u = 0; u < units; ++u) {
+    glActiveTexture(GL_TEXTURE0 + u);
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
+  glActiveTexture(GL_TEXTURE0);
+  glUseProgram(0);
+}
+
+// ---- Adapting a C++ node class to the C function table -------------------------------
+
+template <typename NodeClass>
+struct NodeAdapter {
+  static void* create(const aq_host* host) {
+    current_host() = host;
+    return new (std::nothrow) NodeClass();
+  }
+  static void destroy(void* instance) { delete static_cast<NodeClass*>(instance); }
+  static int process(void* instance, aq_process_ctx* raw) {
+    Context ctx(raw);
+    if (!ensure_gl(raw)) return ctx.fail("could not load OpenGL functions from the host");
+    try {
+      return static_cast<NodeClass*>(instance)->process(ctx);
+    } catch (const std::exception& e) {
+      return ctx.fail(std::string("internal error: ") + e.what());
+    } catch (...) {
+      return ctx.fail("internal error (unknown exception)");
+    }
+  }
+};
+
+template <typename T, size_t N>
+constexpr uint32_t count_of(const T (&)[N]) {
+  return static_cast<uint32_t>(N);
+}
+
+}  // namespace aq
+
+// Defines `const aq_node_desc NAME` for NodeClass. Inputs, outputs and params are arrays.
+#define AQ_NODE(NAME, NodeClass, type_name, category, description, flags, inputs, outputs, \
+                params)                                                                  \
+  static const aq_node_desc NAME = {sizeof(aq_node_desc),                                \
+                                    type_name,                                           \
+                                    category,                                            \
+                                    description,                                         \
+                                    flags,                                               \
+                                    inputs,                                              \
+                                    aq::count_of(inputs),                                \
+                                    outputs,                                             \
+                                    aq::count_of(outputs),                               \
+                                    params,                                              \
+                                    aq::count_of(params),                                \
+                                    &aq::NodeAdapter<NodeClass>::create,                 \
+                                    &aq::NodeAdapter<NodeClass>::destroy,                \
+                                    &aq::NodeAdapter<NodeClass>::process}
+
+// Same, for a node without parameters.
+#define AQ_NODE_NO_PARAMS(NAME, NodeClass, type_name, category, description, flags, inputs, \
+                          outputs)                                                          \
+  static const aq_node_desc NAME = {sizeof(aq_node_desc),                                   \
+                                    type_name,                                              \
+                                    category,                                               \
+                                    description,                                            \
+                                    flags,                                                  \
+                                    inputs,                                                 \
+                                    aq::count_of(inputs),                                   \
+                                    outputs,                                                \
+                                    aq::count_of(outputs),                                  \
+                                    nullptr,                                                \
+                                    0,                                                      \
+                                    &aq::NodeAdapter<NodeClass>::create,                    \
+                                    &aq::NodeAdapter<NodeClass>::destroy,                   \
+                                    &aq::NodeAdapter<NodeClass>::process}
+
+// Exports the plugin entry point listing the given node descriptions (pointers).
+#define AQ_PLUGIN(plugin_name, plugin_version, ...)                                           \
+  extern "C" AQ_PLUGIN_EXPORT const aq_plugin_desc* aquarelle_plugin_entry(uint32_t) {       \
+    static const aq_node_desc* const nodes[] = {__VA_ARGS__};                                \
+    static const aq_plugin_desc desc = {AQ_ABI_VERSION, sizeof(aq_plugin_desc), plugin_name, \
+                                        plugin_version, nodes, aq::count_of(nodes)};         \
+    return &desc;                                                                            \
+  }

@@ -1,0 +1,65 @@
+// Test support: one headless GL context per test process, every plugin of the build loaded,
+// and short calls that run a node or a graph and read the result back as float pixels.
+//
+//   auto out = aq::test::run_node("tint", {{"image", input}}, {{"amount", 0.5}});
+//   ASSERT_TRUE(out.ok()) << out.message();
+//   EXPECT_LT(aq::test::max_abs_diff(*out, reference), 1e-4);
+//
+// Images fed to a node go through the host's built-in `image_input` node type, which uploads
+// a CPU image (ImageF, row 0 at the bottom) as an RGBA32F texture.
+#pragma once
+
+#include <aquarelle/core/graph.h>
+#include <aquarelle/core/image.h>
+#include <aquarelle/core/registry.h>
+#include <aquarelle/core/result.h>
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <string>
+
+namespace aq::test {
+
+struct RenderOptions {
+  int width = 64;   // the graph's resolution (ctx.width/height for nodes that use it)
+  int height = 64;
+  int frame = 1;
+  double fps = 24.0;
+  std::string precision = "float";  // "half" or "float"
+  std::string quality = "final";
+  std::string gl = "egl";           // "egl" or "osmesa"
+  std::string output;               // "node.port"; empty: the graph's output / node's first
+};
+
+// Every plugin in the build's plugin folder plus the host's built-in types.
+const Registry& registry();
+
+// Renders a graph given as JSON text (the file format). `images` feeds `image_input` nodes
+// by their `name` parameter.
+Result<ImageF> render_graph(const std::string& json_text, const RenderOptions& options = {},
+                            const std::map<std::string, ImageF>& images = {});
+Result<ImageF> render_graph_file(const std::string& path, const RenderOptions& options = {});
+
+// Runs one node of `type` with CPU images on its image inputs and `params`; returns the output
+// named by options.output's port (or its first output).
+Result<ImageF> run_node(const std::string& type, const std::map<std::string, ImageF>& inputs,
+                        const nlohmann::json& params = nlohmann::json::object(),
+                        const RenderOptions& options = {});
+
+// Comparisons over the first `channels` channels (all when -1).
+double max_abs_diff(const ImageF& a, const ImageF& b, int channels = -1);
+double mean_abs_diff(const ImageF& a, const ImageF& b, int channels = -1);
+double psnr(const ImageF& a, const ImageF& b, double peak = 1.0, int channels = -1);
+bool all_finite(const ImageF& image);
+
+// Small deterministic test images.
+ImageF gradient_image(int width, int height);     // r = x, g = y, b = 1 - x, a = 1
+ImageF random_image(int width, int height, unsigned seed, float lo = 0.0f, float hi = 1.0f);
+ImageF constant_image(int width, int height, float r, float g, float b, float a = 1.0f);
+ImageF checker_image(int width, int height, int cell);
+
+// Path of a file in the source tree (e.g. "graphs/tint.json").
+std::string source_path(const std::string& relative);
+
+}  // namespace aq::test
