@@ -1,0 +1,80 @@
+// Evaluates a graph for one frame by pulling from the requested output.
+//
+//   compile: cull to the nodes the output depends on, sort them, count readers per output
+//   execute: for each node, compute its cache key = hash(type, params, input keys, settings,
+//            time if time-dependent); equal to last run → reuse its outputs, else process()
+//   release: after a node's last reader ran, its outputs go back to the texture pool unless
+//            the cache keeps them (retain_outputs)
+//
+// Every process() is timed with GPU timer queries and CPU wall time.
+#pragma once
+
+#include <aquarelle/core/gl_context.h>
+#include <aquarelle/core/graph.h>
+#include <aquarelle/core/image.h>
+#include <aquarelle/core/registry.h>
+#include <aquarelle/core/result.h>
+#include <aquarelle/core/texture_pool.h>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace aq {
+
+struct NodeTiming {
+  std::string node;
+  std::string type;
+  double gpu_ms = 0;   // GPU time of process() (timer query)
+  double cpu_ms = 0;   // wall time of process()
+  bool cached = false; // reused from the previous evaluation, not run
+};
+
+struct EvalOptions {
+  int frame = 1;
+  // Keep every node's outputs between evaluations so unchanged nodes are not re-run (editor,
+  // animation with static parts). Off: outputs return to the pool after their last reader.
+  bool retain_outputs = true;
+  bool measure_gpu_time = true;
+  // Images for `image_input` nodes, by their `name` parameter (tests, embedding).
+  const std::map<std::string, ImageF>* images = nullptr;
+};
+
+class Evaluator {
+ public:
+  Evaluator(GlContext& context, const Registry& registry);
+  ~Evaluator();
+  Evaluator(const Evaluator&) = delete;
+  Evaluator& operator=(const Evaluator&) = delete;
+
+  // Evaluates `output` (or graph.output) for options.frame. The result stays valid until the
+  // next evaluate() or until released. Errors name the node, e.g. "node 'blur' (blur): ...".
+  Result<TextureRef> evaluate(const Graph& graph, const EvalOptions& options,
+                              const std::optional<PortRef>& output = std::nullopt);
+
+  // Reads a texture back as float pixels (RGBA, or 1 channel for R32F).
+  Result<ImageF> read_back(const TextureRef& texture);
+
+  const std::vector<NodeTiming>& last_timings() const { return timings_; }
+  // How many times each node id has been processed (not reused) since construction.
+  const std::map<std::string, int>& run_counts() const { return run_counts_; }
+  TexturePool& pool() { return *pool_; }
+  // Drops cached outputs and node instances (e.g. after the plugin set or context changed).
+  void clear();
+  // Hot reload: shaders are read from their source path when it exists.
+  void set_shader_hot_reload(bool enabled);
+
+  struct Impl;
+
+ private:
+  GlContext& context_;
+  const Registry& registry_;
+  std::unique_ptr<TexturePool> pool_;
+  std::unique_ptr<Impl> impl_;
+  std::vector<NodeTiming> timings_;
+  std::map<std::string, int> run_counts_;
+};
+
+}  // namespace aq

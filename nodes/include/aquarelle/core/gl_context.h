@@ -1,0 +1,44 @@
+// Headless and windowed OpenGL contexts. EGL surfaceless is the default headless backend,
+// OSMesa the fallback; an external context (the editor's GLFW window) can be adopted. Each
+// gives 4.5 core on Mesa llvmpipe. There is no default framebuffer: always render to FBOs.
+#pragma once
+
+#include <aquarelle/core/result.h>
+
+#include <memory>
+#include <string>
+
+namespace aq {
+
+enum class GlBackend { kAuto, kEgl, kOsmesa, kExternal };
+
+const char* backend_name(GlBackend backend);
+// "auto" | "egl" | "osmesa"; nullopt-like error for anything else.
+Result<GlBackend> parse_backend(const std::string& name);
+
+class GlContext {
+ public:
+  virtual ~GlContext() = default;
+  virtual GlBackend backend() const = 0;
+  virtual bool make_current() = 0;
+  virtual void* get_proc_address(const char* name) const = 0;
+  // "OpenGL 4.5 (Core Profile) Mesa 22.3.6, llvmpipe (LLVM 15.0.6, 256 bits)"
+  std::string description() const;
+  // Changes every time a context is made current through a different backend, so plugins know
+  // to reload their GL functions.
+  uint32_t generation() const { return generation_; }
+
+ protected:
+  uint32_t generation_ = 0;
+  // Loads the core's glad from this context; call after making it current.
+  bool load_functions();
+};
+
+// Creates a headless context. kAuto tries EGL, then OSMesa; `tried` (optional) receives what
+// was tried and why each failed, for a single clear message when none works.
+Result<std::unique_ptr<GlContext>> create_headless_context(GlBackend backend);
+
+// Adopts a context that something else (GLFW) created and made current.
+std::unique_ptr<GlContext> adopt_current_context(void* (*get_proc_address)(const char*));
+
+}  // namespace aq
