@@ -1,0 +1,43 @@
+// Reading and writing image files through OpenImageIO. Reading gives RGBA float pixels in the
+// working space with row 0 at the bottom (GL convention); writing keeps EXR/HDR linear and
+// quantises PNG/JPEG/TIFF pixels that are already display-referred. Writes are atomic.
+#pragma once
+
+#include <aquarelle/core/color.h>
+#include <aquarelle/core/image.h>
+#include <aquarelle/core/result.h>
+
+#include <string>
+
+namespace aq {
+
+// Larger images are refused before any pixel memory is allocated.
+inline constexpr int kMaxImageSide = 16384;
+
+// Reads any format OIIO reads into 4-channel float (grey -> rgb, missing alpha = 1), flipped
+// so row 0 is the bottom row, converted to the working space from the file's colour space:
+// `colorspace_override` when given; else OIIO's "oiio:ColorSpace" metadata when it names a
+// space of the config (or "sRGB"/"Linear"); else linear for float/half files (EXR, HDR) and
+// sRGB for integer files (PNG, JPEG, TIFF...). Errors name the path and say how to fix.
+Result<ImageF> read_image(const std::string& path, const ColorConfig& config,
+                          const std::string& colorspace_override = "");
+
+// The colour space read_image would assume for `path` without an override (opens the header).
+Result<std::string> file_colorspace(const std::string& path, const ColorConfig& config);
+
+struct WriteOptions {
+  bool float_data = false;  // EXR: 32-bit float instead of half
+  int bits = 8;             // PNG/TIFF: 8 or 16 (JPEG is always 8)
+};
+
+// Writes `image` (row 0 at the bottom; 1, 3 or 4 channels). EXR/HDR keep linear data;
+// PNG/JPEG/TIFF expect display-referred pixels (the display transform already ran), clamped to
+// [0,1] and quantised; alpha is written straight (unassociated). Atomic: the pixels go to
+// PATH.tmp-<pid>.<ext> first and are renamed over PATH; on any failure (disk full,
+// unwritable directory) nothing is left behind and the error names the path and the reason.
+Status write_image(const std::string& path, const ImageF& image, const WriteOptions& options = {});
+
+// png, jpg, jpeg, tif, tiff -> true; exr, hdr and anything else -> false (case-insensitive).
+bool is_display_referred_format(const std::string& path);
+
+}  // namespace aq
