@@ -9,6 +9,8 @@
 // Lattice cells are the integer parts floor(p). Periods are in lattice cells and must be whole
 // numbers (they are rounded); a period component <= 0 means "not periodic along this axis".
 // Wrapping is applied to the cell index before hashing, so a periodic function repeats exactly.
+// aq_perlin2, aq_fbm2 and aq_worley2 have `_seeded(..., uint seed)` variants giving independent
+// fields per seed; the unseeded names are seed 0.
 
 // ---- Hashes --------------------------------------------------------------------------------
 
@@ -71,27 +73,29 @@ vec2 aq_fade(vec2 t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 vec3 aq_fade(vec3 t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 vec3 aq_fade_derivative(vec3 t) { return 30.0 * t * t * (t * (t - 2.0) + 1.0); }
 
-// One of 8 unit gradients (multiples of 45 degrees) chosen by the cell hash.
-vec2 aq_perlin2_gradient(ivec2 cell) {
+// One of 8 unit gradients (multiples of 45 degrees) chosen by the hash of (cell, seed).
+vec2 aq_perlin2_gradient(ivec2 cell, uint seed) {
   const float d = 0.70710678118654752;
   const vec2 directions[8] = vec2[8](vec2(1.0, 0.0), vec2(d, d), vec2(0.0, 1.0), vec2(-d, d),
                                      vec2(-1.0, 0.0), vec2(-d, -d), vec2(0.0, -1.0), vec2(d, -d));
-  return directions[aq_pcg2d(uvec2(cell)).x & 7u];
+  return directions[aq_pcg3d(uvec3(uvec2(cell), seed)).x & 7u];
 }
 
 // 2D gradient noise, periodic with `period` cells per axis (0 = not periodic). The sum of the
 // four corner ramps is scaled by sqrt(2) so that the range is [-1,1] (the unscaled extreme of
-// 2D Perlin noise with unit gradients is sqrt(2)/2).
-float aq_perlin2(vec2 p, vec2 period) {
+// 2D Perlin noise with unit gradients is sqrt(2)/2). Each seed gives an independent field.
+float aq_perlin2_seeded(vec2 p, vec2 period, uint seed) {
   ivec2 i = ivec2(floor(p));
   vec2 f = p - floor(p);
-  float n00 = dot(aq_perlin2_gradient(aq_wrap_cell(i, period)), f);
-  float n10 = dot(aq_perlin2_gradient(aq_wrap_cell(i + ivec2(1, 0), period)), f - vec2(1, 0));
-  float n01 = dot(aq_perlin2_gradient(aq_wrap_cell(i + ivec2(0, 1), period)), f - vec2(0, 1));
-  float n11 = dot(aq_perlin2_gradient(aq_wrap_cell(i + ivec2(1, 1), period)), f - vec2(1, 1));
+  float n00 = dot(aq_perlin2_gradient(aq_wrap_cell(i, period), seed), f);
+  float n10 = dot(aq_perlin2_gradient(aq_wrap_cell(i + ivec2(1, 0), period), seed), f - vec2(1, 0));
+  float n01 = dot(aq_perlin2_gradient(aq_wrap_cell(i + ivec2(0, 1), period), seed), f - vec2(0, 1));
+  float n11 = dot(aq_perlin2_gradient(aq_wrap_cell(i + ivec2(1, 1), period), seed), f - vec2(1, 1));
   vec2 u = aq_fade(f);
   return 1.41421356237309505 * mix(mix(n00, n10, u.x), mix(n01, n11, u.x), u.y);
 }
+
+float aq_perlin2(vec2 p, vec2 period) { return aq_perlin2_seeded(p, period, 0u); }
 
 // One of Perlin's 12 cube-edge gradients (length sqrt(2)); 16 entries with 4 repeated, as in
 // Perlin's "Improving Noise" (2002), so that a 4-bit index can be used without bias.
@@ -157,21 +161,25 @@ vec4 aq_perlin3_with_gradient(vec3 p, vec3 period) {
 float aq_perlin3(vec3 p, vec3 period) { return aq_perlin3_with_gradient(p, period).x; }
 
 // Fractal sum of `octaves` (>= 1) layers of aq_perlin2: octave k has frequency 2^k, period
-// period * 2^k (so every octave keeps the same period in p) and amplitude 2^-k. The sum is
-// divided by the total amplitude (2 - 2^(1-octaves)) so the range stays about [-1,1].
-float aq_fbm2(vec2 p, vec2 period, int octaves) {
+// period * 2^k (so every octave keeps the same period in p), amplitude 2^-k and its own
+// lattice (seed + k * 0x9E3779B9). The sum is divided by the total amplitude
+// (2 - 2^(1-octaves)) so the range stays about [-1,1].
+float aq_fbm2_seeded(vec2 p, vec2 period, int octaves, uint seed) {
   float sum = 0.0;
   float amplitude = 1.0;
   float total = 0.0;
   float frequency = 1.0;
   for (int k = 0; k < max(octaves, 1); ++k) {
-    sum += amplitude * aq_perlin2(p * frequency, period * frequency);
+    sum += amplitude * aq_perlin2_seeded(p * frequency, period * frequency,
+                                         seed + uint(k) * 0x9E3779B9u);
     total += amplitude;
     amplitude *= 0.5;
     frequency *= 2.0;
   }
   return sum / total;
 }
+
+float aq_fbm2(vec2 p, vec2 period, int octaves) { return aq_fbm2_seeded(p, period, octaves, 0u); }
 
 // ---- Value noises --------------------------------------------------------------------------
 
@@ -185,11 +193,12 @@ float aq_gaussian_noise(vec2 cell, float seed) {
 }
 
 // Worley (cellular) noise F1: Euclidean distance from p to the nearest feature point, one
-// feature point per cell at cell + aq_hash22(wrapped cell). Periodic with `period` cells.
+// feature point per cell at cell + two 24-bit hashes of (wrapped cell, seed). Periodic with
+// `period` cells.
 // The own cell's point is closer than sqrt(2), so the search covers the 5x5 neighbourhood
 // minus its corners (which are always farther than sqrt(2)): the result is the exact F1, not
 // the usual 3x3 approximation. Range [0, sqrt(2)), typically below 1.
-float aq_worley2(vec2 p, vec2 period) {
+float aq_worley2_seeded(vec2 p, vec2 period, uint seed) {
   ivec2 i = ivec2(floor(p));
   vec2 f = p - floor(p);
   float nearest = 1e9;
@@ -197,9 +206,12 @@ float aq_worley2(vec2 p, vec2 period) {
     for (int x = -2; x <= 2; ++x) {
       if (abs(x) == 2 && abs(y) == 2) continue;
       ivec2 offset = ivec2(x, y);
-      vec2 feature = vec2(offset) + aq_hash22(vec2(aq_wrap_cell(i + offset, period)));
+      uvec3 h = aq_pcg3d(uvec3(uvec2(aq_wrap_cell(i + offset, period)), seed));
+      vec2 feature = vec2(offset) + vec2(aq_unit_float(h.x), aq_unit_float(h.y));
       nearest = min(nearest, length(feature - f));
     }
   }
   return nearest;
 }
+
+float aq_worley2(vec2 p, vec2 period) { return aq_worley2_seeded(p, period, 0u); }
