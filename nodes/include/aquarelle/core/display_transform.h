@@ -1,6 +1,11 @@
 // The OpenColorIO display/view transform (working space -> display, e.g. sRGB "Standard"),
 // applied on the GPU through OCIO's GLSL shader generator, with a CPU twin for tests and for
 // images that never reach the GPU. The output node runs it before writing PNG/JPEG/TIFF.
+//
+// Alpha: the input is working-space colour with associated (premultiplied) alpha, as every
+// node produces it; colour is divided by alpha (where alpha > 0) before the view, because a
+// view is defined on straight colour. The output is display-referred with STRAIGHT alpha,
+// which is what write_image stores in PNG/JPEG/TIFF. With alpha = 1 this changes nothing.
 #pragma once
 
 #include <aquarelle/core/color.h>

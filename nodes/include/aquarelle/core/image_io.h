@@ -18,7 +18,9 @@ inline constexpr int kMaxImageSide = 16384;
 // so row 0 is the bottom row, converted to the working space from the file's colour space:
 // `colorspace_override` when given; else OIIO's "oiio:ColorSpace" metadata when it names a
 // space of the config (or "sRGB"/"Linear"); else linear for float/half files (EXR, HDR) and
-// sRGB for integer files (PNG, JPEG, TIFF...). Errors name the path and say how to fix.
+// sRGB for integer files (PNG, JPEG, TIFF...). Alpha comes back associated (premultiplied) in
+// the working space: straight-alpha files (PNG...) are linearised first, then premultiplied.
+// Errors name the path and say how to fix.
 Result<ImageF> read_image(const std::string& path, const ColorConfig& config,
                           const std::string& colorspace_override = "");
 
@@ -30,9 +32,10 @@ struct WriteOptions {
   int bits = 8;             // PNG/TIFF: 8 or 16 (JPEG is always 8)
 };
 
-// Writes `image` (row 0 at the bottom; 1, 3 or 4 channels). EXR/HDR keep linear data;
-// PNG/JPEG/TIFF expect display-referred pixels (the display transform already ran), clamped to
-// [0,1] and quantised; alpha is written straight (unassociated). Atomic: the pixels go to
+// Writes `image` (row 0 at the bottom; 1, 3 or 4 channels). EXR/HDR keep linear data as given
+// (associated alpha); PNG/JPEG/TIFF expect display-referred pixels with straight alpha (the
+// output of DisplayTransform), which are clamped to [0,1], quantised and stored unchanged
+// (JPEG drops alpha). Atomic: the pixels go to
 // PATH.tmp-<pid>.<ext> first and are renamed over PATH; on any failure (disk full,
 // unwritable directory) nothing is left behind and the error names the path and the reason.
 Status write_image(const std::string& path, const ImageF& image, const WriteOptions& options = {});
