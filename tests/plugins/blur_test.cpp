@@ -1,0 +1,243 @@
+// Headless tests of the `blur` node against the CPU double references (tests/reference/blur.h):
+// exact Gaussian within 1e-4 in float precision (both tap modes), impulse response symmetric and
+// summing to 1, identity at sigma 0, sigma larger than the image, no checkerboard artefacts
+// with `gaussian` while `strided` shows them, the variable (depth and radial) blur against its
+// definition and against the ideal per-pixel Gaussian, and edge darkening kept on near objects.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "reference/blur.h"
+#include "support/harness.h"
+
+namespace {
+
+using aq::ImageF;
+using aq::reference::BlurParams;
+
+aq::test::RenderOptions with_precision(const char* precision) {
+  aq::test::RenderOptions options;
+  options.precision = precision;
+  return options;
+}
+
+nlohmann::json to_json(const BlurParams& p, bool linear_taps = true,
+                       const char* method = "gaussian") {
+  return {{"method", method},
+          {"sigma", p.sigma},
+          {"distance_scale", p.distance_scale},
+          {"depth_weight", p.depth_weight},
+          {"radial_weight", p.radial_weight},
+          {"linear_taps", linear_taps}};
+}
+
+// A plain Gaussian of sigma: no depth input, no radial term.
+BlurParams uniform(double sigma) {
+  return BlurParams{sigma, 20.0, 1.0, 0.0};
+}
+
+ImageF run(const ImageF& image, const nlohmann::json& params, const ImageF* depth = nullptr,
+           const char* precision = "float") {
+  std::map<std::string, ImageF> inputs{{"image", image}};
+  if (depth != nullptr) inputs.emplace("depth", *depth);
+  auto out = aq::test::run_node("blur", inputs, params, with_precision(precision));
+  EXPECT_TRUE(out.ok()) << (out.ok() ? "" : out.message());
+  return out.ok() ? *out : ImageF();
+}
+
+// Depth growing from 0 at the left to `far` at the right, in channel 0.
+ImageF depth_ramp(int width, int height, double far) {
+  ImageF depth(width, height, 4, 1.0f);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) depth.at(x, y, 0) = static_cast<float>(far * (x + 0.5) / width);
+  return depth;
+}
+
+TEST(Blur, UniformGaussianMatchesDoubleReferenceInFloat) {
+  const ImageF input = aq::test::random_image(96, 64, 21);
+  for (double sigma : {0.4, 1.0, 2.5, 6.3}) {
+    const ImageF expected = aq::reference::gaussian_blur(input, sigma);
+    for (bool linear : {false, true}) {
+      const ImageF got = run(input, to_json(uniform(sigma), linear));
+      ASSERT_FALSE(got.empty());
+      const double err = aq::test::max_abs_diff(got, expected);
+      EXPECT_LE(err, 1e-4) << "sigma " << sigma << " linear_taps " << linear;
+      EXPECT_GE(aq::test::psnr(got, expected), 85.0) << "sigma " << sigma;
+      std::printf("[blur float] sigma %.1f linear_taps %d: max abs %.3g, psnr %.1f dB\n", sigma,
+                  linear, err, aq::test::psnr(got, expected));
+    }
+  }
+}
+
+TEST(Blur, UniformGaussianInHalfPrecision) {
+  const ImageF input = aq::test::random_image(96, 64, 22);
+  for (double sigma : {1.0, 6.3}) {
+    const ImageF expected = aq::reference::gaussian_blur(input, sigma);
+    const ImageF got = run(input, to_json(uniform(sigma)), nullptr, "half");
+    ASSERT_FALSE(got.empty());
+    const double err = aq::test::max_abs_diff(got, expected);
+    // Only the output is half (intermediates are RGBA32F): half an ulp below 1 is 2.4e-4.
+    EXPECT_LE(err, 5e-4) << "sigma " << sigma;
+    std::printf("[blur half] sigma %.1f: max abs %.3g, psnr %.1f dB\n", sigma, err,
+                aq::test::psnr(got, expected));
+  }
+}
+
+TEST(Blur, ImpulseResponseIsSymmetricAndSumsToOne) {
+  for (bool linear : {false, true}) {
+    ImageF impulse(63, 63, 4, 0.0f);
+    for (int c = 0; c < 4; ++c) impulse.at(31, 31, c) = 1.0f;
+    const ImageF got = run(impulse, to_json(uniform(3.7), linear));
+    ASSERT_FALSE(got.empty());
+    double sum = 0.0;
+    double asymmetry = 0.0;
+    for (int y = 0; y < 63; ++y)
+      for (int x = 0; x < 63; ++x) {
+        sum += got.at(x, y, 0);
+        asymmetry = std::max<double>(asymmetry, std::abs(got.at(x, y, 0) - got.at(62 - x, y, 0)));
+        asymmetry = std::max<double>(asymmetry, std::abs(got.at(x, y, 0) - got.at(x, 62 - y, 0)));
+        asymmetry = std::max<double>(asymmetry, std::abs(got.at(x, y, 0) - got.at(y, x, 0)));
+      }
+    EXPECT_NEAR(sum, 1.0, 1e-5) << "linear_taps " << linear;
+    EXPECT_LE(asymmetry, 1e-6) << "linear_taps " << linear;
+    // The response is the kernel itself: its peak is the squared centre weight.
+    const double k0 = aq::reference::gaussian_kernel(3.7)[0];
+    EXPECT_NEAR(got.at(31, 31, 0), k0 * k0, 1e-5);
+  }
+}
+
+TEST(Blur, SigmaZeroIsExactIdentity) {
+  const ImageF input = aq::test::random_image(50, 30, 23, -1.0f, 3.0f);
+  EXPECT_EQ(aq::test::max_abs_diff(run(input, to_json(uniform(0.0))), input), 0.0);
+  const ImageF depth = depth_ramp(50, 30, 100.0);
+  BlurParams off{5.0, 20.0, 0.0, 0.0};
+  EXPECT_EQ(aq::test::max_abs_diff(run(input, to_json(off), &depth), input), 0.0);
+  EXPECT_EQ(aq::test::max_abs_diff(run(input, to_json(off, true, "strided"), &depth), input), 0.0);
+}
+
+TEST(Blur, TinySigmaIsNearlyIdentity) {
+  const ImageF input = aq::test::random_image(40, 40, 24);
+  EXPECT_LE(aq::test::max_abs_diff(run(input, to_json(uniform(0.05))), input), 1e-6);
+}
+
+TEST(Blur, SigmaLargerThanTheImageStaysCorrect) {
+  const ImageF input = aq::test::random_image(17, 11, 25);
+  for (double sigma : {12.0, 40.0, 400.0}) {
+    const ImageF expected = aq::reference::gaussian_blur(input, sigma);
+    const ImageF got = run(input, to_json(uniform(sigma)));
+    ASSERT_FALSE(got.empty());
+    EXPECT_LE(aq::test::max_abs_diff(got, expected), 1e-4) << "sigma " << sigma;
+  }
+  // A 1x1 image is its own blur.
+  const ImageF pixel = aq::test::constant_image(1, 1, 0.25f, 0.5f, 0.75f, 1.0f);
+  EXPECT_LE(aq::test::max_abs_diff(run(pixel, to_json(uniform(30.0))), pixel), 1e-6);
+}
+
+TEST(Blur, CheckerboardHasNoArtefactsWithGaussianButDoesWithStrided) {
+  // Cells of 5 px (period 10): sigma 10 leaves a flat grey; the strided kernel's taps, 10 px
+  // apart, all land on the same colour and keep the full contrast.
+  const ImageF checker = aq::test::checker_image(120, 120, 5);
+  const BlurParams params = uniform(10.0);
+  const ImageF gaussian = run(checker, to_json(params));
+  const ImageF strided = run(checker, to_json(params, true, "strided"));
+  ASSERT_FALSE(gaussian.empty());
+  ASSERT_FALSE(strided.empty());
+  const ImageF exact = aq::reference::gaussian_blur(checker, 10.0);
+  const double gaussian_err = aq::test::max_abs_diff(gaussian, exact, 3);
+  const double strided_err = aq::test::max_abs_diff(strided, exact, 3);
+  EXPECT_LE(gaussian_err, 1e-4);
+  EXPECT_GE(strided_err, 0.25);
+  // Away from the borders the Gaussian result is flat.
+  double lo = 1e9, hi = -1e9;
+  for (int y = 40; y < 80; ++y)
+    for (int x = 40; x < 80; ++x) {
+      lo = std::min<double>(lo, gaussian.at(x, y, 0));
+      hi = std::max<double>(hi, gaussian.at(x, y, 0));
+    }
+  EXPECT_LE(hi - lo, 1e-4);
+  // The strided method is what the reference says it is (its artefacts are by design).
+  EXPECT_LE(aq::test::max_abs_diff(strided, aq::reference::strided_blur(checker, nullptr, params)),
+            1e-4);
+  std::printf("[blur checker] gaussian err %.3g, strided err %.3g\n", gaussian_err, strided_err);
+}
+
+TEST(Blur, VariableBlurMatchesItsDefinitionAndApproachesTheIdeal) {
+  const ImageF input = aq::test::random_image(80, 60, 26);
+  const ImageF depth = depth_ramp(80, 60, 30.0);
+  const BlurParams params{6.0, 20.0, 1.0, 0.35};
+  const ImageF got = run(input, to_json(params), &depth);
+  ASSERT_FALSE(got.empty());
+  const ImageF stacked = aq::reference::stacked_blur(input, &depth, params);
+  const ImageF ideal = aq::reference::exact_variable_blur(input, &depth, params);
+  const double err = aq::test::max_abs_diff(got, stacked);
+  EXPECT_LE(err, 1e-4);
+  const double ideal_max = aq::test::max_abs_diff(got, ideal);
+  const double ideal_mean = aq::test::mean_abs_diff(got, ideal);
+  // The stack mixes two Gaussians of the right variance instead of one: measured, bounded.
+  EXPECT_LE(ideal_mean, 0.02);
+  std::printf(
+      "[blur variable] vs definition %.3g; vs ideal per-pixel Gaussian max %.3g mean %.3g\n", err,
+      ideal_max, ideal_mean);
+}
+
+TEST(Blur, ParameterSweepMatchesReference) {
+  const ImageF input = aq::test::random_image(64, 48, 27);
+  const ImageF depth = depth_ramp(64, 48, 12.0);
+  for (double sigma : {0.7, 2.0, 9.0}) {
+    for (double radial : {0.0, 0.5}) {
+      for (double scale : {5.0, 40.0}) {
+        const BlurParams params{sigma, scale, 0.8, radial};
+        for (const ImageF* d : {&depth, static_cast<const ImageF*>(nullptr)}) {
+          const ImageF got = run(input, to_json(params), d);
+          ASSERT_FALSE(got.empty());
+          EXPECT_LE(aq::test::max_abs_diff(got, aq::reference::stacked_blur(input, d, params)),
+                    1e-4)
+              << "sigma " << sigma << " radial " << radial << " scale " << scale << " depth "
+              << (d != nullptr);
+        }
+      }
+    }
+  }
+}
+
+TEST(Blur, StridedMatchesReferenceWithDepth) {
+  const ImageF input = aq::test::random_image(64, 64, 28);
+  const ImageF depth = depth_ramp(64, 64, 25.0);
+  const BlurParams params{7.0, 20.0, 1.0, 0.35};
+  const ImageF got = run(input, to_json(params, true, "strided"), &depth);
+  ASSERT_FALSE(got.empty());
+  EXPECT_LE(aq::test::max_abs_diff(got, aq::reference::strided_blur(input, &depth, params)), 1e-4);
+}
+
+TEST(Blur, NearObjectsKeepTheirEdgeDarkening) {
+  // A dark outline (0.2) around a light square at depth 2; the far background at depth 60.
+  ImageF image = aq::test::constant_image(96, 96, 0.9f, 0.9f, 0.9f);
+  ImageF depth(96, 96, 4, 60.0f);
+  for (int y = 30; y < 66; ++y)
+    for (int x = 30; x < 66; ++x) {
+      depth.at(x, y, 0) = 2.0f;
+      const bool outline = x == 30 || x == 65 || y == 30 || y == 65;
+      for (int c = 0; c < 3; ++c) image.at(x, y, c) = outline ? 0.2f : 0.8f;
+    }
+  const ImageF got = run(image, to_json(BlurParams{6.0, 20.0, 1.0, 0.35}), &depth);
+  ASSERT_FALSE(got.empty());
+  // Depth 2 of 20 gives strength 0.001 (+ a small radial term): the outline stays dark.
+  EXPECT_LE(got.at(30, 48, 0), 0.3f);
+  EXPECT_LE(got.at(48, 65, 0), 0.3f);
+}
+
+TEST(Blur, BackgroundAndNonFiniteDepthCountAsFar) {
+  const ImageF input = aq::test::random_image(48, 48, 29);
+  ImageF depth(48, 48, 4, 0.0f);  // background: no geometry
+  depth.at(3, 3, 0) = std::numeric_limits<float>::quiet_NaN();
+  depth.at(4, 3, 0) = std::numeric_limits<float>::infinity();
+  const BlurParams params{3.0, 20.0, 1.0, 0.0};
+  const ImageF got = run(input, to_json(params), &depth);
+  ASSERT_FALSE(got.empty());
+  EXPECT_TRUE(aq::test::all_finite(got));
+  // Strength 1 everywhere: the plain Gaussian.
+  EXPECT_LE(aq::test::max_abs_diff(got, aq::reference::gaussian_blur(input, 3.0)), 1e-4);
+}
+
+}  // namespace

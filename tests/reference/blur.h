@@ -1,0 +1,43 @@
+// CPU references of the `blur` node in double precision, written from the maths in
+// plugins/blur/README.md: the exact clamp-to-edge Gaussian, the per-pixel strength, the stack
+// of exact blurs mixed by variance, a per-pixel exact variable Gaussian (the ideal the stack
+// approximates) and the seed's strided 5×5 kernel. Used by the tests and `aquarelle bench`.
+#pragma once
+
+#include <aquarelle/core/image.h>
+
+#include <vector>
+
+namespace aq::reference {
+
+struct BlurParams {
+  double sigma = 4.0;  // pixels, at strength 1
+  double distance_scale = 20.0;
+  double depth_weight = 1.0;
+  double radial_weight = 0.35;
+};
+
+// Sampled Gaussian exp(-i²/2σ²) for i = 0..ceil(truncation_sigmas·σ), normalised so that the
+// symmetric kernel sums to 1. σ <= 0 gives {1}.
+std::vector<double> gaussian_kernel(double sigma, double truncation_sigmas = 8.0);
+
+// Separable Gaussian with clamp-to-edge borders, accumulated in double. The default
+// truncation (8σ) makes it the untruncated Gaussian to double precision.
+ImageF gaussian_blur(const ImageF& image, double sigma, double truncation_sigmas = 8.0);
+
+// Strength s in [0, 1] at pixel (x, y); `depth` (channel 0) may be null (depth term 1).
+double blur_strength(int x, int y, int width, int height, const ImageF* depth,
+                     const BlurParams& params);
+
+// The `gaussian` method as specified: a stack of exact blurs at σmax, σmax/2, ... (at most 6,
+// none below 1 px) over the input, mixed per pixel by variance.
+ImageF stacked_blur(const ImageF& image, const ImageF* depth, const BlurParams& params);
+
+// The ideal variable blur: at each pixel the exact Gaussian of that pixel's own σ (gather).
+ImageF exact_variable_blur(const ImageF& image, const ImageF* depth, const BlurParams& params);
+
+// The `strided` method: 5×5 binomial kernel with strides 0.3σ and σ, bilinear clamp-to-edge
+// reads, mixed by strength.
+ImageF strided_blur(const ImageF& image, const ImageF* depth, const BlurParams& params);
+
+}  // namespace aq::reference
