@@ -1,0 +1,65 @@
+// Tiny RAII owners for the GL objects a plugin keeps in its instance state between frames
+// (vertex buffers, vertex arrays). Plugins may not use the core's gl_objects.h (they see only
+// plugin.h and glad), so this header depends on nothing else.
+//
+// A GL name belongs to the context that created it. When the host switches contexts
+// (ctx.gl_generation changes) the old names are meaningless in the new one: `forget()` drops
+// them without calling glDelete*, and the plugin creates fresh ones.
+#pragma once
+
+#include <glad/gl.h>
+
+#include <utility>
+
+namespace aq::gl {
+
+enum class Kind { kBuffer, kVertexArray, kTexture, kFramebuffer };
+
+template <Kind K>
+class Object {
+ public:
+  Object() = default;
+  ~Object() { reset(); }
+  Object(const Object&) = delete;
+  Object& operator=(const Object&) = delete;
+  Object(Object&& other) noexcept : name_(std::exchange(other.name_, 0u)) {}
+  Object& operator=(Object&& other) noexcept {
+    if (this != &other) {
+      reset();
+      name_ = std::exchange(other.name_, 0u);
+    }
+    return *this;
+  }
+
+  // Creates the object (deleting the one held, if any) and returns its name.
+  GLuint create() {
+    reset();
+    if constexpr (K == Kind::kBuffer) glCreateBuffers(1, &name_);
+    if constexpr (K == Kind::kVertexArray) glCreateVertexArrays(1, &name_);
+    if constexpr (K == Kind::kTexture) glCreateTextures(GL_TEXTURE_2D, 1, &name_);
+    if constexpr (K == Kind::kFramebuffer) glCreateFramebuffers(1, &name_);
+    return name_;
+  }
+  void reset() {
+    if (name_ == 0) return;
+    if constexpr (K == Kind::kBuffer) glDeleteBuffers(1, &name_);
+    if constexpr (K == Kind::kVertexArray) glDeleteVertexArrays(1, &name_);
+    if constexpr (K == Kind::kTexture) glDeleteTextures(1, &name_);
+    if constexpr (K == Kind::kFramebuffer) glDeleteFramebuffers(1, &name_);
+    name_ = 0;
+  }
+  // The context that owned the name is gone: drop it without a GL call.
+  void forget() { name_ = 0; }
+  GLuint get() const { return name_; }
+  explicit operator bool() const { return name_ != 0; }
+
+ private:
+  GLuint name_ = 0;
+};
+
+using Buffer = Object<Kind::kBuffer>;
+using VertexArray = Object<Kind::kVertexArray>;
+using Texture = Object<Kind::kTexture>;
+using Framebuffer = Object<Kind::kFramebuffer>;
+
+}  // namespace aq::gl

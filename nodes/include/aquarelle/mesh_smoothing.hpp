@@ -1,0 +1,257 @@
+// Load-time normal smoothing for low-poly meshes (Paré-Vogt & Chaid §3.2): every vertex
+// normal is averaged with its neighbours' normals, over the mesh's shared positions, a number
+// of times (7 by default), so cel-shading bands follow the overall shape instead of the facets.
+//
+//   positions ──weld (tolerance, union-find)──► groups of coincident vertices
+//   triangles ──────────────────────────────────► group adjacency (edges between groups)
+//   n0(group) = normalised sum of its vertices' normals
+//   n_{k+1}(g) = normalise(n_k(g) + sum over adjacent groups h of n_k(h))   (k < iterations)
+//   vertex normal = n(group), or its own face normal where the sum cancelled or points away
+//
+// Why welding by tolerance and not by hashing rounded coordinates: two copies of a corner that
+// differ by 1e-7 can round into different cells and would stay unwelded (a visible seam).
+// Here a vertex is compared against every vertex in the 27 surrounding cells of size
+// `tolerance`, and welds are transitive (union-find).
+//
+// Why the fallback: a double-sided part (two triangles with opposite windings on the same
+// positions: a leaf, a fin, a plane seen from both sides) sums to a zero vector; normalising it
+// gives NaN. Such groups are marked invalid and their vertices keep their own face normal.
+//
+// Positions are never moved, so the silhouette is exactly the input's. CPU only, header-only,
+// no dependency beyond the standard library (the scene plugin and the tests both use it).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <unordered_map>
+#include <vector>
+
+namespace aq::mesh {
+
+struct SmoothingOptions {
+  int iterations = 7;              // 0 leaves the normals untouched
+  double weld_tolerance = 1e-5;    // relative to the mesh's bounding-box diagonal
+  double cancel_threshold = 1e-3;  // |sum| / count below this: the normals cancelled
+};
+
+namespace detail {
+
+using Vec3 = std::array<double, 3>;
+
+inline Vec3 load(const std::vector<float>& v, size_t i) {
+  return {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+}
+inline Vec3 add(const Vec3& a, const Vec3& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+inline Vec3 sub(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+inline double length(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
+
+struct UnionFind {
+  std::vector<uint32_t> parent;
+  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  uint32_t find(uint32_t x) {
+    while (parent[x] != x) {
+      parent[x] = parent[parent[x]];
+      x = parent[x];
+    }
+    return x;
+  }
+  void unite(uint32_t a, uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // smallest index is the root
+  }
+};
+
+struct CellKey {
+  int64_t x, y, z;
+  bool operator==(const CellKey&) const = default;
+};
+struct CellKeyHash {
+  size_t operator()(const CellKey& k) const {
+    uint64_t h = static_cast<uint64_t>(k.x) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<uint64_t>(k.y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+    h ^= static_cast<uint64_t>(k.z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+    return static_cast<size_t>(h);
+  }
+};
+
+}  // namespace detail
+
+// Group index per vertex: vertices closer than `absolute_tolerance` (transitively) share one
+// group. Group indices are dense, 0..group_count-1, in order of first appearance.
+inline std::vector<uint32_t> weld_positions(const std::vector<float>& positions,
+                                            double absolute_tolerance, uint32_t* group_count) {
+  using namespace detail;
+  const size_t n = positions.size() / 3;
+  const double tol = std::max(absolute_tolerance, 1e-30);
+  UnionFind sets(n);
+  std::unordered_map<CellKey, std::vector<uint32_t>, CellKeyHash> cells;
+  cells.reserve(n);
+  auto cell_of = [&](const Vec3& p) {
+    return CellKey{static_cast<int64_t>(std::floor(p[0] / tol)),
+                   static_cast<int64_t>(std::floor(p[1] / tol)),
+                   static_cast<int64_t>(std::floor(p[2] / tol))};
+  };
+  for (uint32_t i = 0; i < n; ++i) {
+    Vec3 p = load(positions, i);
+    CellKey c = cell_of(p);
+    for (int64_t dx = -1; dx <= 1; ++dx)
+      for (int64_t dy = -1; dy <= 1; ++dy)
+        for (int64_t dz = -1; dz <= 1; ++dz) {
+          auto it = cells.find(CellKey{c.x + dx, c.y + dy, c.z + dz});
+          if (it == cells.end()) continue;
+          for (uint32_t j : it->second) {
+            if (length(sub(p, load(positions, j))) <= tol) sets.unite(i, j);
+          }
+        }
+    cells[c].push_back(i);
+  }
+  std::vector<uint32_t> group(n);
+  std::vector<uint32_t> dense(n, UINT32_MAX);
+  uint32_t next = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    uint32_t root = sets.find(i);
+    if (dense[root] == UINT32_MAX) dense[root] = next++;
+    group[i] = dense[root];
+  }
+  if (group_count != nullptr) *group_count = next;
+  return group;
+}
+
+// Per-vertex normal from the faces that use the vertex (area weighted), or from the input
+// normal when the faces cancel, or +y as the last resort. Always unit length and finite.
+inline std::vector<float> vertex_face_normals(const std::vector<float>& positions,
+                                              const std::vector<uint32_t>& indices,
+                                              const std::vector<float>& input_normals) {
+  using namespace detail;
+  const size_t n = positions.size() / 3;
+  std::vector<Vec3> sum(n, Vec3{0, 0, 0});
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    uint32_t a = indices[t], b = indices[t + 1], c = indices[t + 2];
+    if (a >= n || b >= n || c >= n) continue;
+    Vec3 area2 = cross(sub(load(positions, b), load(positions, a)),
+                       sub(load(positions, c), load(positions, a)));
+    for (uint32_t v : {a, b, c}) sum[v] = add(sum[v], area2);
+  }
+  std::vector<float> out(3 * n);
+  for (size_t i = 0; i < n; ++i) {
+    Vec3 s = sum[i];
+    double len = length(s);
+    if (!(len > 1e-30) && input_normals.size() == positions.size()) {
+      s = load(input_normals, i);
+      len = length(s);
+    }
+    if (!(len > 1e-30) || !std::isfinite(len)) {
+      s = {0, 1, 0};
+      len = 1;
+    }
+    for (int k = 0; k < 3; ++k) out[3 * i + k] = static_cast<float>(s[k] / len);
+  }
+  return out;
+}
+
+// Smooths `normals` (xyz per vertex; computed from the faces when empty or the wrong size) in
+// place. `positions` and `indices` are not modified.
+inline void smooth_normals(const std::vector<float>& positions,
+                           const std::vector<uint32_t>& indices, std::vector<float>& normals,
+                           const SmoothingOptions& options = {}) {
+  using namespace detail;
+  const size_t n = positions.size() / 3;
+  std::vector<float> face = vertex_face_normals(positions, indices, normals);
+  if (normals.size() != positions.size()) normals = face;
+  if (options.iterations <= 0 || n == 0) return;
+
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], static_cast<double>(positions[3 * i + k]));
+      hi[k] = std::max(hi[k], static_cast<double>(positions[3 * i + k]));
+    }
+  }
+  const double diagonal = length(sub(hi, lo));
+  uint32_t groups = 0;
+  std::vector<uint32_t> group =
+      weld_positions(positions, options.weld_tolerance * std::max(diagonal, 1e-30), &groups);
+
+  // Adjacency between groups, as sorted unique neighbour lists (CSR).
+  std::vector<std::vector<uint32_t>> neighbours(groups);
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    uint32_t a = indices[t], b = indices[t + 1], c = indices[t + 2];
+    if (a >= n || b >= n || c >= n) continue;
+    uint32_t g[3] = {group[a], group[b], group[c]};
+    for (int e = 0; e < 3; ++e) {
+      uint32_t u = g[e], v = g[(e + 1) % 3];
+      if (u == v) continue;
+      neighbours[u].push_back(v);
+      neighbours[v].push_back(u);
+    }
+  }
+  for (auto& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+
+  // A group normal is valid only when the unit normals summed into it did not cancel.
+  std::vector<Vec3> current(groups, Vec3{0, 0, 0});
+  std::vector<uint32_t> members(groups, 0);
+  for (size_t i = 0; i < n; ++i) {
+    Vec3 v = load(normals, i);
+    double len = length(v);
+    if (!(len > 1e-30) || !std::isfinite(len)) v = load(face, i), len = 1.0;
+    current[group[i]] = add(current[group[i]], {v[0] / len, v[1] / len, v[2] / len});
+    ++members[group[i]];
+  }
+  std::vector<char> valid(groups, 0);
+  auto normalise_or_invalidate = [&](Vec3& v, double count, char& ok) {
+    double len = length(v);
+    ok = (len > options.cancel_threshold * count && std::isfinite(len)) ? 1 : 0;
+    v = ok ? Vec3{v[0] / len, v[1] / len, v[2] / len} : Vec3{0, 0, 0};
+  };
+  for (uint32_t g = 0; g < groups; ++g) normalise_or_invalidate(current[g], members[g], valid[g]);
+
+  std::vector<Vec3> next(groups);
+  for (int iteration = 0; iteration < options.iterations; ++iteration) {
+    for (uint32_t g = 0; g < groups; ++g) {
+      Vec3 s = current[g];
+      double count = valid[g] ? 1.0 : 0.0;
+      for (uint32_t h : neighbours[g]) {
+        if (!valid[h]) continue;
+        s = add(s, current[h]);
+        count += 1.0;
+      }
+      next[g] = s;
+    }
+    for (uint32_t g = 0; g < groups; ++g) {
+      double count = 1.0 + static_cast<double>(neighbours[g].size());
+      normalise_or_invalidate(next[g], count, valid[g]);
+    }
+    current.swap(next);
+  }
+
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& s = current[group[i]];
+    Vec3 own = load(face, i);
+    // A smoothed normal facing away from the vertex's own face would light it from behind.
+    bool use_group = valid[group[i]] && dot(s, own) > 0.0;
+    for (int k = 0; k < 3; ++k) {
+      normals[3 * i + k] = static_cast<float>(use_group ? s[k] : own[k]);
+    }
+  }
+}
+
+}  // namespace aq::mesh

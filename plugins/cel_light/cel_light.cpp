@@ -1,0 +1,97 @@
+// cel_light: the deferred "Light" pass of Paré-Vogt & Chaid (§2.3, §3.1, §4.3): diffuse light
+// from the scene's directional light plus ambient, the shadow-map test (with optional PCF),
+// the caustic texture projected along the light onto lit surfaces, then cel shading: the HSV
+// value quantised to `levels` with hue and saturation kept. Output is linear HDR.
+//
+//   scene ──► light direction, colour, ambient, light matrix (scene_math.hpp, as shadowmap)
+//   position, normal, albedo, id ──┐
+//   shadow (optional) ─────────────┼──► cel_light.frag ──► image (working format)
+//   caustics (optional) ───────────┘
+#include <aquarelle/plugin.hpp>
+#include <aquarelle/scene_math.hpp>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <string>
+
+#include "cel_light_shaders.h"
+
+namespace {
+
+enum Input { kScene, kPosition, kNormal, kAlbedo, kId, kShadow, kCaustics };
+constexpr aq_port_desc kInputs[] = {
+    aq::scene_port("scene", "light direction, colour and ambient; the light matrix"),
+    aq::image_port("position", "world position (gbuffer.position)"),
+    aq::image_port("normal", "world normal (gbuffer.normal)"),
+    aq::image_port("albedo", "base colour (gbuffer.albedo)"),
+    aq::image_port("id", "object id, 0 = background (gbuffer.id)"),
+    aq::optional_image_port("shadow", "light-space depth (shadowmap.depth); unlit test if absent"),
+    aq::optional_image_port("caustics", "tileable caustic texture, mean 1 (caustics.image)")};
+constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "lit, cel-shaded colour (HDR)")};
+
+enum Param { kLevels, kQuantize, kPcfRadius, kCausticTile, kCausticStrength, kBackground };
+constexpr aq_param_desc kParams[] = {
+    aq::int_param("levels", 4, 1, 64,
+                  "HSV value levels: v -> round(v (levels-1)) / (levels-1); 1 = flat colour"),
+    aq::bool_param("quantize", true, "apply cel shading (off: plain diffuse light)"),
+    aq::int_param("pcf_radius", 1, 0, 4, "shadow filter: (2r+1)^2 taps, 0 = one tap"),
+    aq::float_param("caustic_tile", 4.0, 0.01, 1000.0,
+                    "world units covered by one period of the caustic texture"),
+    aq::float_param("caustic_strength", 1.0, 0.0, 4.0,
+                    "0: no caustics, 1: as computed, >1: more contrast"),
+    aq::color_param("background", 0.1, 0.3, 0.4, "colour where id = 0 (open water)")};
+
+struct CelLight {
+  int process(aq::Context& ctx) {
+    const aq_scene* scene = ctx.input_scene(kScene);
+    if (scene == nullptr) {
+      return ctx.fail(std::string("cel_light '") + ctx.node_id() +
+                      "': input `scene` is not connected; connect the scene node that feeds "
+                      "the gbuffer");
+    }
+    aq_image position = ctx.input_image(kPosition);
+    aq_image out;
+    if (!ctx.output_like(0, position, &out)) return AQ_ERROR;
+    GLuint program = ctx.program(shaders::cel_light_frag);
+    if (program == 0) return AQ_ERROR;
+    glUseProgram(program);
+    aq::bind_texture(program, "u_position", 0, position);
+    aq::bind_texture(program, "u_normal", 1, ctx.input_image(kNormal));
+    aq::bind_texture(program, "u_albedo", 2, ctx.input_image(kAlbedo));
+    aq::bind_texture(program, "u_id", 3, ctx.input_image(kId));
+    const bool has_shadow = ctx.connected(kShadow);
+    const bool has_caustics = ctx.connected(kCaustics);
+    // Unconnected optional inputs still bind a valid texture name (the position) so the
+    // sampler is complete; the shader does not read them.
+    aq::bind_texture(program, "u_shadow", 4, has_shadow ? ctx.input_image(kShadow) : position);
+    aq::bind_texture(program, "u_caustics", 5,
+                     has_caustics ? ctx.input_image(kCaustics) : position);
+    aq::set_int(program, "u_has_shadow", has_shadow ? 1 : 0);
+    aq::set_int(program, "u_has_caustics", has_caustics ? 1 : 0);
+
+    glm::mat4 light = aq::scene_math::light_view_projection(*scene);
+    glm::vec3 direction = aq::scene_math::light_direction(*scene);
+    aq::set_mat4(program, "u_light_view_projection", glm::value_ptr(light));
+    aq::set_vec3(program, "u_light_direction", glm::value_ptr(direction));
+    aq::set_vec3(program, "u_light_color", scene->light.color);
+    aq::set_vec3(program, "u_ambient", scene->light.ambient);
+    aq::set_int(program, "u_pcf_radius", static_cast<int>(ctx.param_int(kPcfRadius)));
+    aq::set_float(program, "u_water_height", scene->water_height);
+    aq::set_float(program, "u_caustic_tile", ctx.param_float(kCausticTile));
+    aq::set_float(program, "u_caustic_strength", ctx.param_float(kCausticStrength));
+    aq::set_int(program, "u_quantize", ctx.param_bool(kQuantize) ? 1 : 0);
+    aq::set_int(program, "u_levels", static_cast<int>(ctx.param_int(kLevels)));
+    aq::set_vec3(program, "u_background", ctx.param_vec3(kBackground));
+    bool drawn = ctx.draw(out);
+    aq::unbind_textures(6);
+    return drawn ? AQ_OK : AQ_ERROR;
+  }
+};
+
+}  // namespace
+
+AQ_NODE(kCelLightNode, CelLight, "cel_light", "Light",
+        "Deferred diffuse light with shadow map and projected caustics, then cel shading "
+        "(HSV value quantised to N levels, hue and saturation kept).",
+        0, kInputs, kOutputs, kParams);
+AQ_PLUGIN("cel_light", "1.0", &kCelLightNode)

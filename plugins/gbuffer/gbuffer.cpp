@@ -1,0 +1,105 @@
+// gbuffer: rasterises a scene from its camera at the graph's resolution into the five targets
+// the deferred light pass reads (Paré-Vogt & Chaid §2.3, "Scene" pass):
+//
+//   scene ──► [vertex buffers, uploaded once per geometry_revision] ──► one draw per mesh
+//             ──► position (world xyz, w = 1 on geometry)   RGBA32F always (shadow lookups)
+//                 normal   (world, unit, w = 1)            working format
+//                 albedo   (linear rgb, a = 1)             working format
+//                 depth    (linear view depth, far plane on the background)  R32F
+//                 id       (object_id as float, 0 on the background)         R32F
+//
+// The background is marked explicitly (id 0, w = 0), never by a zero normal.
+#include <aquarelle/plugin.hpp>
+#include <aquarelle/scene_gpu.hpp>
+#include <aquarelle/scene_math.hpp>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <string>
+
+#include "gbuffer_shaders.h"
+
+namespace {
+
+constexpr aq_port_desc kInputs[] = {aq::scene_port("scene", "meshes, camera and light")};
+enum Output { kPosition, kNormal, kAlbedo, kDepth, kId, kOutputCount };
+constexpr aq_port_desc kOutputs[] = {
+    aq::image_port("position", "world position; w = 1 on geometry, 0 on the background"),
+    aq::image_port("normal", "world normal (unit), facing the camera; w = 1 on geometry"),
+    aq::image_port("albedo", "linear base colour; a = 1 on geometry"),
+    aq::image_port("depth",
+                   "linear view depth (world units along the view axis); far plane "
+                   "on the background (R32F)"),
+    aq::image_port("id", "object id as a float (R32F); 0 on the background")};
+
+class GBuffer {
+ public:
+  int process(aq::Context& ctx) {
+    const aq_scene* scene = ctx.input_scene(0);
+    if (scene == nullptr) {
+      return ctx.fail(std::string("gbuffer '") + ctx.node_id() +
+                      "': input `scene` is not connected; connect a scene node's `scene` port");
+    }
+    const int width = ctx.width(), height = ctx.height();
+    const uint32_t formats[kOutputCount] = {AQ_FORMAT_RGBA32F, ctx.working_format(),
+                                            ctx.working_format(), AQ_FORMAT_R32F, AQ_FORMAT_R32F};
+    aq_image targets[kOutputCount];
+    for (uint32_t i = 0; i < kOutputCount; ++i) {
+      if (!ctx.output(i, width, height, formats[i], &targets[i])) return AQ_ERROR;
+    }
+    aq_image depth_buffer;
+    if (!ctx.scratch(width, height, AQ_FORMAT_DEPTH32F, &depth_buffer)) return AQ_ERROR;
+    GLuint program = ctx.program(shaders::gbuffer_vert, shaders::gbuffer_frag);
+    if (program == 0) return AQ_ERROR;
+
+    meshes_.update(*scene, ctx.raw()->gl_generation);
+    if (!ctx.bind_targets(targets, kOutputCount, &depth_buffer)) return AQ_ERROR;
+
+    const float far_plane = scene->camera.far_plane;
+    const float zero[4] = {0, 0, 0, 0};
+    const float far_value[4] = {far_plane, 0, 0, 0};
+    const float depth_one = 1.0f;
+    glClearBufferfv(GL_COLOR, kPosition, zero);
+    glClearBufferfv(GL_COLOR, kNormal, zero);
+    glClearBufferfv(GL_COLOR, kAlbedo, zero);
+    glClearBufferfv(GL_COLOR, kDepth, far_value);
+    glClearBufferfv(GL_COLOR, kId, zero);
+    glClearBufferfv(GL_DEPTH, 0, &depth_one);
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(program);
+    glm::mat4 view = aq::scene_math::camera_view(scene->camera);
+    glm::mat4 projection = aq::scene_math::camera_projection(
+        scene->camera, static_cast<float>(width) / static_cast<float>(height));
+    aq::set_mat4(program, "u_view", glm::value_ptr(view));
+    aq::set_mat4(program, "u_projection", glm::value_ptr(projection));
+    const GLint model_location = glGetUniformLocation(program, "u_model");
+    const GLint normal_location = glGetUniformLocation(program, "u_normal_matrix");
+    const GLint id_location = glGetUniformLocation(program, "u_object_id");
+    for (uint32_t i = 0; i < scene->mesh_count; ++i) {
+      const aq_mesh& mesh = scene->meshes[i];
+      glm::mat4 model = glm::make_mat4(mesh.model);
+      glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(model)));
+      glUniformMatrix4fv(model_location, 1, GL_FALSE, mesh.model);
+      glUniformMatrix3fv(normal_location, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+      glUniform1f(id_location, static_cast<float>(mesh.object_id));
+      meshes_.draw(mesh);
+    }
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(0);
+    return AQ_OK;
+  }
+
+ private:
+  aq::SceneMeshCache meshes_;
+};
+
+}  // namespace
+
+AQ_NODE_NO_PARAMS(kGBufferNode, GBuffer, "gbuffer", "Scene",
+                  "Rasterises the scene from its camera: world position, normal, albedo, linear "
+                  "depth and object id (0 = background).",
+                  0, kInputs, kOutputs);
+AQ_PLUGIN("gbuffer", "1.0", &kGBufferNode)

@@ -1,0 +1,32 @@
+// Writes the five gbuffer targets. Covered pixels get w = 1 in position, normal and albedo and
+// their object id (>= 1); the clear values (w = 0, id 0, depth = far plane) mark the background.
+in vec3 v_world;
+in vec3 v_normal;
+in vec3 v_color;
+in float v_view_depth;
+
+layout(location = 0) out vec4 o_position;
+layout(location = 1) out vec4 o_normal;
+layout(location = 2) out vec4 o_albedo;
+layout(location = 3) out float o_depth;
+layout(location = 4) out float o_id;
+
+uniform float u_object_id;
+
+void main() {
+  vec3 n = v_normal;
+  if (dot(n, n) > 1e-12) {
+    // Thin single-sided parts (fins, seaweed) are seen from both sides: light the visible side.
+    n = gl_FrontFacing ? normalize(n) : -normalize(n);
+  } else {
+    // A zero interpolated normal (opposite vertex normals across a triangle) falls back to the
+    // face's own normal, which faces the camera, instead of normalising to NaN.
+    n = cross(dFdx(v_world), dFdy(v_world));
+    n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 1.0, 0.0);
+  }
+  o_position = vec4(v_world, 1.0);
+  o_normal = vec4(n, 1.0);
+  o_albedo = vec4(v_color, 1.0);
+  o_depth = v_view_depth;
+  o_id = u_object_id;
+}
