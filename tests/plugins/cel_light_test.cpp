@@ -1,0 +1,392 @@
+// Headless tests of the `cel_light` node fed with synthetic gbuffer images, against the CPU
+// double-precision reference (tests/reference/cel_shading.h, HSV done the textbook way):
+// float and half precision, a sweep over levels, the hard cases (grey, black, values above 1,
+// exactly on a level boundary, levels = 1, NaN input), the background, the shadow input and
+// the caustic projection (neutral texture, strength, tiling, projection along the light).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "reference/cel_shading.h"
+#include "support/harness.h"
+
+namespace {
+
+using aq::ImageF;
+using aq::reference::CelLightParams;
+
+constexpr int kW = 64, kH = 48;
+
+struct Setup {
+  std::array<double, 3> light_direction{0.3, -1.0, -0.35};  // normalised by the scene node
+  std::array<double, 3> light_color{1.0, 0.97, 0.9};
+  double intensity = 1.3;
+  std::array<double, 3> ambient{0.22, 0.27, 0.32};
+  int levels = 4;
+  bool quantize = true;
+  double caustic_tile = 4.0;
+  double caustic_strength = 1.0;
+  int pcf_radius = 0;
+  double water_height = 6.0;
+};
+
+std::string graph(const Setup& s, bool shadow, bool caustics) {
+  nlohmann::json inputs = {{"scene", "scene.scene"},
+                           {"position", "position.image"},
+                           {"normal", "normal.image"},
+                           {"albedo", "albedo.image"},
+                           {"id", "id.image"}};
+  nlohmann::json nodes = {{"scene",
+                           {{"type", "scene"},
+                            {"params",
+                             {{"preset", "cube"},
+                              {"light_direction", s.light_direction},
+                              {"light_color", s.light_color},
+                              {"light_intensity", s.intensity},
+                              {"ambient", s.ambient},
+                              {"water_height", s.water_height}}}}},
+                          {"light",
+                           {{"type", "cel_light"},
+                            {"params",
+                             {{"levels", s.levels},
+                              {"quantize", s.quantize},
+                              {"caustic_tile", s.caustic_tile},
+                              {"caustic_strength", s.caustic_strength},
+                              {"pcf_radius", s.pcf_radius}}}}}};
+  for (const char* name : {"position", "normal", "albedo", "id"}) {
+    nodes[name] = {{"type", "image_input"}, {"params", {{"name", name}}}};
+  }
+  if (shadow) {
+    nodes["shadow"] = {{"type", "image_input"}, {"params", {{"name", "shadow"}}}};
+    inputs["shadow"] = "shadow.image";
+  }
+  if (caustics) {
+    nodes["caustics"] = {{"type", "image_input"}, {"params", {{"name", "caustics"}}}};
+    inputs["caustics"] = "caustics.image";
+  }
+  nodes["light"]["inputs"] = inputs;
+  return nlohmann::json({{"aquarelle", 1}, {"nodes", nodes}, {"output", "light.image"}}).dump();
+}
+
+struct GBufferImages {
+  ImageF position, normal, albedo, id;
+};
+
+// Random unit normals (a quarter facing away from the light), albedo in [0, 1.5], a band of
+// background pixels, positions inside the cube scene's bounds.
+GBufferImages random_gbuffer(unsigned seed) {
+  GBufferImages g;
+  g.position = aq::test::random_image(kW, kH, seed, -0.5f, 0.5f);
+  g.normal = aq::test::random_image(kW, kH, seed + 1, -1.0f, 1.0f);
+  g.albedo = aq::test::random_image(kW, kH, seed + 2, 0.0f, 1.5f);
+  g.id = aq::test::constant_image(kW, kH, 1, 1, 1, 1);
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) {
+      double n[3] = {g.normal.at(x, y, 0), g.normal.at(x, y, 1) + 0.4, g.normal.at(x, y, 2)};
+      double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (int k = 0; k < 3; ++k) g.normal.at(x, y, k) = static_cast<float>(n[k] / len);
+      g.position.at(x, y, 3) = g.normal.at(x, y, 3) = g.albedo.at(x, y, 3) = 1.0f;
+      if (y < 3) g.id.at(x, y, 0) = 0.0f;  // background rows
+    }
+  }
+  return g;
+}
+
+std::map<std::string, ImageF> as_inputs(const GBufferImages& g) {
+  return {{"position", g.position}, {"normal", g.normal}, {"albedo", g.albedo}, {"id", g.id}};
+}
+
+ImageF run(const Setup& s, std::map<std::string, ImageF> images, const char* precision = "float") {
+  aq::test::RenderOptions options;
+  options.width = kW;
+  options.height = kH;
+  options.precision = precision;
+  bool shadow = images.count("shadow") != 0, caustics = images.count("caustics") != 0;
+  auto out = aq::test::render_graph(graph(s, shadow, caustics), options, images);
+  EXPECT_TRUE(out.ok()) << (out.ok() ? "" : out.message());
+  return out.ok() ? *out : ImageF();
+}
+
+CelLightParams reference_params(const Setup& s) {
+  CelLightParams p;
+  double len = std::sqrt(s.light_direction[0] * s.light_direction[0] +
+                         s.light_direction[1] * s.light_direction[1] +
+                         s.light_direction[2] * s.light_direction[2]);
+  for (int k = 0; k < 3; ++k) {
+    p.light_direction[k] = s.light_direction[k] / len;
+    p.light_color[k] = s.light_color[k] * s.intensity;
+    p.ambient[k] = s.ambient[k];
+  }
+  p.levels = s.levels;
+  p.quantize = s.quantize;
+  return p;
+}
+
+// Max error over pixels whose value is not within `margin` of a level boundary (there the
+// float and double computations may legitimately pick neighbouring levels).
+struct Error {
+  double max_abs = 0;
+  double psnr = 0;
+  int skipped = 0;
+};
+Error compare(const ImageF& got, const GBufferImages& g, const Setup& s, double margin = 1e-4) {
+  CelLightParams p = reference_params(s);
+  ImageF expected = aq::reference::cel_light(g.normal, g.albedo, g.id, p);
+  CelLightParams unquantised = p;
+  unquantised.quantize = false;
+  ImageF raw = aq::reference::cel_light(g.normal, g.albedo, g.id, unquantised);
+  Error e;
+  ImageF got_kept = got, expected_kept = expected;
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) {
+      double v = std::max({raw.at(x, y, 0), raw.at(x, y, 1), raw.at(x, y, 2)});
+      double t = v * (s.levels - 1);
+      bool near_boundary = s.quantize && s.levels > 1 && std::abs(t - std::floor(t) - 0.5) < margin;
+      if (near_boundary) {
+        ++e.skipped;
+        for (int c = 0; c < 4; ++c) got_kept.at(x, y, c) = expected_kept.at(x, y, c) = 0;
+      }
+    }
+  }
+  e.max_abs = aq::test::max_abs_diff(got_kept, expected_kept, 3);
+  double peak = 0;
+  for (float v : expected.pixels) peak = std::max(peak, static_cast<double>(v));
+  e.psnr = aq::test::psnr(got_kept, expected_kept, peak, 3);
+  return e;
+}
+
+TEST(CelLight, MatchesTheReferenceInFloat) {
+  GBufferImages g = random_gbuffer(21);
+  Setup s;
+  ImageF got = run(s, as_inputs(g));
+  ASSERT_FALSE(got.empty());
+  Error e = compare(got, g, s);
+  EXPECT_LE(e.max_abs, 2e-5);
+  EXPECT_GE(e.psnr, 90.0);
+  EXPECT_LT(e.skipped, kW * kH / 100);
+  RecordProperty("max_abs_float", std::to_string(e.max_abs));
+  RecordProperty("psnr_float", std::to_string(e.psnr));
+}
+
+TEST(CelLight, MatchesTheReferenceInHalf) {
+  GBufferImages g = random_gbuffer(22);
+  Setup s;
+  ImageF got = run(s, as_inputs(g), "half");
+  ASSERT_FALSE(got.empty());
+  Error e = compare(got, g, s);
+  // RGBA16F output: half an ulp of values up to ~2.6 is 1e-3.
+  EXPECT_LE(e.max_abs, 1.1e-3);
+  EXPECT_GE(e.psnr, 60.0);
+  RecordProperty("max_abs_half", std::to_string(e.max_abs));
+}
+
+TEST(CelLight, LevelsSweepAndPlainDiffuse) {
+  GBufferImages g = random_gbuffer(23);
+  for (int levels : {1, 2, 3, 4, 5, 8, 16}) {
+    Setup s;
+    s.levels = levels;
+    Error e = compare(run(s, as_inputs(g)), g, s);
+    EXPECT_LE(e.max_abs, 2e-5) << levels << " levels";
+  }
+  Setup plain;
+  plain.quantize = false;
+  Error e = compare(run(plain, as_inputs(g)), g, plain);
+  EXPECT_LE(e.max_abs, 2e-5);
+  EXPECT_EQ(e.skipped, 0);
+}
+
+// A light straight down with white colour and no ambient on +y normals: lit = albedo exactly.
+Setup overhead() {
+  Setup s;
+  s.light_direction = {0, -1, 0};
+  s.light_color = {1, 1, 1};
+  s.intensity = 1.0;
+  s.ambient = {0, 0, 0};
+  return s;
+}
+
+GBufferImages flat_gbuffer(float r, float g_, float b) {
+  GBufferImages g;
+  g.position = aq::test::constant_image(kW, kH, 0, 0, 0, 1);
+  g.normal = aq::test::constant_image(kW, kH, 0, 1, 0, 1);
+  g.albedo = aq::test::constant_image(kW, kH, r, g_, b, 1);
+  g.id = aq::test::constant_image(kW, kH, 1, 1, 1, 1);
+  return g;
+}
+
+TEST(CelLight, GreyStaysGreyAndBlackStaysBlack) {
+  GBufferImages g = random_gbuffer(24);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      float v = (x % 4 == 0) ? 0.0f : g.albedo.at(x, y, 0);
+      for (int c = 0; c < 3; ++c) g.albedo.at(x, y, c) = v;
+    }
+  Setup s;
+  s.light_color = {1, 1, 1};
+  s.ambient = {0.25, 0.25, 0.25};
+  ImageF got = run(s, as_inputs(g));
+  ASSERT_FALSE(got.empty());
+  for (int y = 3; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      EXPECT_EQ(got.at(x, y, 0), got.at(x, y, 1)) << x << "," << y;
+      EXPECT_EQ(got.at(x, y, 1), got.at(x, y, 2)) << x << "," << y;
+      if (x % 4 == 0) {
+        EXPECT_EQ(got.at(x, y, 0), 0.0f) << x << "," << y;
+      }
+    }
+}
+
+TEST(CelLight, ValuesAboveOneStayHdr) {
+  // v = 2.9: nearest level of 4 is 3 (= 9/3); hue and saturation kept.
+  Setup s = overhead();
+  ImageF got = run(s, as_inputs(flat_gbuffer(2.9f, 1.45f, 0.58f)));
+  ASSERT_FALSE(got.empty());
+  EXPECT_NEAR(got.at(10, 10, 0), 3.0, 1e-5);
+  EXPECT_NEAR(got.at(10, 10, 1), 1.5, 1e-5);
+  EXPECT_NEAR(got.at(10, 10, 2), 0.6, 1e-5);
+}
+
+TEST(CelLight, ExactlyOnALevelBoundaryIsStableAndRoundsUp) {
+  Setup s = overhead();
+  s.levels = 2;  // boundary at v = 0.5, exactly representable: rounds half up to 1
+  ImageF got = run(s, as_inputs(flat_gbuffer(0.5f, 0.25f, 0.0f)));
+  ASSERT_FALSE(got.empty());
+  EXPECT_EQ(got.at(5, 5, 0), 1.0f);
+  EXPECT_EQ(got.at(5, 5, 1), 0.5f);
+  EXPECT_EQ(got.at(5, 5, 2), 0.0f);
+  const auto expected = aq::reference::cel_shade({0.5, 0.25, 0.0}, 2);
+  EXPECT_NEAR(expected[0], 1.0, 1e-12);
+  EXPECT_NEAR(expected[1], 0.5, 1e-12);
+
+  // 4 levels: v = 1/6 sits on the boundary between 0 and 1/3 up to float rounding: either
+  // level is right, but every pixel and every run picks the same one.
+  s.levels = 4;
+  ImageF a = run(s, as_inputs(flat_gbuffer(1.0f / 6.0f, 1.0f / 12.0f, 1.0f / 6.0f)));
+  ImageF b = run(s, as_inputs(flat_gbuffer(1.0f / 6.0f, 1.0f / 12.0f, 1.0f / 6.0f)));
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(a.pixels, b.pixels);
+  float v = a.at(0, 0, 0);
+  EXPECT_TRUE(std::abs(v) < 1e-7 || std::abs(v - 1.0f / 3.0f) < 1e-6) << v;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) ASSERT_EQ(a.at(x, y, 0), v);
+}
+
+TEST(CelLight, OneLevelIsFlatColour) {
+  GBufferImages g = random_gbuffer(25);
+  Setup s;
+  s.levels = 1;
+  ImageF got = run(s, as_inputs(g));
+  ASSERT_FALSE(got.empty());
+  for (int y = 3; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      float v = std::max({got.at(x, y, 0), got.at(x, y, 1), got.at(x, y, 2)});
+      ASSERT_TRUE(std::abs(v - 1.0f) < 1e-5 || v == 0.0f) << v;
+    }
+}
+
+TEST(CelLight, BackgroundGetsTheBackgroundColour) {
+  GBufferImages g = random_gbuffer(26);
+  ImageF got = run(Setup{}, as_inputs(g));
+  ASSERT_FALSE(got.empty());
+  for (int x = 0; x < kW; ++x) {
+    EXPECT_FLOAT_EQ(got.at(x, 0, 0), 0.1f);
+    EXPECT_FLOAT_EQ(got.at(x, 0, 1), 0.3f);
+    EXPECT_FLOAT_EQ(got.at(x, 0, 2), 0.4f);
+  }
+}
+
+TEST(CelLight, NaNInputStaysInItsPixel) {
+  GBufferImages g = random_gbuffer(27);
+  g.albedo.at(20, 20, 1) = std::nanf("");
+  g.normal.at(30, 30, 0) = std::numeric_limits<float>::infinity();
+  g.position.at(40, 40, 2) = std::nanf("");
+  ImageF clean = run(Setup{}, as_inputs(random_gbuffer(27)));
+  ImageF got = run(Setup{}, as_inputs(g));
+  ASSERT_FALSE(got.empty());
+  EXPECT_TRUE(aq::test::all_finite(got));
+  EXPECT_EQ(got.at(21, 20, 0), clean.at(21, 20, 0));
+  EXPECT_EQ(got.at(31, 30, 1), clean.at(31, 30, 1));
+}
+
+TEST(CelLight, ShadowInputDarkensToAmbient) {
+  GBufferImages g = random_gbuffer(28);
+  auto images = as_inputs(g);
+  Setup s;
+  // A map of zeros: every point is behind an occluder; only ambient remains.
+  images["shadow"] = aq::test::constant_image(32, 32, 0, 0, 0, 1);
+  ImageF dark = run(s, images);
+  Setup ambient_only = s;
+  ambient_only.intensity = 0.0;
+  Error e = compare(dark, g, ambient_only);
+  EXPECT_LE(e.max_abs, 2e-5);
+  // A map of ones: nothing occludes; the same as no shadow map.
+  images["shadow"] = aq::test::constant_image(32, 32, 1, 1, 1, 1);
+  ImageF lit = run(s, images);
+  ImageF none = run(s, as_inputs(g));
+  EXPECT_EQ(aq::test::max_abs_diff(lit, none), 0.0);
+}
+
+TEST(CelLight, NeutralCausticsChangeNothingAndStrengthScalesTheDirectLight) {
+  GBufferImages g = random_gbuffer(29);
+  Setup s;
+  s.quantize = false;
+  auto images = as_inputs(g);
+  ImageF none = run(s, images);
+  images["caustics"] = aq::test::constant_image(16, 16, 1, 1, 1, 1);
+  EXPECT_LE(aq::test::max_abs_diff(run(s, images), none), 1e-6);
+  images["caustics"] = aq::test::constant_image(16, 16, 2, 2, 2, 1);
+  s.caustic_strength = 0.0;
+  EXPECT_LE(aq::test::max_abs_diff(run(s, images), none), 1e-6);
+  // Strength 0.5 on a caustic of 2: direct light times 1.5, ambient unchanged.
+  s.caustic_strength = 0.5;
+  ImageF got = run(s, images);
+  Setup brighter = s;
+  brighter.intensity *= 1.5;
+  Error e = compare(got, g, brighter);
+  EXPECT_LE(e.max_abs, 2e-5);
+}
+
+TEST(CelLight, CausticsTileInWorldUnitsAndFollowTheLight) {
+  // A caustic texture with one bright quadrant; albedo white, normals up, no ambient.
+  Setup s = overhead();
+  s.light_direction = {0.4, -1.0, 0.2};
+  s.quantize = false;
+  s.caustic_tile = 2.0;
+  ImageF caustic(8, 8, 4, 1.0f);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) caustic.at(x, y, 0) = caustic.at(x, y, 1) = caustic.at(x, y, 2) = 3;
+  GBufferImages g = flat_gbuffer(1, 1, 1);
+  // Column pairs: x and x + 32 hold points one tile apart in world x, or moved along the light.
+  const double len = std::sqrt(0.16 + 1.0 + 0.04);
+  const double dir[3] = {0.4 / len, -1.0 / len, 0.2 / len};
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < 32; ++x) {
+      double p[3] = {x * 0.061, -0.3 + 0.01 * (y % 5), y * 0.043};
+      for (int k = 0; k < 3; ++k) g.position.at(x, y, k) = static_cast<float>(p[k]);
+      double shift[3] = {0, 0, 0};
+      if (y % 2 == 0) {
+        shift[0] = s.caustic_tile;  // one period further in x
+      } else {
+        for (int k = 0; k < 3; ++k) shift[k] = -0.8 * dir[k];  // up along the light ray
+      }
+      for (int k = 0; k < 3; ++k) g.position.at(x + 32, y, k) = static_cast<float>(p[k] + shift[k]);
+    }
+  auto images = as_inputs(g);
+  images["caustics"] = caustic;
+  ImageF got = run(s, images);
+  ASSERT_FALSE(got.empty());
+  double worst = 0, lo = 1e9, hi = -1e9;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < 32; ++x) {
+      worst =
+          std::max(worst, static_cast<double>(std::abs(got.at(x, y, 0) - got.at(x + 32, y, 0))));
+      lo = std::min(lo, static_cast<double>(got.at(x, y, 0)));
+      hi = std::max(hi, static_cast<double>(got.at(x, y, 0)));
+    }
+  EXPECT_LT(worst, 2e-3);
+  EXPECT_LT(lo, 1.5) << "some points get the dark part of the texture";
+  EXPECT_GT(hi, 2.0) << "and some the bright quadrant";
+}
+
+}  // namespace
