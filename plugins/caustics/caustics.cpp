@@ -1,0 +1,194 @@
+// caustics: a tileable, animated caustic texture by Stam's grid refraction ("Periodic Caustic
+// Textures", 2004), as the seed (Paré-Vogt & Chaid §4) uses it, with its physical mistakes
+// fixed: periodic water, analytic normals, wrap-around instead of a 1.2x oversized grid,
+// additive accumulation of folded triangles, bounded degenerate triangles. See README.md.
+#include <aquarelle/gl_raii.hpp>
+#include <aquarelle/plugin.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "caustics_shaders.h"
+
+namespace {
+
+constexpr aq_port_desc kOutputs[] = {
+    aq::image_port("image", "caustic intensity in rgb (1 = unfocused light), tileable")};
+enum Param {
+  kResolution,
+  kGrid,
+  kDepth,
+  kAmplitude,
+  kWaveScale,
+  kSpeed,
+  kEta,
+  kMaxIntensity,
+  kNormalizeEnergy
+};
+constexpr aq_param_desc kParams[] = {
+    aq::int_param("resolution", 256, 16, 4096, "texture pixels per tile side (square output)"),
+    aq::int_param("grid", 256, 4, 2048,
+                  "refraction grid cells per tile side; error falls as 1/grid (see README)"),
+    aq::float_param("depth", 0.5, 0.0, 4.0, "floor depth below the mean water level, in tiles"),
+    aq::float_param("amplitude", 0.02, 0.0, 0.25, "water height amplitude, in tiles"),
+    aq::int_param("wave_scale", 4, 1, 64, "waves (noise cells) per tile of the first octave"),
+    aq::float_param("speed", 0.5, 0.0, 10.0, "noise cells per second along the time axis"),
+    aq::float_param("eta", 1.0 / 1.333, 0.1, 1.0,
+                    "refraction ratio n_air / n_water (1 = no refraction)"),
+    aq::float_param("max_intensity", 32.0, 1.0, 10000.0,
+                    "clamp of one triangle's intensity (bounds degenerate triangles)", 0.0, "log"),
+    aq::bool_param("normalize_energy", true,
+                   "rescale so the tile's mean is exactly 1 (corrects clamp and sampling loss)")};
+
+// Bound of |aq_perlin3| (improved-gradient Perlin noise stays within about +-1.04).
+constexpr double kNoiseBound = 1.1;
+
+// Largest horizontal travel of a refracted ray, in tiles: the ray turns from vertical by at
+// most 90deg - asin(eta) (grazing incidence), i.e. tan = sqrt(1 - eta^2) / eta per unit drop.
+double max_displacement(double eta, double depth, double amplitude) {
+  eta = std::clamp(eta, 1e-3, 1.0);
+  return std::sqrt(1.0 - eta * eta) / eta * (depth + kNoiseBound * amplitude);
+}
+
+struct Caustics {
+  aq::gl::VertexArray empty_vertex_array;  // core profile needs one bound to draw
+  uint32_t vertex_array_generation = 0;
+
+  int process(aq::Context& ctx) {
+    const int resolution = static_cast<int>(ctx.param_int(kResolution));
+    const int grid = static_cast<int>(ctx.param_int(kGrid));
+    const double depth = ctx.param_float(kDepth);
+    const double amplitude = ctx.param_float(kAmplitude);
+    const double eta = ctx.param_float(kEta);
+    if (resolution < 1 || grid < 1) {
+      return ctx.fail("caustics: resolution and grid must be at least 1 (got resolution " +
+                      std::to_string(resolution) + ", grid " + std::to_string(grid) + ")");
+    }
+    if (!(eta > 0.0 && eta <= 1.0)) {
+      return ctx.fail("caustics: eta must be in (0, 1] (light enters water from air); got " +
+                      std::to_string(eta));
+    }
+
+    aq_image displacement, accumulated, out;
+    if (!ctx.scratch(grid, grid, AQ_FORMAT_RGBA32F, &displacement)) return AQ_ERROR;
+    if (!ctx.scratch(resolution, resolution, AQ_FORMAT_RGBA32F, &accumulated)) return AQ_ERROR;
+    if (!ctx.output(0, resolution, resolution, ctx.working_format(), &out)) return AQ_ERROR;
+
+    if (!refract_grid(ctx, displacement, grid, depth, amplitude, eta)) return AQ_ERROR;
+    const double reach = max_displacement(eta, depth, amplitude);
+    if (!accumulate(ctx, displacement, accumulated, grid, reach)) return AQ_ERROR;
+    double scale = 1.0;
+    if (ctx.param_bool(kNormalizeEnergy)) {
+      const double mean = mean_intensity(accumulated);
+      // Flat water gives a mean of exactly 1 and stays untouched; a mean of 0 cannot happen
+      // (every pixel centre is covered) but would leave the image as it is rather than blow up.
+      if (mean > 0.0 && std::isfinite(mean)) scale = 1.0 / mean;
+    }
+    return resolve(ctx, accumulated, out, scale) ? AQ_OK : AQ_ERROR;
+  }
+
+ private:
+  bool refract_grid(aq::Context& ctx, const aq_image& target, int grid, double depth,
+                    double amplitude, double eta) {
+    GLuint program = ctx.program(shaders::caustics_displacement_frag);
+    if (program == 0) return false;
+    glUseProgram(program);
+    aq::set_int(program, "u_grid", grid);
+    aq::set_float(program, "u_wave_scale", static_cast<double>(ctx.param_int(kWaveScale)));
+    aq::set_float(program, "u_amplitude", amplitude);
+    aq::set_float(program, "u_depth", depth);
+    aq::set_float(program, "u_time_coord", ctx.param_float(kSpeed) * ctx.time());
+    aq::set_float(program, "u_eta", eta);
+    const bool drawn = ctx.draw(target);
+    glUseProgram(0);
+    return drawn;
+  }
+
+  bool accumulate(aq::Context& ctx, const aq_image& displacement, const aq_image& target, int grid,
+                  double reach) {
+    GLuint program = ctx.program(shaders::caustics_grid_vert, shaders::caustics_grid_frag);
+    if (program == 0) return false;
+    if (!ctx.bind_targets(&target, 1)) return false;
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(target.texture, 0, GL_RGBA, GL_FLOAT, zero);
+
+    if (!empty_vertex_array || vertex_array_generation != ctx.raw()->gl_generation) {
+      empty_vertex_array.forget();  // a name from an old context means nothing here
+      empty_vertex_array.create();
+      vertex_array_generation = ctx.raw()->gl_generation;
+    }
+    // Copies of the grid one tile apart, as many rings as the largest displacement needs.
+    const int rings = reach > 0.0 ? static_cast<int>(std::ceil(reach)) : 0;
+    const int copies = (2 * rings + 1) * (2 * rings + 1);
+
+    glUseProgram(program);
+    aq::bind_texture(program, "u_displacement", 0, displacement);
+    aq::set_int(program, "u_grid", grid);
+    aq::set_int(program, "u_rings", rings);
+    aq::set_float(program, "u_reach", reach * grid);
+    aq::set_float(program, "u_max_intensity", ctx.param_float(kMaxIntensity));
+
+    const GLboolean blend_was_on = glIsEnabled(GL_BLEND);
+    const GLboolean cull_was_on = glIsEnabled(GL_CULL_FACE);
+    const GLboolean depth_was_on = glIsEnabled(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glDisable(GL_CULL_FACE);  // folded triangles are back-facing and must count too
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(empty_vertex_array.get());
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 6 * grid * grid, copies);
+    glBindVertexArray(0);
+    if (!blend_was_on) glDisable(GL_BLEND);
+    if (cull_was_on) glEnable(GL_CULL_FACE);
+    if (depth_was_on) glEnable(GL_DEPTH_TEST);
+    aq::unbind_textures(1);
+    return true;
+  }
+
+  // Mean of the red channel over the tile, summed in double on the CPU.
+  static double mean_intensity(const aq_image& image) {
+    std::vector<float> red(static_cast<size_t>(image.width) * image.height);
+    glGetTextureImage(image.texture, 0, GL_RED, GL_FLOAT,
+                      static_cast<GLsizei>(red.size() * sizeof(float)), red.data());
+    double sum = 0.0;
+    for (float v : red) sum += v;
+    return sum / static_cast<double>(red.size());
+  }
+
+  static bool resolve(aq::Context& ctx, const aq_image& accumulated, const aq_image& out,
+                      double scale) {
+    GLuint program = ctx.program(shaders::caustics_resolve_frag);
+    if (program == 0) return false;
+    glUseProgram(program);
+    aq::bind_texture(program, "u_accumulated", 0, accumulated);
+    aq::set_float(program, "u_scale", scale);
+    const bool drawn = ctx.draw(out);
+    aq::unbind_textures(1);
+    return drawn;
+  }
+};
+
+// No inputs: AQ_NODE needs an input array, so the description is written out here.
+const aq_node_desc kCausticsNode = {
+    sizeof(aq_node_desc),
+    "caustics",
+    "Light",
+    "Tileable animated caustic texture (Stam's grid refraction): intensity = original / "
+    "refracted triangle area, accumulated additively; mean 1 over the tile.",
+    AQ_NODE_TIME_DEPENDENT,
+    nullptr,
+    0,
+    kOutputs,
+    aq::count_of(kOutputs),
+    kParams,
+    aq::count_of(kParams),
+    &aq::NodeAdapter<Caustics>::create,
+    &aq::NodeAdapter<Caustics>::destroy,
+    &aq::NodeAdapter<Caustics>::process};
+
+}  // namespace
+
+AQ_PLUGIN("caustics", "1.0", &kCausticsNode)

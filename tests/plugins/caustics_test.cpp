@@ -1,0 +1,265 @@
+// Headless tests of the `caustics` node: flat water is exactly 1, energy (tile mean 1), no
+// NaN/Inf and full coverage at extreme waves, seamless tiling, determinism and animation, the
+// same grid as the CPU reference, and convergence to a converged double-precision reference
+// (tests/reference/caustics_reference.h) as the grid is refined.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "reference/caustics_reference.h"
+#include "support/harness.h"
+
+namespace {
+
+using aq::ImageF;
+using aq::reference::CausticsParams;
+
+nlohmann::json to_json(const CausticsParams& p, bool normalize) {
+  return {{"resolution", p.resolution},
+          {"grid", p.grid},
+          {"depth", p.depth},
+          {"amplitude", p.amplitude},
+          {"wave_scale", p.wave_scale},
+          {"speed", p.speed},
+          {"eta", p.eta},
+          {"max_intensity", p.max_intensity},
+          {"normalize_energy", normalize}};
+}
+
+ImageF run(const CausticsParams& params, bool normalize, const char* precision = "float",
+           int frame = 1) {
+  aq::test::RenderOptions options;
+  options.precision = precision;
+  options.frame = frame;
+  auto out = aq::test::run_node("caustics", {}, to_json(params, normalize), options);
+  EXPECT_TRUE(out.ok()) << (out.ok() ? "" : out.message());
+  return out.ok() ? *out : ImageF();
+}
+
+struct Stats {
+  double mean = 0.0, min = 1e300, max = -1e300;
+  bool finite = true;
+};
+Stats stats_of(const ImageF& image) {
+  Stats s;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const double v = image.at(x, y, 0);
+      s.finite = s.finite && std::isfinite(v);
+      s.mean += v;
+      s.min = std::min(s.min, v);
+      s.max = std::max(s.max, v);
+    }
+  }
+  s.mean /= double(image.width) * image.height;
+  return s;
+}
+
+double mean_abs_red(const ImageF& a, const ImageF& b) {
+  return aq::test::mean_abs_diff(a, b, 1);
+}
+
+CausticsParams small(int resolution, int grid) {
+  CausticsParams p;
+  p.resolution = resolution;
+  p.grid = grid;
+  p.speed = 0.0;  // the pattern of t = 0 whatever time the harness gives the node
+  return p;
+}
+
+TEST(Caustics, FlatWaterIsExactlyOneEverywhere) {
+  for (const char* precision : {"float", "half"}) {
+    for (bool normalize : {false, true}) {
+      for (auto [resolution, grid] : {std::pair{64, 64}, std::pair{100, 37}, std::pair{32, 200}}) {
+        CausticsParams p = small(resolution, grid);
+        p.amplitude = 0.0;
+        const ImageF got = run(p, normalize, precision);
+        ASSERT_EQ(got.width, resolution);
+        for (int y = 0; y < got.height; ++y) {
+          for (int x = 0; x < got.width; ++x) {
+            for (int c = 0; c < 3; ++c) {
+              ASSERT_EQ(got.at(x, y, c), 1.0f)
+                  << precision << " grid " << grid << " at " << x << "," << y;
+            }
+            ASSERT_EQ(got.at(x, y, 3), 1.0f);
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(Caustics, NoRefractionIsExactlyOneWhateverTheWaves) {
+  CausticsParams p = small(64, 64);
+  p.eta = 1.0;  // light goes straight through the surface
+  p.amplitude = 0.1;
+  const Stats s = stats_of(run(p, false));
+  EXPECT_EQ(s.min, 1.0);
+  EXPECT_EQ(s.max, 1.0);
+}
+
+TEST(Caustics, EnergyMeanIsOneWithinHalfAPercentWithoutNormalisation) {
+  // The method itself (no rescaling) conserves the light at the default waves, at any time.
+  for (int frame : {1, 7, 40}) {
+    CausticsParams p = small(128, 128);
+    p.speed = 0.5;
+    const Stats s = stats_of(run(p, false, "float", frame));
+    EXPECT_NEAR(s.mean, 1.0, 0.005) << "frame " << frame;
+    RecordProperty("mean_frame_" + std::to_string(frame), std::to_string(s.mean));
+  }
+}
+
+TEST(Caustics, EnergyMeanIsOneWithNormalisationWhateverTheWaves) {
+  for (double amplitude : {0.005, 0.02, 0.08, 0.25}) {
+    for (double depth : {0.1, 0.5, 2.0}) {
+      CausticsParams p = small(64, 64);
+      p.amplitude = amplitude;
+      p.depth = depth;
+      for (const char* precision : {"float", "half"}) {
+        const Stats s = stats_of(run(p, true, precision));
+        // Half precision rounds each pixel to 11 bits: the mean moves by far less than 0.5 %.
+        EXPECT_NEAR(s.mean, 1.0, 0.005)
+            << precision << " amplitude " << amplitude << " depth " << depth;
+      }
+    }
+  }
+}
+
+TEST(Caustics, ExtremeWavesStayFiniteBoundedAndCoverEveryPixel) {
+  struct Case {
+    double amplitude, depth, eta;
+    int grid;
+  };
+  for (const Case& c : {Case{0.25, 4.0, 1.0 / 1.333, 32}, Case{0.25, 4.0, 0.1, 8},
+                        Case{0.25, 0.0, 1.0 / 1.333, 32}, Case{0.1, 1.0, 0.5, 16}}) {
+    CausticsParams p = small(32, c.grid);
+    p.amplitude = c.amplitude;
+    p.depth = c.depth;
+    p.eta = c.eta;
+    for (bool normalize : {false, true}) {
+      const ImageF got = run(p, normalize);
+      ASSERT_FALSE(got.empty());
+      EXPECT_TRUE(aq::test::all_finite(got));
+      const Stats s = stats_of(got);
+      // Every floor point has at least one preimage (the refraction map of the torus has
+      // degree 1), so a pixel at 0 means a crack or an unrendered border.
+      EXPECT_GT(s.min, 0.0) << "amplitude " << c.amplitude << " depth " << c.depth;
+    }
+  }
+}
+
+TEST(Caustics, TilesWithoutASeam) {
+  // The jump across the tile's edge (last column to first, last row to first) must look like
+  // the jump between any two neighbouring columns or rows inside the tile.
+  CausticsParams p = small(128, 128);
+  p.amplitude = 0.01;  // smooth enough that neighbouring pixels are close
+  const ImageF got = run(p, false);
+  ASSERT_FALSE(got.empty());
+  const int n = got.width;
+  auto column_jump = [&](int x0, int x1) {
+    double s = 0.0;
+    for (int y = 0; y < n; ++y) s += std::abs(got.at(x1, y, 0) - got.at(x0, y, 0));
+    return s / n;
+  };
+  auto row_jump = [&](int y0, int y1) {
+    double s = 0.0;
+    for (int x = 0; x < n; ++x) s += std::abs(got.at(x, y1, 0) - got.at(x, y0, 0));
+    return s / n;
+  };
+  double inner_columns = 0.0, inner_rows = 0.0;
+  for (int i = 0; i + 1 < n; ++i) {
+    inner_columns += column_jump(i, i + 1) / (n - 1);
+    inner_rows += row_jump(i, i + 1) / (n - 1);
+  }
+  EXPECT_LT(column_jump(n - 1, 0), 2.5 * inner_columns);
+  EXPECT_LT(row_jump(n - 1, 0), 2.5 * inner_rows);
+  RecordProperty("seam_column_over_inner", std::to_string(column_jump(n - 1, 0) / inner_columns));
+}
+
+TEST(Caustics, SameTimeIsDeterministicAndTimeAnimates) {
+  CausticsParams p = small(64, 64);
+  p.speed = 1.0;
+  const ImageF a = run(p, true, "float", 1);
+  const ImageF b = run(p, true, "float", 1);
+  const ImageF later = run(p, true, "float", 13);
+  EXPECT_EQ(aq::test::max_abs_diff(a, b), 0.0);
+  EXPECT_GT(mean_abs_red(a, later), 0.05);
+}
+
+TEST(Caustics, MatchesTheCpuGridRefractionOnTheSameGrid) {
+  // Same algorithm, same grid, float on the GPU against double on the CPU: only pixel centres
+  // lying within rounding of a triangle edge may differ.
+  for (int grid : {32, 64, 128}) {
+    const CausticsParams p = small(64, grid);
+    const ImageF expected = aq::reference::caustics_by_grid(p, grid);
+    const ImageF got = run(p, false);
+    ASSERT_FALSE(got.empty());
+    const double l1 = mean_abs_red(got, expected);
+    EXPECT_LT(l1, 0.01) << "grid " << grid;
+    EXPECT_NEAR(stats_of(got).mean, stats_of(expected).mean, 1e-3);
+    RecordProperty("l1_same_grid_" + std::to_string(grid), std::to_string(l1));
+  }
+}
+
+TEST(Caustics, ConvergesToTheReferenceAsTheGridIsRefined) {
+  // The converged reference: the same refraction on a 1024 x 1024 grid in double precision
+  // (its own error, estimated against a 512 grid, is about 0.03 in L1 at this resolution).
+  const int resolution = 64;
+  const CausticsParams base = small(resolution, 0);
+  const ImageF reference = aq::reference::caustics_by_grid(base, 1024);
+  std::vector<double> errors;
+  for (int grid : {16, 32, 64, 128, 256}) {
+    CausticsParams p = base;
+    p.grid = grid;
+    const ImageF got = run(p, false);
+    ASSERT_FALSE(got.empty());
+    errors.push_back(mean_abs_red(got, reference));
+    std::printf("caustics L1 error vs converged reference: grid %4d  %.4f\n", grid, errors.back());
+    RecordProperty("l1_grid_" + std::to_string(grid), std::to_string(errors.back()));
+  }
+  for (size_t i = 1; i < errors.size(); ++i) EXPECT_LT(errors[i], errors[i - 1]);
+  EXPECT_LT(errors[2], 0.25);  // grid = resolution, as the defaults
+  EXPECT_LT(errors.back(), 0.08);
+}
+
+TEST(Caustics, HalfPrecisionMatchesFloat) {
+  const CausticsParams p = small(64, 64);
+  const ImageF f = run(p, false, "float");
+  const ImageF h = run(p, false, "half");
+  ASSERT_FALSE(f.empty());
+  ASSERT_FALSE(h.empty());
+  // Accumulation is in 32-bit float either way; the output rounds to 11 significant bits.
+  double worst_relative = 0.0;
+  for (int y = 0; y < f.height; ++y) {
+    for (int x = 0; x < f.width; ++x) {
+      worst_relative =
+          std::max(worst_relative, std::abs(h.at(x, y, 0) - f.at(x, y, 0)) / f.at(x, y, 0));
+    }
+  }
+  EXPECT_LT(worst_relative, 1.0 / 1024.0);
+}
+
+TEST(Caustics, ParameterSweepStaysFiniteCoveredAndNearEnergy) {
+  for (double depth : {0.05, 0.5, 1.5}) {
+    for (double amplitude : {0.002, 0.02, 0.06}) {
+      for (int wave_scale : {1, 2, 4}) {
+        CausticsParams p = small(64, 64);
+        p.depth = depth;
+        p.amplitude = amplitude;
+        p.wave_scale = wave_scale;
+        const ImageF got = run(p, false);
+        ASSERT_FALSE(got.empty());
+        const Stats s = stats_of(got);
+        EXPECT_TRUE(s.finite);
+        EXPECT_GT(s.min, 0.0) << depth << " " << amplitude << " " << wave_scale;
+        // Without normalisation, strong focusing loses some light to the clamp and to point
+        // sampling of sub-pixel triangles (the CPU reference gives 0.95 to 1.03 here).
+        EXPECT_NEAR(s.mean, 1.0, 0.06) << depth << " " << amplitude << " " << wave_scale;
+      }
+    }
+  }
+}
+
+}  // namespace
