@@ -42,6 +42,10 @@ struct EvalOptions {
   const std::map<std::string, ImageF>* images = nullptr;
 };
 
+// Reads a texture of the current context back as float pixels (RGBA, or 1 channel for R32F,
+// depth and ids).
+Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format);
+
 class Evaluator {
  public:
   Evaluator(GlContext& context, const Registry& registry);

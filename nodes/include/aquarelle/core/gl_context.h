@@ -21,6 +21,9 @@ class GlContext {
   virtual ~GlContext() = default;
   virtual GlBackend backend() const = 0;
   virtual bool make_current() = 0;
+  // Makes this context current and, when another context's functions were loaded last,
+  // reloads the core's GL functions (and bumps generation()). Use before any GL work.
+  bool activate();
   virtual void* get_proc_address(const char* name) const = 0;
   // "OpenGL 4.5 (Core Profile) Mesa 22.3.6, llvmpipe (LLVM 15.0.6, 256 bits)"
   std::string description() const;

@@ -1,0 +1,323 @@
+// `aquarelle render`: renders a graph's output headless for a frame range, writing each frame
+// atomically; EXR keeps linear data, PNG/JPEG/TIFF go through the OCIO display/view transform
+// on the GPU.
+#include <unistd.h>
+
+#include <aquarelle/core/display_transform.h>
+#include <aquarelle/core/evaluator.h>
+#include <aquarelle/core/image_io.h>
+
+#include <algorithm>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+#include "commands.h"
+#include "session.h"
+
+namespace aq::app {
+
+namespace {
+
+volatile std::sig_atomic_t g_stop_requested = 0;
+void request_stop(int) { g_stop_requested = 1; }
+
+constexpr const char* kRenderHelp =
+    R"(usage: aquarelle render GRAPH -o OUT [options]
+
+Renders the graph's output for each frame and writes it to OUT.
+
+  -o, --output OUT        output file; `####` is replaced by the zero-padded frame number
+                          (required for frame ranges). .exr keeps scene-linear data;
+                          .png/.jpg/.tif get the OCIO display/view transform
+  --frames A-B            frames to render (default: the graph's settings.frames)
+  --size WxH              override settings.width/height
+  --set NODE.PARAM=VALUE  override a parameter (VALUE as JSON, e.g. 0.5, [1,0,0], "text")
+  --gl auto|egl|osmesa    GL backend (default auto: EGL, then OSMesa)
+  --precision half|float  working precision (default: settings.precision)
+  --quality draft|preview|final   quality preset (default: settings.quality)
+  --view VIEW             OCIO view for display formats (default: the config's default)
+  --bits 8|16             bit depth of PNG/TIFF (default 8)
+  --float                 write EXR as 32-bit float instead of half
+  --stats                 print a table of per-node GPU and CPU time
+  --resume                skip frames whose output file already exists
+  -q, --quiet             no progress output
+
+Exit codes: 0 ok, 1 bad input, 2 no usable GL or plugins, 130 interrupted.
+)";
+
+std::string frame_path(const std::string& pattern, int frame) {
+  auto start = pattern.find('#');
+  if (start == std::string::npos) return pattern;
+  auto end = pattern.find_first_not_of('#', start);
+  size_t width = (end == std::string::npos ? pattern.size() : end) - start;
+  char number[32];
+  std::snprintf(number, sizeof(number), "%0*d", static_cast<int>(width), frame);
+  return pattern.substr(0, start) + number +
+         (end == std::string::npos ? "" : pattern.substr(end));
+}
+
+void print_progress(int done, int total, double seconds) {
+  const int bar = 30;
+  int filled = total > 0 ? done * bar / total : bar;
+  std::printf("\r[%.*s%*s] %d/%d frames  %.1f s", filled,
+              "##############################", bar - filled, "", done, total, seconds);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int run_render(int argc, char** argv) {
+  std::string graph_path, output, frames, size, backend_name = "auto", precision, quality, view;
+  std::vector<std::string> sets;
+  bool stats = false, resume = false, quiet = false, float_exr = false;
+  int bits = 8;
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      auto v = option_value(argc, argv, &i);
+      if (!v.ok()) {
+        std::fprintf(stderr, "aquarelle render: %s\n", v.message().c_str());
+        std::exit(kExitBadInput);
+      }
+      return *v;
+    };
+    if (arg == "--help" || arg == "-h") {
+      std::fputs(kRenderHelp, stdout);
+      return kExitOk;
+    } else if (arg == "-o" || arg == "--output") {
+      output = value();
+    } else if (arg == "--frames") {
+      frames = value();
+    } else if (arg == "--size") {
+      size = value();
+    } else if (arg == "--set") {
+      sets.push_back(value());
+    } else if (arg == "--gl") {
+      backend_name = value();
+    } else if (arg == "--precision") {
+      precision = value();
+    } else if (arg == "--quality") {
+      quality = value();
+    } else if (arg == "--view") {
+      view = value();
+    } else if (arg == "--bits") {
+      std::string b = value();
+      if (b != "8" && b != "16") {
+        std::fprintf(stderr, "aquarelle render: --bits must be 8 or 16\n");
+        return kExitBadInput;
+      }
+      bits = std::stoi(b);
+    } else if (arg == "--float") {
+      float_exr = true;
+    } else if (arg == "--stats") {
+      stats = true;
+    } else if (arg == "--resume") {
+      resume = true;
+    } else if (arg == "-q" || arg == "--quiet") {
+      quiet = true;
+    } else if (!arg.empty() && arg[0] == '-') {
+      std::fprintf(stderr, "aquarelle render: unknown option '%s' (see --help)\n", arg.c_str());
+      return kExitBadInput;
+    } else if (graph_path.empty()) {
+      graph_path = arg;
+    } else {
+      std::fprintf(stderr, "aquarelle render: more than one graph given ('%s')\n", arg.c_str());
+      return kExitBadInput;
+    }
+  }
+  if (graph_path.empty() || output.empty()) {
+    std::fprintf(stderr, "aquarelle render: %s\n%s",
+                 graph_path.empty() ? "no graph file given" : "no output given (-o OUT)",
+                 kRenderHelp);
+    return kExitBadInput;
+  }
+  auto backend = parse_backend(backend_name);
+  if (!backend.ok()) {
+    std::fprintf(stderr, "aquarelle render: --gl: %s\n", backend.message().c_str());
+    return kExitBadInput;
+  }
+  if (!precision.empty() && precision != "half" && precision != "float") {
+    std::fprintf(stderr, "aquarelle render: --precision must be half or float\n");
+    return kExitBadInput;
+  }
+  if (!quality.empty() && quality != "draft" && quality != "preview" && quality != "final") {
+    std::fprintf(stderr, "aquarelle render: --quality must be draft, preview or final\n");
+    return kExitBadInput;
+  }
+
+  auto plugins = load_plugins(quiet);
+  if (!plugins.ok()) {
+    std::fprintf(stderr, "aquarelle render: %s\n", plugins.message().c_str());
+    return kExitEnvironment;
+  }
+  const Registry& registry = (*plugins)->registry;
+  ReadResult read = read_graph_file(graph_path, registry);
+  if (!read.ok()) {
+    std::fprintf(stderr, "%s\n", format_problems(read.problems).c_str());
+    return kExitBadInput;
+  }
+  Graph graph = std::move(read.graph);
+  Settings& settings = graph.settings;
+  if (!size.empty()) {
+    if (auto s = parse_size(size, &settings.width, &settings.height); !s.ok()) {
+      std::fprintf(stderr, "aquarelle render: %s\n", s.message().c_str());
+      return kExitBadInput;
+    }
+  }
+  if (!frames.empty()) {
+    if (auto s = parse_frames(frames, &settings.first_frame, &settings.last_frame); !s.ok()) {
+      std::fprintf(stderr, "aquarelle render: %s\n", s.message().c_str());
+      return kExitBadInput;
+    }
+  }
+  if (!precision.empty()) settings.precision = precision;
+  if (!quality.empty()) settings.quality = quality;
+  for (const auto& assignment : sets) {
+    if (auto s = apply_setting(graph, registry, assignment); !s.ok()) {
+      std::fprintf(stderr, "aquarelle render: %s\n", s.message().c_str());
+      return kExitBadInput;
+    }
+  }
+  if (auto problems = validate_graph(graph, registry); !problems.empty()) {
+    for (auto& p : problems) p.file = graph_path;
+    std::fprintf(stderr, "%s\n", format_problems(problems).c_str());
+    return kExitBadInput;
+  }
+  const int first = settings.first_frame, last = settings.last_frame;
+  if (last > first && output.find('#') == std::string::npos) {
+    std::fprintf(stderr,
+                 "aquarelle render: rendering frames %d-%d needs `####` in the output name "
+                 "for the frame number, e.g. -o out/####.png\n",
+                 first, last);
+    return kExitBadInput;
+  }
+  std::error_code ec;
+  std::filesystem::path out_dir = std::filesystem::path(frame_path(output, first)).parent_path();
+  if (!out_dir.empty() && !std::filesystem::is_directory(out_dir, ec)) {
+    std::fprintf(stderr,
+                 "aquarelle render: output folder '%s' does not exist: create it first\n",
+                 out_dir.string().c_str());
+    return kExitBadInput;
+  }
+  bool display = is_display_referred_format(frame_path(output, first));
+
+  auto color = ColorConfig::load();
+  if (!color.ok()) {
+    std::fprintf(stderr, "aquarelle render: %s\n", color.message().c_str());
+    return kExitEnvironment;
+  }
+  std::optional<DisplayTransform> transform;
+  if (display) {
+    auto t = DisplayTransform::create(*color, "", view);
+    if (!t.ok()) {
+      std::fprintf(stderr, "aquarelle render: --view: %s\n", t.message().c_str());
+      return kExitBadInput;
+    }
+    transform = std::move(*t);
+  }
+
+  auto context = create_headless_context(*backend);
+  if (!context.ok()) {
+    std::fprintf(stderr, "aquarelle render: %s\n", context.message().c_str());
+    return kExitEnvironment;
+  }
+  if (!quiet) std::fprintf(stderr, "aquarelle: %s\n", (*context)->description().c_str());
+
+  std::signal(SIGINT, request_stop);
+  std::signal(SIGTERM, request_stop);
+  const bool progress = !quiet && isatty(STDOUT_FILENO) && last > first;
+  Evaluator evaluator(**context, registry);
+  std::map<std::string, std::pair<NodeTiming, int>> totals;
+  std::vector<std::string> order;
+  auto start = std::chrono::steady_clock::now();
+  int written = 0, skipped = 0;
+  int exit_code = kExitOk;
+  for (int frame = first; frame <= last; ++frame) {
+    if (g_stop_requested) {
+      exit_code = kExitInterrupted;
+      break;
+    }
+    std::string path = frame_path(output, frame);
+    if (resume && std::filesystem::exists(path, ec)) {
+      ++skipped;
+      continue;
+    }
+    EvalOptions options;
+    options.frame = frame;
+    options.measure_gpu_time = stats;
+    auto result = evaluator.evaluate(graph, options);
+    if (!result.ok()) {
+      if (progress) std::printf("\n");
+      std::fprintf(stderr, "aquarelle render: frame %d: %s\n", frame, result.message().c_str());
+      return kExitBadInput;
+    }
+    for (const auto& timing : evaluator.last_timings()) {
+      auto [it, inserted] = totals.try_emplace(timing.node, timing, 0);
+      if (inserted) {
+        order.push_back(timing.node);
+        it->second.first.gpu_ms = it->second.first.cpu_ms = 0;
+      }
+      it->second.first.gpu_ms += timing.gpu_ms;
+      it->second.first.cpu_ms += timing.cpu_ms;
+      if (!timing.cached) ++it->second.second;
+    }
+    const aq_image& image = (*result)->image;
+    Result<ImageF> pixels = make_error("not read");
+    if (transform) {
+      auto displayed = transform->apply(image.texture, image.width, image.height);
+      if (!displayed.ok()) {
+        std::fprintf(stderr, "aquarelle render: display transform: %s\n",
+                     displayed.message().c_str());
+        return kExitEnvironment;
+      }
+      pixels = read_texture(displayed->get(), image.width, image.height, AQ_FORMAT_RGBA32F);
+    } else {
+      pixels = evaluator.read_back(*result);
+    }
+    if (!pixels.ok()) {
+      std::fprintf(stderr, "aquarelle render: frame %d: %s\n", frame, pixels.message().c_str());
+      return kExitEnvironment;
+    }
+    WriteOptions write_options;
+    write_options.bits = bits;
+    write_options.float_data = float_exr;
+    if (auto s = write_image(path, *pixels, write_options); !s.ok()) {
+      if (progress) std::printf("\n");
+      std::fprintf(stderr, "aquarelle render: frame %d: %s\n", frame, s.message().c_str());
+      return kExitBadInput;
+    }
+    ++written;
+    double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (progress) print_progress(frame - first + 1, last - first + 1, seconds);
+  }
+  if (transform) transform->release_gl();
+  if (progress) std::printf("\n");
+  if (!quiet) {
+    std::fprintf(stderr, "aquarelle: wrote %d frame(s)%s to %s\n", written,
+                 skipped > 0 ? (" (" + std::to_string(skipped) + " already there)").c_str() : "",
+                 output.c_str());
+  }
+  if (stats) {
+    int frames_run = std::max(1, written);
+    std::printf("%-16s %-12s %10s %10s %6s\n", "node", "type", "gpu ms", "cpu ms", "runs");
+    double gpu_total = 0, cpu_total = 0;
+    for (const auto& id : order) {
+      const auto& [timing, runs] = totals[id];
+      std::printf("%-16s %-12s %10.2f %10.2f %6d\n", id.c_str(), timing.type.c_str(),
+                  timing.gpu_ms / frames_run, timing.cpu_ms / frames_run, runs);
+      gpu_total += timing.gpu_ms / frames_run;
+      cpu_total += timing.cpu_ms / frames_run;
+    }
+    std::printf("%-16s %-12s %10.2f %10.2f\n", "total/frame", "", gpu_total, cpu_total);
+  }
+  if (exit_code == kExitInterrupted) {
+    std::fprintf(stderr, "aquarelle render: interrupted; %d complete frame(s) written, "
+                         "run again with --resume to finish\n", written);
+  }
+  return exit_code;
+}
+
+}  // namespace aq::app

@@ -1,0 +1,17 @@
+// Constructors of the headless backends, each in its own translation unit (see gl_context.cpp).
+#pragma once
+
+#include <aquarelle/core/gl_context.h>
+
+namespace aq {
+
+Result<std::unique_ptr<GlContext>> create_egl_context();
+Result<std::unique_ptr<GlContext>> create_osmesa_context();
+
+// Lets a backend subclass call the protected loader.
+class BackendContext : public GlContext {
+ protected:
+  bool load() { return load_functions(); }
+};
+
+}  // namespace aq

@@ -1,0 +1,599 @@
+// Evaluator: pull-based evaluation with per-node cache keys, texture release after the last
+// reader, and GPU timing. The host services a plugin sees (aq_host) are implemented here too,
+// because each of them acts on the node being processed.
+#include <aquarelle/core/evaluator.h>
+
+#include <aquarelle/core/graph_io.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <set>
+
+#include "builtin_nodes.h"
+#include "shader_cache.h"
+
+namespace aq {
+
+namespace {
+
+uint64_t hash_bytes(uint64_t h, const void* data, size_t size) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < size; ++i) {
+    h ^= bytes[i];
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+uint64_t hash_string(uint64_t h, const std::string& s) {
+  h = hash_bytes(h, s.data(), s.size());
+  return hash_bytes(h, "\0", 1);
+}
+template <typename T>
+uint64_t hash_value(uint64_t h, const T& v) {
+  return hash_bytes(h, &v, sizeof(v));
+}
+
+uint32_t working_format(const std::string& precision) {
+  return precision == "float" ? AQ_FORMAT_RGBA32F : AQ_FORMAT_RGBA16F;
+}
+uint32_t quality_index(const std::string& quality) {
+  if (quality == "draft") return 0;
+  if (quality == "preview") return 1;
+  return 2;
+}
+
+}  // namespace
+
+struct NodeState {
+  const NodeType* type = nullptr;
+  void* instance = nullptr;
+  uint64_t key = 0;
+  bool valid = false;  // outputs hold the result for `key`
+  std::vector<TextureRef> images;
+  std::vector<const aq_scene*> scenes;
+  gl::Query timer;
+  BuiltinState builtin;
+};
+
+struct CallState {
+  Evaluator::Impl* impl = nullptr;
+  NodeState* state = nullptr;
+  std::string node_id;
+  std::string error;
+  std::vector<TextureRef> scratch;
+  const std::vector<TextureRef>* input_refs = nullptr;
+};
+
+struct Evaluator::Impl {
+  GlContext& context;
+  TexturePool& pool;
+  ShaderCache shaders;
+  std::map<std::string, NodeState> states;
+  gl::VertexArray empty_vao;
+  gl::Framebuffer framebuffer;
+  GLuint attached_colors = 0;
+  aq_host host{};
+
+  Impl(GlContext& c, TexturePool& p) : context(c), pool(p) {
+    host.abi_version = AQ_ABI_VERSION;
+    host.struct_size = sizeof(aq_host);
+    host.get_proc_address = &Impl::get_proc_address;
+    host.fail = &Impl::fail;
+    host.log = &Impl::log;
+    host.program = &Impl::program;
+    host.output_image = &Impl::output_image;
+    host.pass_through = &Impl::pass_through;
+    host.output_scene = &Impl::output_scene;
+    host.scratch_image = &Impl::scratch_image;
+    host.bind_targets = &Impl::bind_targets;
+    host.draw_fullscreen = &Impl::draw_fullscreen;
+  }
+
+  ~Impl() { destroy_all(); }
+
+  void destroy_state(NodeState& state) {
+    state.images.clear();
+    state.scenes.clear();
+    if (state.instance != nullptr && state.type != nullptr && state.type->desc != nullptr) {
+      state.type->desc->destroy(state.instance);
+    }
+    state.instance = nullptr;
+    state.valid = false;
+  }
+  void destroy_all() {
+    if (!states.empty()) context.activate();
+    for (auto& [id, state] : states) destroy_state(state);
+    states.clear();
+  }
+
+  static Impl* current_impl;
+  static void* get_proc_address(const char* name) {
+    return current_impl != nullptr ? current_impl->context.get_proc_address(name) : nullptr;
+  }
+  static void fail(void* data, const char* message) {
+    auto* call = static_cast<CallState*>(data);
+    if (!call->error.empty()) call->error += "\n";
+    call->error += message != nullptr ? message : "(no message)";
+  }
+  static void log(void* data, int level, const char* message) {
+    auto* call = static_cast<CallState*>(data);
+    std::fprintf(stderr, "%s: node '%s': %s\n", level > 0 ? "warning" : "info",
+                 call->node_id.c_str(), message);
+  }
+  static uint32_t program(void* data, const aq_shader_source* vertex,
+                          const aq_shader_source* fragment) {
+    auto* call = static_cast<CallState*>(data);
+    auto result = call->impl->shaders.program(vertex, fragment);
+    if (!result.ok()) {
+      fail(data, result.message().c_str());
+      return 0;
+    }
+    return *result;
+  }
+  static bool valid_size(CallState* call, int32_t width, int32_t height) {
+    GLint limit = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limit);
+    if (width < 1 || height < 1 || width > limit || height > limit) {
+      fail(call, ("cannot make a " + std::to_string(width) + "x" + std::to_string(height) +
+                  " texture: sizes run from 1x1 to " + std::to_string(limit) + "x" +
+                  std::to_string(limit) + " on this GL implementation")
+                     .c_str());
+      return false;
+    }
+    return true;
+  }
+  static int output_image(void* data, uint32_t index, int32_t width, int32_t height,
+                          uint32_t format, aq_image* out) {
+    auto* call = static_cast<CallState*>(data);
+    NodeState& state = *call->state;
+    if (index >= state.images.size() || state.type->outputs[index].type != AQ_PORT_IMAGE) {
+      fail(data, ("output_image: no image output with index " + std::to_string(index)).c_str());
+      return AQ_ERROR;
+    }
+    if (!valid_size(call, width, height)) return AQ_ERROR;
+    state.images[index] = call->impl->pool.acquire(width, height, format);
+    *out = state.images[index]->image;
+    return AQ_OK;
+  }
+  static int pass_through(void* data, uint32_t index, uint32_t input_index) {
+    auto* call = static_cast<CallState*>(data);
+    NodeState& state = *call->state;
+    if (index >= state.images.size() || call->input_refs == nullptr ||
+        input_index >= call->input_refs->size() || !(*call->input_refs)[input_index]) {
+      fail(data, "pass_through: no such image output or connected image input");
+      return AQ_ERROR;
+    }
+    state.images[index] = (*call->input_refs)[input_index];
+    return AQ_OK;
+  }
+  static int output_scene(void* data, uint32_t index, const aq_scene* scene) {
+    auto* call = static_cast<CallState*>(data);
+    NodeState& state = *call->state;
+    if (index >= state.scenes.size() || state.type->outputs[index].type != AQ_PORT_SCENE) {
+      fail(data, ("output_scene: no scene output with index " + std::to_string(index)).c_str());
+      return AQ_ERROR;
+    }
+    state.scenes[index] = scene;
+    return AQ_OK;
+  }
+  static int scratch_image(void* data, int32_t width, int32_t height, uint32_t format,
+                           aq_image* out) {
+    auto* call = static_cast<CallState*>(data);
+    if (!valid_size(call, width, height)) return AQ_ERROR;
+    call->scratch.push_back(call->impl->pool.acquire(width, height, format));
+    *out = call->scratch.back()->image;
+    return AQ_OK;
+  }
+  static int bind_targets(void* data, const aq_image* colors, uint32_t count,
+                          const aq_image* depth) {
+    auto* call = static_cast<CallState*>(data);
+    Impl& impl = *call->impl;
+    GLuint fbo = impl.framebuffer.get();
+    GLint max_attachments = 8;
+    glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &max_attachments);
+    if (count > static_cast<uint32_t>(max_attachments)) {
+      fail(data, "bind_targets: too many colour targets");
+      return AQ_ERROR;
+    }
+    std::vector<GLenum> buffers;
+    for (uint32_t i = 0; i < count; ++i) {
+      glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + i, colors[i].texture, 0);
+      buffers.push_back(GL_COLOR_ATTACHMENT0 + i);
+    }
+    for (GLuint i = count; i < impl.attached_colors; ++i) {
+      glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + i, 0, 0);
+    }
+    impl.attached_colors = count;
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth != nullptr ? depth->texture : 0, 0);
+    if (count > 0) {
+      glNamedFramebufferDrawBuffers(fbo, static_cast<GLsizei>(count), buffers.data());
+    } else {
+      glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+    }
+    GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+      char text[96];
+      std::snprintf(text, sizeof(text), "bind_targets: framebuffer incomplete (0x%04X)", status);
+      fail(data, text);
+      return AQ_ERROR;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    const aq_image& size_of = count > 0 ? colors[0] : *depth;
+    glViewport(0, 0, size_of.width, size_of.height);
+    return AQ_OK;
+  }
+  static void draw_fullscreen(void* data) {
+    auto* call = static_cast<CallState*>(data);
+    glBindVertexArray(call->impl->empty_vao.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+  }
+
+  // Leaves GL as the next node expects to find it, whatever this node left bound.
+  void reset_gl_state() {
+    glUseProgram(0);
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    for (GLuint unit = 0; unit < 8; ++unit) {
+      glActiveTexture(GL_TEXTURE0 + unit);
+      glBindTexture(GL_TEXTURE_2D, 0);
+    }
+    glActiveTexture(GL_TEXTURE0);
+  }
+};
+
+Evaluator::Impl* Evaluator::Impl::current_impl = nullptr;
+
+Evaluator::Evaluator(GlContext& context, const Registry& registry)
+    : context_(context), registry_(registry), pool_(std::make_unique<TexturePool>()) {
+  context_.activate();
+  impl_ = std::make_unique<Impl>(context_, *pool_);
+  impl_->empty_vao = gl::make_vertex_array();
+  glCreateFramebuffers(1, reinterpret_cast<GLuint*>(&impl_->attached_colors));
+  impl_->framebuffer = gl::Framebuffer(impl_->attached_colors);
+  impl_->attached_colors = 0;
+}
+
+Evaluator::~Evaluator() {
+  context_.activate();
+  impl_.reset();  // node instances and their outputs go before the pool
+  pool_.reset();
+}
+
+void Evaluator::clear() {
+  context_.activate();
+  impl_->destroy_all();
+}
+
+void Evaluator::set_shader_hot_reload(bool enabled) { impl_->shaders.set_hot_reload(enabled); }
+
+Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format) {
+  bool single = format == AQ_FORMAT_R32F || format == AQ_FORMAT_DEPTH32F;
+  ImageF out(width, height, single ? 1 : 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  if (format == AQ_FORMAT_R32UI) {
+    std::vector<uint32_t> ids(static_cast<size_t>(width) * height);
+    glGetTextureImage(texture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                      static_cast<GLsizei>(ids.size() * 4), ids.data());
+    out = ImageF(width, height, 1);
+    for (size_t i = 0; i < ids.size(); ++i) out.pixels[i] = static_cast<float>(ids[i]);
+    return out;
+  }
+  GLenum gl_format = format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : (single ? GL_RED : GL_RGBA);
+  glGetTextureImage(texture, 0, gl_format, GL_FLOAT,
+                    static_cast<GLsizei>(out.pixels.size() * sizeof(float)), out.pixels.data());
+  if (glGetError() != GL_NO_ERROR) return make_error("reading the texture back failed");
+  return out;
+}
+
+Result<ImageF> Evaluator::read_back(const TextureRef& texture) {
+  if (!texture) return make_error("nothing to read back");
+  context_.activate();
+  const aq_image& image = texture->image;
+  return read_texture(image.texture, image.width, image.height, image.format);
+}
+
+Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& options,
+                                       const std::optional<PortRef>& requested) {
+  timings_.clear();
+  if (!context_.activate()) return make_error("the OpenGL context cannot be made current");
+  Impl::current_impl = impl_.get();
+  std::optional<PortRef> target = requested ? requested : graph.output;
+  if (!target) return make_error("the graph has no `output`: name the port to render, e.g. "
+                                 "\"output\": \"tint.image\"");
+  if (graph.nodes.find(target->node) == graph.nodes.end()) {
+    return make_error("output '" + target->str() + "' names node '" + target->node +
+                      "', which is not in the graph");
+  }
+
+  // Drop state of nodes that left the graph or changed type.
+  for (auto it = impl_->states.begin(); it != impl_->states.end();) {
+    auto node = graph.nodes.find(it->first);
+    if (node == graph.nodes.end() || it->second.type == nullptr ||
+        node->second.type != it->second.type->name) {
+      impl_->destroy_state(it->second);
+      it = impl_->states.erase(it);
+    } else {
+      ++it;
+    }
+  }
+
+  // Cull to what the output depends on and sort (depth-first, inputs before readers).
+  std::vector<std::string> order;
+  std::map<std::string, int> mark;  // 1 visiting, 2 done
+  std::function<Status(const std::string&, std::vector<std::string>&)> visit =
+      [&](const std::string& id, std::vector<std::string>& path) -> Status {
+    if (mark[id] == 2) return Ok{};
+    path.push_back(id);
+    if (mark[id] == 1) {
+      std::string cycle;
+      auto start = std::find(path.begin(), path.end(), id);
+      for (auto it = start; it != path.end(); ++it) cycle += (cycle.empty() ? "" : " -> ") + *it;
+      return make_error("the graph has a cycle: " + cycle);
+    }
+    mark[id] = 1;
+    auto node = graph.nodes.find(id);
+    if (node == graph.nodes.end()) return make_error("node '" + id + "' is not in the graph");
+    for (const auto& [port, source] : node->second.inputs) {
+      if (graph.nodes.find(source.node) == graph.nodes.end()) {
+        return make_error("node '" + id + "', input '" + port + "': source node '" +
+                          source.node + "' is not in the graph");
+      }
+      if (auto s = visit(source.node, path); !s.ok()) return s;
+    }
+    mark[id] = 2;
+    path.pop_back();
+    order.push_back(id);
+    return Ok{};
+  };
+  std::vector<std::string> path;
+  if (auto s = visit(target->node, path); !s.ok()) return s.error();
+
+  // Readers per producer, so outputs can go back to the pool after their last use.
+  std::map<std::string, int> readers;
+  for (const auto& id : order) {
+    for (const auto& [port, source] : graph.nodes.at(id).inputs) ++readers[source.node];
+  }
+  readers[target->node] += 1;
+
+  const Settings& settings = graph.settings;
+  const uint32_t format = working_format(settings.precision);
+  const double time = (options.frame - settings.first_frame) / std::max(settings.fps, 1e-6);
+  std::filesystem::path graph_dir =
+      graph.source_path.empty() ? std::filesystem::path()
+                                : std::filesystem::path(graph.source_path).parent_path();
+
+  for (const auto& id : order) {
+    const Node& node = graph.nodes.at(id);
+    const NodeType* type = registry_.find(node.type);
+    if (type == nullptr) {
+      return make_error("node '" + id + "': unknown node type '" + node.type +
+                        "' (run `aquarelle nodes` to list the installed types)");
+    }
+    NodeState& state = impl_->states[id];
+    state.type = type;
+    if (state.images.size() != type->outputs.size()) {
+      state.images.assign(type->outputs.size(), nullptr);
+      state.scenes.assign(type->outputs.size(), nullptr);
+      state.valid = false;
+    }
+
+    // Parameters, as the ABI passes them.
+    std::vector<aq_param_value> params(type->params.size());
+    std::vector<std::string> strings(type->params.size());
+    uint64_t key = 1469598103934665603ull;
+    key = hash_string(key, type->name);
+    for (size_t p = 0; p < type->params.size(); ++p) {
+      const ParamInfo& info = type->params[p];
+      nlohmann::json value = param_value_or_default(node, info);
+      key = hash_string(key, value.dump());
+      aq_param_value& out = params[p];
+      out = aq_param_value{{0, 0, 0}, 0, nullptr};
+      switch (info.type) {
+        case AQ_PARAM_FLOAT:
+          out.f[0] = value.is_number() ? value.get<double>() : info.default_value[0];
+          break;
+        case AQ_PARAM_INT:
+          out.i = value.is_number() ? value.get<int64_t>() : static_cast<int64_t>(info.default_value[0]);
+          out.f[0] = static_cast<double>(out.i);
+          break;
+        case AQ_PARAM_BOOL:
+          out.i = value.is_boolean() ? (value.get<bool>() ? 1 : 0) : (info.default_value[0] != 0);
+          break;
+        case AQ_PARAM_ENUM: {
+          out.i = static_cast<int64_t>(info.default_value[0]);
+          if (value.is_string()) {
+            for (size_t e = 0; e < info.enum_values.size(); ++e) {
+              if (info.enum_values[e] == value.get<std::string>()) out.i = static_cast<int64_t>(e);
+            }
+          } else if (value.is_number_integer()) {
+            out.i = value.get<int64_t>();
+          }
+          break;
+        }
+        case AQ_PARAM_COLOR:
+        case AQ_PARAM_VEC3:
+          for (int c = 0; c < 3; ++c) {
+            out.f[c] = value.is_array() && value.size() == 3 && value[c].is_number()
+                           ? value[c].get<double>()
+                           : info.default_value[c];
+          }
+          break;
+        case AQ_PARAM_STRING:
+        case AQ_PARAM_PATH: {
+          strings[p] = value.is_string() ? value.get<std::string>() : info.default_string;
+          if (info.type == AQ_PARAM_PATH && !strings[p].empty() &&
+              std::filesystem::path(strings[p]).is_relative() && !graph_dir.empty()) {
+            strings[p] = (graph_dir / strings[p]).lexically_normal().string();
+          }
+          out.s = strings[p].c_str();
+          break;
+        }
+      }
+    }
+
+    // Inputs, and the key they contribute.
+    std::vector<aq_input_value> inputs(type->inputs.size());
+    std::vector<TextureRef> input_refs(type->inputs.size());
+    for (size_t i = 0; i < type->inputs.size(); ++i) {
+      const PortInfo& port = type->inputs[i];
+      aq_input_value& in = inputs[i];
+      in = aq_input_value{static_cast<uint32_t>(port.type), 0, {0, 0, 0, 0}, nullptr};
+      auto link = node.inputs.find(port.name);
+      if (link == node.inputs.end()) {
+        if (!port.optional) {
+          return make_error("node '" + id + "' (" + type->name + "): required input '" +
+                            port.name + "' is not connected");
+        }
+        key = hash_string(key, "-");
+        continue;
+      }
+      NodeState& source = impl_->states[link->second.node];
+      int index = source.type != nullptr ? source.type->output_index(link->second.port) : -1;
+      if (index < 0) {
+        return make_error("node '" + id + "', input '" + port.name + "': '" +
+                          link->second.str() + "' is not an output port");
+      }
+      if (source.type->outputs[index].type != port.type) {
+        return make_error("node '" + id + "', input '" + port.name + "': expects " +
+                          port_type_name(port.type) + " but '" + link->second.str() +
+                          "' gives " + port_type_name(source.type->outputs[index].type));
+      }
+      key = hash_value(key, source.key);
+      key = hash_string(key, link->second.port);
+      in.connected = 1;
+      if (port.type == AQ_PORT_IMAGE) {
+        input_refs[i] = source.images[index];
+        if (input_refs[i]) in.image = input_refs[i]->image;
+      } else {
+        in.scene = source.scenes[index];
+      }
+    }
+    key = hash_value(key, settings.width);
+    key = hash_value(key, settings.height);
+    key = hash_value(key, format);
+    key = hash_value(key, quality_index(settings.quality));
+    if (type->time_dependent()) key = hash_value(key, options.frame);
+    key = builtin_key(*type, params, options, key);
+
+    if (state.valid && state.key == key) {
+      timings_.push_back(NodeTiming{id, type->name, 0, 0, true});
+    } else {
+      CallState call;
+      call.impl = impl_.get();
+      call.state = &state;
+      call.node_id = id;
+      call.input_refs = &input_refs;
+      aq_process_ctx ctx{};
+      ctx.struct_size = sizeof(aq_process_ctx);
+      ctx.host = &impl_->host;
+      ctx.host_data = &call;
+      ctx.node_id = call.node_id.c_str();
+      ctx.inputs = inputs.data();
+      ctx.input_count = static_cast<uint32_t>(inputs.size());
+      ctx.params = params.data();
+      ctx.param_count = static_cast<uint32_t>(params.size());
+      ctx.width = settings.width;
+      ctx.height = settings.height;
+      ctx.precision = settings.precision == "float" ? AQ_PRECISION_FLOAT : AQ_PRECISION_HALF;
+      ctx.working_format = format;
+      ctx.time = time;
+      ctx.frame = options.frame;
+      ctx.fps = settings.fps;
+      ctx.gl_generation = context_.generation();
+      ctx.quality = quality_index(settings.quality);
+
+      for (auto& image : state.images) image.reset();
+      for (auto& scene : state.scenes) scene = nullptr;
+      if (options.measure_gpu_time) {
+        if (!state.timer) state.timer = gl::make_query();
+        glBeginQuery(GL_TIME_ELAPSED, state.timer.get());
+      }
+      auto start = std::chrono::steady_clock::now();
+      int status = AQ_OK;
+      if (type->desc == nullptr) {
+        status = run_builtin(*type, state.builtin, ctx, options, impl_->pool, &state.images,
+                             &call.error);
+      } else {
+        if (state.instance == nullptr) {
+          state.instance = type->desc->create(&impl_->host);
+          if (state.instance == nullptr) {
+            if (options.measure_gpu_time) glEndQuery(GL_TIME_ELAPSED);
+            return make_error("node '" + id + "' (" + type->name +
+                              "): the plugin could not create the node (out of memory?)");
+          }
+        }
+        status = type->desc->process(state.instance, &ctx);
+      }
+      auto end = std::chrono::steady_clock::now();
+      if (options.measure_gpu_time) glEndQuery(GL_TIME_ELAPSED);
+      impl_->reset_gl_state();
+      call.scratch.clear();
+      NodeTiming timing{id, type->name, 0,
+                        std::chrono::duration<double, std::milli>(end - start).count(), false};
+      if (options.measure_gpu_time) {
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(state.timer.get(), GL_QUERY_RESULT, &ns);
+        timing.gpu_ms = static_cast<double>(ns) * 1e-6;
+      }
+      timings_.push_back(timing);
+      ++run_counts_[id];
+      if (status != AQ_OK || !call.error.empty()) {
+        state.valid = false;
+        for (auto& image : state.images) image.reset();
+        return make_error("node '" + id + "' (" + type->name + "): " +
+                          (call.error.empty() ? "failed without a message" : call.error));
+      }
+      for (size_t o = 0; o < type->outputs.size(); ++o) {
+        bool missing = type->outputs[o].type == AQ_PORT_IMAGE ? !state.images[o]
+                                                              : state.scenes[o] == nullptr;
+        if (missing) {
+          state.valid = false;
+          return make_error("node '" + id + "' (" + type->name + "): produced no output '" +
+                            type->outputs[o].name + "' (a plugin bug: report it to its author)");
+        }
+      }
+      state.key = key;
+      state.valid = true;
+    }
+
+    // Inputs read for the last time go back to the pool.
+    if (!options.retain_outputs) {
+      for (const auto& [port, source] : node.inputs) {
+        if (--readers[source.node] == 0) {
+          NodeState& producer = impl_->states[source.node];
+          for (auto& image : producer.images) image.reset();
+          producer.valid = false;
+        }
+      }
+    }
+  }
+
+  NodeState& last = impl_->states[target->node];
+  int index = last.type->output_index(target->port);
+  if (index < 0) {
+    return make_error("output '" + target->str() + "': node '" + target->node + "' (" +
+                      last.type->name + ") has no output port '" + target->port + "'");
+  }
+  if (last.type->outputs[index].type != AQ_PORT_IMAGE) {
+    return make_error("output '" + target->str() + "' is a scene, not an image: render an "
+                      "image port, e.g. a gbuffer or cel_light output");
+  }
+  TextureRef result = last.images[index];
+  if (!options.retain_outputs) {
+    for (auto& image : last.images) image.reset();
+    last.valid = false;
+  }
+  return result;
+}
+
+}  // namespace aq

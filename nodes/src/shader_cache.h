@@ -1,0 +1,27 @@
+// Compiles and links plugin shaders, once per distinct source. Resolves
+// `#include "aquarelle/<file>.glsl"` from the embedded shared library (nodes/shaders/) and maps
+// compiler messages back to the file and line they came from.
+#pragma once
+
+#include <aquarelle/core/gl_objects.h>
+#include <aquarelle/core/result.h>
+#include <aquarelle/plugin.h>
+
+#include <map>
+#include <string>
+
+namespace aq {
+
+class ShaderCache {
+ public:
+  // vertex may be null: the full-screen triangle, which passes `v_uv` to the fragment shader.
+  Result<GLuint> program(const aq_shader_source* vertex, const aq_shader_source* fragment);
+  void set_hot_reload(bool enabled) { hot_reload_ = enabled; }
+  size_t size() const { return programs_.size(); }
+
+ private:
+  std::map<std::string, gl::Program> programs_;
+  bool hot_reload_ = false;
+};
+
+}  // namespace aq

@@ -1,0 +1,103 @@
+// TexturePool: textures keyed by (width, height, format), reused after their last reference.
+#include <aquarelle/core/texture_pool.h>
+
+namespace aq {
+
+size_t bytes_per_pixel(uint32_t format) {
+  switch (format) {
+    case AQ_FORMAT_RGBA16F: return 8;
+    case AQ_FORMAT_RGBA32F: return 16;
+    case AQ_FORMAT_R32F: return 4;
+    case AQ_FORMAT_DEPTH32F: return 4;
+    case AQ_FORMAT_R32UI: return 4;
+    default: return 16;
+  }
+}
+
+const char* format_name(uint32_t format) {
+  switch (format) {
+    case AQ_FORMAT_RGBA16F: return "RGBA16F";
+    case AQ_FORMAT_RGBA32F: return "RGBA32F";
+    case AQ_FORMAT_R32F: return "R32F";
+    case AQ_FORMAT_DEPTH32F: return "DEPTH32F";
+    case AQ_FORMAT_R32UI: return "R32UI";
+    default: return "unknown";
+  }
+}
+
+namespace {
+GLenum internal_format(uint32_t format) {
+  switch (format) {
+    case AQ_FORMAT_RGBA16F: return GL_RGBA16F;
+    case AQ_FORMAT_RGBA32F: return GL_RGBA32F;
+    case AQ_FORMAT_R32F: return GL_R32F;
+    case AQ_FORMAT_DEPTH32F: return GL_DEPTH_COMPONENT32F;
+    case AQ_FORMAT_R32UI: return GL_R32UI;
+    default: return GL_RGBA32F;
+  }
+}
+}  // namespace
+
+TexturePool::~TexturePool() { *alive_ = false; }
+
+TextureRef TexturePool::acquire(int width, int height, uint32_t format) {
+  Key key{width, height, format};
+  std::unique_ptr<PooledTexture> texture;
+  auto it = free_.find(key);
+  if (it != free_.end() && !it->second.empty()) {
+    texture = std::move(it->second.back());
+    it->second.pop_back();
+  } else {
+    texture = std::make_unique<PooledTexture>();
+    texture->texture = gl::make_texture();
+    GLuint id = texture->texture.get();
+    glBindTexture(GL_TEXTURE_2D, id);
+    glTexStorage2D(GL_TEXTURE_2D, 1, internal_format(format), width, height);
+    bool integer = format == AQ_FORMAT_R32UI;
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, integer ? GL_NEAREST : GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, integer ? GL_NEAREST : GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    texture->image = aq_image{id, width, height, format};
+    ++created_;
+    bytes_ += bytes_per_pixel(format) * static_cast<size_t>(width) * height;
+  }
+  ++live_;
+  if (live_ > peak_live_) peak_live_ = live_;
+  PooledTexture* raw = texture.release();
+  std::weak_ptr<bool> alive = alive_;
+  return TextureRef(raw, [this, alive](PooledTexture* t) {
+    auto still = alive.lock();
+    if (still && *still) {
+      give_back(t);
+    } else {
+      delete t;  // the pool is gone; the GL texture dies with it
+    }
+  });
+}
+
+void TexturePool::give_back(PooledTexture* texture) {
+  --live_;
+  const aq_image& image = texture->image;
+  free_[Key{image.width, image.height, image.format}].emplace_back(texture);
+}
+
+size_t TexturePool::free_count() const {
+  size_t count = 0;
+  for (const auto& [key, list] : free_) count += list.size();
+  return count;
+}
+
+void TexturePool::trim() {
+  for (auto& [key, list] : free_) {
+    for (auto& texture : list) {
+      bytes_ -= bytes_per_pixel(texture->image.format) *
+                static_cast<size_t>(texture->image.width) * texture->image.height;
+    }
+    list.clear();
+  }
+  free_.clear();
+}
+
+}  // namespace aq

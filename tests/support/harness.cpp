@@ -1,0 +1,248 @@
+// Test harness: a process-wide headless context per backend, the build's plugins, and helpers
+// to run nodes and graphs and compare images. See harness.h.
+#include "support/harness.h"
+
+#include <aquarelle/core/evaluator.h>
+#include <aquarelle/core/gl_context.h>
+#include <aquarelle/core/graph_io.h>
+#include <aquarelle/core/plugin_loader.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <random>
+
+namespace aq::test {
+
+namespace {
+
+struct Loaded {
+  Registry registry;
+  PluginSet plugins;
+};
+
+Loaded& loaded() {
+  static Loaded* instance = [] {
+    auto* l = new Loaded();
+    register_builtin_nodes(l->registry);
+    auto report = l->plugins.load({AQ_PLUGIN_BUILD_DIR}, l->registry);
+    for (const auto& refused : report.refused) {
+      std::fprintf(stderr, "harness: plugin refused: %s\n", refused.c_str());
+    }
+    return l;
+  }();
+  return *instance;
+}
+
+struct Backend {
+  std::unique_ptr<GlContext> context;
+  std::unique_ptr<Evaluator> evaluator;
+  std::string error;
+};
+
+// Contexts and evaluators live for the whole test process (never destroyed: drivers do not
+// like contexts torn down during static destruction).
+Backend& backend(const std::string& name) {
+  static std::map<std::string, Backend*> backends;
+  auto it = backends.find(name);
+  if (it != backends.end()) return *it->second;
+  auto* b = new Backend();
+  auto parsed = parse_backend(name);
+  if (!parsed.ok()) {
+    b->error = parsed.message();
+  } else {
+    auto context = create_headless_context(*parsed);
+    if (!context.ok()) {
+      b->error = context.message();
+    } else {
+      b->context = std::move(*context);
+      b->evaluator = std::make_unique<Evaluator>(*b->context, loaded().registry);
+    }
+  }
+  backends[name] = b;
+  return *b;
+}
+
+}  // namespace
+
+const Registry& registry() { return loaded().registry; }
+
+std::string source_path(const std::string& relative) {
+  return std::string(AQ_SOURCE_DIR) + "/" + relative;
+}
+
+static Result<ImageF> render(Graph graph, const RenderOptions& options,
+                             const std::map<std::string, ImageF>& images) {
+  Backend& b = backend(options.gl);
+  if (!b.evaluator) return make_error("no " + options.gl + " context: " + b.error);
+  graph.settings.width = options.width;
+  graph.settings.height = options.height;
+  graph.settings.precision = options.precision;
+  graph.settings.quality = options.quality;
+  graph.settings.fps = options.fps;
+  std::optional<PortRef> output;
+  if (!options.output.empty()) {
+    output = PortRef::parse(options.output);
+    if (!output) return make_error("bad output '" + options.output + "'");
+  }
+  EvalOptions eval;
+  eval.frame = options.frame;
+  eval.images = &images;
+  eval.retain_outputs = false;
+  auto texture = b.evaluator->evaluate(graph, eval, output);
+  if (!texture.ok()) return texture.error();
+  return b.evaluator->read_back(*texture);
+}
+
+Result<ImageF> render_graph(const std::string& json_text, const RenderOptions& options,
+                            const std::map<std::string, ImageF>& images) {
+  ReadResult read = read_graph_text(json_text, registry(), "test graph");
+  if (!read.ok()) return make_error(format_problems(read.problems));
+  return render(std::move(read.graph), options, images);
+}
+
+Result<ImageF> render_graph_file(const std::string& path, const RenderOptions& options) {
+  ReadResult read = read_graph_file(path, registry());
+  if (!read.ok()) return make_error(format_problems(read.problems));
+  return render(std::move(read.graph), options, {});
+}
+
+Result<ImageF> run_node(const std::string& type_name, const std::map<std::string, ImageF>& inputs,
+                        const nlohmann::json& params, const RenderOptions& options) {
+  const NodeType* type = registry().find(type_name);
+  if (type == nullptr) return make_error("node type '" + type_name + "' is not installed");
+  Graph graph;
+  Node node;
+  node.type = type_name;
+  if (params.is_object()) {
+    for (auto it = params.begin(); it != params.end(); ++it) node.params[it.key()] = it.value();
+  }
+  for (const auto& [port, image] : inputs) {
+    if (type->input(port) == nullptr) {
+      return make_error("node type '" + type_name + "' has no input '" + port + "'");
+    }
+    Node source;
+    source.type = "image_input";
+    source.params["name"] = port;
+    graph.nodes["in_" + port] = source;
+    node.inputs[port] = PortRef{"in_" + port, "image"};
+  }
+  graph.nodes["node"] = node;
+  std::string port = type->outputs.empty() ? "image" : type->outputs[0].name;
+  if (!options.output.empty()) port = options.output;
+  RenderOptions adjusted = options;
+  adjusted.output = "node." + port;
+  return render(std::move(graph), adjusted, inputs);
+}
+
+namespace {
+int channel_count(const ImageF& a, const ImageF& b, int channels) {
+  int c = std::min(a.channels, b.channels);
+  return channels < 0 ? c : std::min(c, channels);
+}
+bool same_size(const ImageF& a, const ImageF& b) {
+  return a.width == b.width && a.height == b.height;
+}
+}  // namespace
+
+double max_abs_diff(const ImageF& a, const ImageF& b, int channels) {
+  if (!same_size(a, b)) return INFINITY;
+  int n = channel_count(a, b, channels);
+  double worst = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      for (int c = 0; c < n; ++c) {
+        double d = std::abs(static_cast<double>(a.at(x, y, c)) - b.at(x, y, c));
+        if (!(d <= worst)) worst = d;  // NaN propagates as the worst
+      }
+    }
+  }
+  return worst;
+}
+
+double mean_abs_diff(const ImageF& a, const ImageF& b, int channels) {
+  if (!same_size(a, b)) return INFINITY;
+  int n = channel_count(a, b, channels);
+  double sum = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      for (int c = 0; c < n; ++c) sum += std::abs(static_cast<double>(a.at(x, y, c)) - b.at(x, y, c));
+    }
+  }
+  return sum / (static_cast<double>(a.width) * a.height * n);
+}
+
+double psnr(const ImageF& a, const ImageF& b, double peak, int channels) {
+  if (!same_size(a, b)) return 0;
+  int n = channel_count(a, b, channels);
+  double sum = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      for (int c = 0; c < n; ++c) {
+        double d = static_cast<double>(a.at(x, y, c)) - b.at(x, y, c);
+        sum += d * d;
+      }
+    }
+  }
+  double mse = sum / (static_cast<double>(a.width) * a.height * n);
+  if (mse == 0) return INFINITY;
+  return 10.0 * std::log10(peak * peak / mse);
+}
+
+bool all_finite(const ImageF& image) {
+  for (float v : image.pixels) {
+    if (!std::isfinite(v)) return false;
+  }
+  return true;
+}
+
+ImageF gradient_image(int width, int height) {
+  ImageF image(width, height, 4);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      float u = (x + 0.5f) / width, v = (y + 0.5f) / height;
+      image.at(x, y, 0) = u;
+      image.at(x, y, 1) = v;
+      image.at(x, y, 2) = 1.0f - u;
+      image.at(x, y, 3) = 1.0f;
+    }
+  }
+  return image;
+}
+
+ImageF random_image(int width, int height, unsigned seed, float lo, float hi) {
+  ImageF image(width, height, 4);
+  // A fixed LCG rather than <random> distributions, whose output is implementation-defined.
+  uint64_t state = seed * 6364136223846793005ull + 1442695040888963407ull;
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    double unit = static_cast<double>(state >> 11) / 9007199254740992.0;
+    image.pixels[i] = (i % 4 == 3) ? 1.0f : static_cast<float>(lo + (hi - lo) * unit);
+  }
+  return image;
+}
+
+ImageF constant_image(int width, int height, float r, float g, float b, float a) {
+  ImageF image(width, height, 4);
+  for (size_t i = 0; i < image.pixels.size(); i += 4) {
+    image.pixels[i] = r;
+    image.pixels[i + 1] = g;
+    image.pixels[i + 2] = b;
+    image.pixels[i + 3] = a;
+  }
+  return image;
+}
+
+ImageF checker_image(int width, int height, int cell) {
+  ImageF image(width, height, 4);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      float v = ((x / cell + y / cell) % 2 == 0) ? 1.0f : 0.0f;
+      for (int c = 0; c < 3; ++c) image.at(x, y, c) = v;
+      image.at(x, y, 3) = 1.0f;
+    }
+  }
+  return image;
+}
+
+}  // namespace aq::test
