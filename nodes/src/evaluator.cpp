@@ -53,7 +53,8 @@ struct NodeState {
   bool valid = false;  // outputs hold the result for `key`
   std::vector<TextureRef> images;
   std::vector<const aq_scene*> scenes;
-  gl::Query timer;
+  gl::Query timer_start;  // GL_TIMESTAMP pairs: llvmpipe's GL_TIME_ELAPSED reads garbage when
+  gl::Query timer_end;    // a query spans shader compilation, timestamps do not
   BuiltinState builtin;
 };
 
@@ -515,8 +516,11 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       for (auto& image : state.images) image.reset();
       for (auto& scene : state.scenes) scene = nullptr;
       if (options.measure_gpu_time) {
-        if (!state.timer) state.timer = gl::make_query();
-        glBeginQuery(GL_TIME_ELAPSED, state.timer.get());
+        if (!state.timer_start) {
+          state.timer_start = gl::make_query();
+          state.timer_end = gl::make_query();
+        }
+        glQueryCounter(state.timer_start.get(), GL_TIMESTAMP);
       }
       auto start = std::chrono::steady_clock::now();
       int status = AQ_OK;
@@ -527,7 +531,6 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
         if (state.instance == nullptr) {
           state.instance = type->desc->create(&impl_->host);
           if (state.instance == nullptr) {
-            if (options.measure_gpu_time) glEndQuery(GL_TIME_ELAPSED);
             return make_error("node '" + id + "' (" + type->name +
                               "): the plugin could not create the node (out of memory?)");
           }
@@ -535,15 +538,16 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
         status = type->desc->process(state.instance, &ctx);
       }
       auto end = std::chrono::steady_clock::now();
-      if (options.measure_gpu_time) glEndQuery(GL_TIME_ELAPSED);
+      if (options.measure_gpu_time) glQueryCounter(state.timer_end.get(), GL_TIMESTAMP);
       impl_->reset_gl_state();
       call.scratch.clear();
       NodeTiming timing{id, type->name, 0,
                         std::chrono::duration<double, std::milli>(end - start).count(), false};
       if (options.measure_gpu_time) {
-        GLuint64 ns = 0;
-        glGetQueryObjectui64v(state.timer.get(), GL_QUERY_RESULT, &ns);
-        timing.gpu_ms = static_cast<double>(ns) * 1e-6;
+        GLuint64 begin_ns = 0, end_ns = 0;
+        glGetQueryObjectui64v(state.timer_start.get(), GL_QUERY_RESULT, &begin_ns);
+        glGetQueryObjectui64v(state.timer_end.get(), GL_QUERY_RESULT, &end_ns);
+        timing.gpu_ms = end_ns > begin_ns ? static_cast<double>(end_ns - begin_ns) * 1e-6 : 0.0;
       }
       timings_.push_back(timing);
       ++run_counts_[id];
