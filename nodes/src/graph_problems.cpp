@@ -1,0 +1,50 @@
+// Formatting graph problems the way compilers format diagnostics, so editors and terminals
+// can jump to the place: "graph.json:12:7: node 'blur', parameter 'sigma': message".
+#include <aquarelle/core/graph_io.h>
+
+#include "json_locator.h"
+
+namespace aq {
+namespace {
+
+// What kind of field a problem names, read from its pointer.
+const char* field_kind(const Problem& problem) {
+  const std::vector<std::string> segments = json_text::split_pointer(problem.pointer);
+  if (segments.size() >= 3 && segments[0] == "nodes") {
+    if (segments[2] == "params") return "parameter";
+    if (segments[2] == "inputs") return "input";
+  }
+  if (!segments.empty() && segments[0] == "settings") return "setting";
+  return "field";
+}
+
+}  // namespace
+
+std::string format_problem(const Problem& problem) {
+  std::string place = problem.file;
+  if (problem.line > 0) {
+    place += (place.empty() ? "" : ":") + std::to_string(problem.line);
+    if (problem.column > 0) place += ":" + std::to_string(problem.column);
+  } else if (!problem.pointer.empty()) {
+    // Without a line (a model validated in memory) the pointer is the place.
+    place += (place.empty() ? "" : ": ") + problem.pointer;
+  }
+  std::string subject;
+  if (!problem.node.empty()) subject = "node '" + problem.node + "'";
+  if (!problem.field.empty()) {
+    subject += (subject.empty() ? "" : ", ") + std::string(field_kind(problem)) + " '" +
+               problem.field + "'";
+  }
+  std::string text = place;
+  if (!subject.empty()) text += (text.empty() ? "" : ": ") + subject;
+  text += (text.empty() ? "" : ": ") + problem.message;
+  return text;
+}
+
+std::string format_problems(const std::vector<Problem>& problems) {
+  std::string text;
+  for (const Problem& problem : problems) text += format_problem(problem) + "\n";
+  return text;
+}
+
+}  // namespace aq
