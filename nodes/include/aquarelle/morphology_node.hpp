@@ -1,0 +1,134 @@
+// The node body shared by the `erode` and `dilate` plugins: their description (ports and
+// parameters) and their process(), which differ only in the fragment shader each embeds (the
+// same nodes/shaders/morphology.glsl, with or without AQ_MORPH_DILATE). Header-only on top of
+// plugin.hpp, so both plugins stay one self-contained file each.
+//
+//   image ──► pass 0 (rows) ──► span textures (one per distinct row half-width, <= 5)
+//                                    │
+//                                    ▼
+//                             pass 1 (columns) ──► image
+//
+// See morphology.glsl for why the two passes give the exact square or disc extreme at a cost
+// that grows with the size k rather than k².
+#pragma once
+
+#include <aquarelle/plugin.hpp>
+
+#include <array>
+#include <string>
+
+namespace aq::morphology {
+
+enum Param : uint32_t { kSize, kFootprint, kMode };
+enum Footprint : int64_t { kSquare = 0, kDisc = 1 };
+enum Mode : int64_t { kPerChannel = 0, kLuminance = 1 };
+
+constexpr int kMaxRadius = 4;  // size 9
+constexpr int kMaxSpans = kMaxRadius + 1;
+
+inline constexpr aq_port_desc kInputs[] = {aq::image_port("image", "colour to filter")};
+inline constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "filtered colour")};
+inline constexpr aq_param_desc kParams[] = {
+    aq::int_param("size", 3, 1, 2 * kMaxRadius + 1,
+                  "window diameter in pixels, odd (1, 3, 5, 7, 9); 1 passes the image through"),
+    aq::enum_param("footprint", "square|disc", kSquare,
+                   "square: the size x size window; disc: the pixels whose centres lie within "
+                   "size/2 of the centre"),
+    aq::enum_param("mode", "channel|luminance", kPerChannel,
+                   "channel: each of r, g, b, a on its own (the seed's choice); luminance: "
+                   "whole colours ordered by luminance, so no new colour appears")};
+
+// Which row span every row offset of the footprint uses.
+struct SpanPlan {
+  int radius = 0;
+  int span_count = 0;
+  std::array<int, kMaxSpans> half_widths{};        // distinct, ascending
+  std::array<int, 2 * kMaxRadius + 1> row_span{};  // span index for dy = i - radius
+};
+
+// Half-width of the footprint's row at offset dy: the square keeps every row full; the disc of
+// diameter `size` holds (dx, dy) with dx² + dy² <= (size / 2)², i.e. 4(dx² + dy²) <= size².
+inline int row_half_width(int radius, int dy, Footprint footprint) {
+  if (footprint == kSquare) return radius;
+  const int size = 2 * radius + 1;
+  int w = 0;
+  while (4 * ((w + 1) * (w + 1) + dy * dy) <= size * size) ++w;
+  return w;
+}
+
+inline SpanPlan plan_spans(int radius, Footprint footprint) {
+  SpanPlan plan;
+  plan.radius = radius;
+  std::array<int, 2 * kMaxRadius + 1> widths{};
+  for (int dy = -radius; dy <= radius; ++dy)
+    widths[dy + radius] = row_half_width(radius, dy, footprint);
+  // The half-widths are at most `radius`, so bucket them in ascending order.
+  for (int w = 0; w <= radius; ++w) {
+    bool used = false;
+    for (int i = 0; i <= 2 * radius; ++i) {
+      if (widths[i] != w) continue;
+      if (!used) plan.half_widths[plan.span_count++] = w;
+      used = true;
+      plan.row_span[i] = plan.span_count - 1;
+    }
+  }
+  return plan;
+}
+
+// Runs erosion or dilation, whichever `shader` implements.
+inline int run(aq::Context& ctx, const aq_shader_source& shader) {
+  const aq_image in = ctx.input_image(0);
+  const int64_t size = ctx.param_int(kSize);
+  if (size < 1 || size > 2 * kMaxRadius + 1 || size % 2 == 0) {
+    return ctx.fail("parameter 'size' is " + std::to_string(size) +
+                    ": use an odd size from 1 to 9 (1, 3, 5, 7 or 9) so the window is centred "
+                    "on the pixel");
+  }
+  if (size == 1) return ctx.pass_through(0, 0) ? AQ_OK : AQ_ERROR;
+  const int radius = static_cast<int>(size / 2);
+  const auto footprint = static_cast<Footprint>(ctx.param_enum(kFootprint));
+  const SpanPlan plan = plan_spans(radius, footprint == kDisc ? kDisc : kSquare);
+
+  std::array<aq_image, kMaxSpans> spans{};
+  for (int i = 0; i < plan.span_count; ++i) {
+    if (!ctx.scratch(in.width, in.height, ctx.working_format(), &spans[i])) return AQ_ERROR;
+  }
+  aq_image out;
+  if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+  const GLuint program = ctx.program(shader);
+  if (program == 0) return AQ_ERROR;
+
+  glUseProgram(program);
+  aq::set_int(program, "u_mode", ctx.param_enum(kMode) == kLuminance ? 1 : 0);
+  aq::set_int(program, "u_radius", radius);
+  aq::set_int(program, "u_span_count", plan.span_count);
+  glUniform1iv(glGetUniformLocation(program, "u_span_half_width"), kMaxSpans,
+               plan.half_widths.data());
+  glUniform1iv(glGetUniformLocation(program, "u_row_span"), 2 * kMaxRadius + 1,
+               plan.row_span.data());
+
+  // Pass 0: every row span at once, one colour attachment each.
+  aq::set_int(program, "u_pass", 0);
+  aq::bind_texture(program, "u_image", 0, in);
+  if (!ctx.bind_targets(spans.data(), static_cast<uint32_t>(plan.span_count))) {
+    aq::unbind_textures(1);
+    return AQ_ERROR;
+  }
+  ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+
+  // Pass 1: combine the spans down the columns. Unused sampler slots repeat span 0 so that
+  // every sampler of the array names a complete texture.
+  aq::set_int(program, "u_pass", 1);
+  std::array<GLint, kMaxSpans> units{};
+  for (int i = 0; i < kMaxSpans; ++i) {
+    units[i] = i;
+    glActiveTexture(GL_TEXTURE0 + i);
+    glBindTexture(GL_TEXTURE_2D, spans[i < plan.span_count ? i : 0].texture);
+  }
+  glUniform1iv(glGetUniformLocation(program, "u_spans"), kMaxSpans, units.data());
+  const bool drawn = ctx.draw(out);
+  aq::unbind_textures(kMaxSpans);
+  return drawn ? AQ_OK : AQ_ERROR;
+}
+
+}  // namespace aq::morphology
