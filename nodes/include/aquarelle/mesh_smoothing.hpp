@@ -4,9 +4,11 @@
 //
 //   positions ──weld (tolerance, union-find)──► groups of coincident vertices
 //   triangles ──────────────────────────────────► group adjacency (edges between groups)
-//   n0(group) = normalised sum of its vertices' normals
-//   n_{k+1}(g) = normalise(n_k(g) + sum over adjacent groups h of n_k(h))   (k < iterations)
-//   vertex normal = n(group), or its own face normal where the sum cancelled or points away
+//   n0(group) = normalised sum of its vertices' normals, each weighted by its corner angle
+//   n_{k+1}(g) = normalise(n_k(g) + sum over adjacent groups h of w n_k(h))  (k < iterations)
+//                with w = max(0, n_k(g) . n_k(h)): the other side of a thin wall is left out
+//   vertex normal = n(group), tilted towards its own face normal where it (nearly) faces away,
+//                   or the face normal itself where the group's normals cancelled
 //
 // Why welding by tolerance and not by hashing rounded coordinates: two copies of a corner that
 // differ by 1e-7 can round into different cells and would stay unwelded (a visible seam).
@@ -206,51 +208,92 @@ inline void smooth_normals(const std::vector<float>& positions,
     list.erase(std::unique(list.begin(), list.end()), list.end());
   }
 
+  // Each vertex's normal counts with the angle of its corner in its triangle(s), so the
+  // starting normal of a position does not depend on how its faces were triangulated (a cube
+  // face split into two triangles counts 90 degrees at each corner, like a single quad would).
+  std::vector<double> corner_angle(n, 0.0);
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    uint32_t v[3] = {indices[t], indices[t + 1], indices[t + 2]};
+    if (v[0] >= n || v[1] >= n || v[2] >= n) continue;
+    for (int c = 0; c < 3; ++c) {
+      Vec3 e1 = sub(load(positions, v[(c + 1) % 3]), load(positions, v[c]));
+      Vec3 e2 = sub(load(positions, v[(c + 2) % 3]), load(positions, v[c]));
+      double l1 = length(e1), l2 = length(e2);
+      if (l1 > 0 && l2 > 0) {
+        corner_angle[v[c]] += std::acos(std::clamp(dot(e1, e2) / (l1 * l2), -1.0, 1.0));
+      }
+    }
+  }
+
   // A group normal is valid only when the unit normals summed into it did not cancel.
   std::vector<Vec3> current(groups, Vec3{0, 0, 0});
-  std::vector<uint32_t> members(groups, 0);
+  std::vector<double> weight(groups, 0.0);
   for (size_t i = 0; i < n; ++i) {
     Vec3 v = load(normals, i);
     double len = length(v);
-    if (!(len > 1e-30) || !std::isfinite(len)) v = load(face, i), len = 1.0;
-    current[group[i]] = add(current[group[i]], {v[0] / len, v[1] / len, v[2] / len});
-    ++members[group[i]];
+    if (!(len > 1e-30) || !std::isfinite(len)) {
+      v = load(face, i);
+      len = 1.0;
+    }
+    double w = corner_angle[i] > 0 ? corner_angle[i] : 1e-6;
+    current[group[i]] = add(current[group[i]], {w * v[0] / len, w * v[1] / len, w * v[2] / len});
+    weight[group[i]] += w;
   }
   std::vector<char> valid(groups, 0);
-  auto normalise_or_invalidate = [&](Vec3& v, double count, char& ok) {
+  auto normalise_or_invalidate = [&](Vec3& v, double total_weight, char& ok) {
     double len = length(v);
-    ok = (len > options.cancel_threshold * count && std::isfinite(len)) ? 1 : 0;
+    ok = (len > options.cancel_threshold * total_weight && std::isfinite(len)) ? 1 : 0;
     v = ok ? Vec3{v[0] / len, v[1] / len, v[2] / len} : Vec3{0, 0, 0};
   };
-  for (uint32_t g = 0; g < groups; ++g) normalise_or_invalidate(current[g], members[g], valid[g]);
+  for (uint32_t g = 0; g < groups; ++g) normalise_or_invalidate(current[g], weight[g], valid[g]);
 
+  // Neighbours count with max(0, cos(angle between normals)): across a thin wall (a pot's
+  // rim, a fin) the other side's normals face away and are left out instead of dragging the
+  // normals through the wall.
   std::vector<Vec3> next(groups);
+  std::vector<double> next_weight(groups);
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     for (uint32_t g = 0; g < groups; ++g) {
       Vec3 s = current[g];
-      double count = valid[g] ? 1.0 : 0.0;
+      double total = valid[g] ? 1.0 : 0.0;
       for (uint32_t h : neighbours[g]) {
         if (!valid[h]) continue;
-        s = add(s, current[h]);
-        count += 1.0;
+        double w = valid[g] ? std::max(0.0, dot(current[g], current[h])) : 1.0;
+        s = add(s, {w * current[h][0], w * current[h][1], w * current[h][2]});
+        total += w;
       }
       next[g] = s;
+      next_weight[g] = total;
     }
     for (uint32_t g = 0; g < groups; ++g) {
-      double count = 1.0 + static_cast<double>(neighbours[g].size());
-      normalise_or_invalidate(next[g], count, valid[g]);
+      if (next_weight[g] > 0.0) {
+        normalise_or_invalidate(next[g], next_weight[g], valid[g]);
+      } else {
+        valid[g] = 0;
+      }
     }
     current.swap(next);
   }
 
+  // A smoothed normal that (nearly) faces away from the vertex's own face would light it from
+  // behind: it is tilted just enough towards the face normal (dot = kMinFacing), which is
+  // continuous in the smoothed normal, so no hard seam appears where the rule starts to apply.
+  constexpr double kMinFacing = 0.1;
   for (size_t i = 0; i < n; ++i) {
-    const Vec3& s = current[group[i]];
     Vec3 own = load(face, i);
-    // A smoothed normal facing away from the vertex's own face would light it from behind.
-    bool use_group = valid[group[i]] && dot(s, own) > 0.0;
-    for (int k = 0; k < 3; ++k) {
-      normals[3 * i + k] = static_cast<float>(use_group ? s[k] : own[k]);
+    Vec3 out = own;
+    if (valid[group[i]]) {
+      const Vec3& s = current[group[i]];
+      double facing = dot(s, own);
+      out = s;
+      if (facing < kMinFacing) {
+        double k = kMinFacing - facing;
+        Vec3 tilted{s[0] + k * own[0], s[1] + k * own[1], s[2] + k * own[2]};
+        double len = length(tilted);
+        out = len > 1e-12 ? Vec3{tilted[0] / len, tilted[1] / len, tilted[2] / len} : own;
+      }
     }
+    for (int k = 0; k < 3; ++k) normals[3 * i + k] = static_cast<float>(out[k]);
   }
 }
 
