@@ -44,8 +44,12 @@ std::string oiio_error() {
   return message.empty() ? "no details from OpenImageIO" : message;
 }
 
+// OIIO messages may span lines; keep ours on one.
 std::string trim(std::string text) {
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  for (size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at)) {
+    text.replace(at, 1, "; ");
+  }
   return text;
 }
 
@@ -84,8 +88,11 @@ bool is_float_type(OIIO::TypeDesc type) {
 
 // The colour space of a file from its metadata and pixel type, as a name in `config`.
 std::string colorspace_from_spec(const OIIO::ImageSpec& spec, const ColorConfig& config) {
-  std::string declared = spec.get_string_attribute("oiio:ColorSpace");
-  if (config.has_colorspace(declared)) return declared;
+  const std::string declared = spec.get_string_attribute("oiio:ColorSpace");
+  if (config.has_colorspace(declared)) {
+    // OIIO says "Linear" or "sRGB"; report the config's own name for the space (or alias).
+    return config.data()->config->getColorSpace(declared.c_str())->getName();
+  }
   if (is_float_type(spec.format)) return config.working_space();
   return config.has_colorspace("sRGB") ? "sRGB" : config.working_space();
 }
