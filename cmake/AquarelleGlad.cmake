@@ -19,3 +19,4 @@ target_include_directories(aquarelle_glad PUBLIC
   $<BUILD_INTERFACE:${AQUARELLE_GLAD_DIR}/include>
   $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/aquarelle/gl>)
 add_library(Aquarelle::glad ALIAS aquarelle_glad)
+set_target_properties(aquarelle_glad PROPERTIES EXPORT_NAME glad)

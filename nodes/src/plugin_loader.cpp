@@ -134,13 +134,16 @@ std::vector<std::string> default_plugin_path() {
       if (!item.empty()) path.push_back(item);
     }
   }
+  // An installed executable uses its installed plugins; one in the build tree, the build's.
+  // Never both, or every type would be found twice.
   std::error_code ec;
   fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    fs::path installed = exe.parent_path().parent_path() / AQ_PLUGIN_INSTALL_SUBDIR;
-    if (fs::is_directory(installed, ec)) path.push_back(installed.string());
+  fs::path installed = ec ? fs::path() : exe.parent_path().parent_path() / AQ_PLUGIN_INSTALL_SUBDIR;
+  if (!installed.empty() && fs::is_directory(installed, ec)) {
+    path.push_back(installed.string());
+  } else {
+    path.push_back(AQ_PLUGIN_BUILD_DIR);
   }
-  path.push_back(AQ_PLUGIN_BUILD_DIR);
   return path;
 }
 
