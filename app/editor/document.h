@@ -1,0 +1,172 @@
+// The editor's document: the one aq::Graph being edited, every edit as an undoable command,
+// the file it belongs to (save, save as, dirty flag) and its autosave side file.
+//
+// The editor never keeps a second copy of the graph: the canvas, the parameter panel and the
+// viewer read document.graph() and change it only through the edit functions below, which
+// check the edit against the registry first and refuse it with a reason (a link between
+// incompatible ports, a link that closes a cycle, an unknown port or parameter...).
+//
+//   edit function ──► checks ──► Change {before, after of each touched node} ──► undo stack
+//                        └─ refused: Status with the reason, graph untouched
+//
+// A Change records, for every node it touches, the node and its editor position before and
+// after, plus the graph's output and settings; undo writes back the "before" side, redo the
+// "after" side. Continuous edits (a slider drag, a node drag) pass a coalesce key so one
+// gesture is one undo step; end_gesture() closes it.
+#pragma once
+
+#include <aquarelle/core/graph.h>
+#include <aquarelle/core/graph_io.h>
+#include <aquarelle/core/registry.h>
+#include <aquarelle/core/result.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace aq::editor {
+
+struct Position {
+  float x = 0;
+  float y = 0;
+  bool operator==(const Position&) const = default;
+};
+
+// One node's state as far as an edit is concerned: the node itself (absent = no such node)
+// and its position on the canvas (absent = not placed yet).
+struct NodeState {
+  std::optional<Node> node;
+  std::optional<Position> position;
+};
+
+// What one edit changed; applying `after` redoes it, applying `before` undoes it.
+struct Change {
+  std::string label;  // "link blur.image → vignette.image", shown in the Edit menu
+  std::map<std::string, NodeState> before;
+  std::map<std::string, NodeState> after;
+  std::optional<PortRef> output_before;
+  std::optional<PortRef> output_after;
+  Settings settings_before;
+  Settings settings_after;
+  std::string coalesce_key;  // non-empty: later edits with the same key merge into this one
+  uint64_t serial = 0;       // unique per change, for the dirty flag
+};
+
+class Document {
+ public:
+  explicit Document(const Registry& registry);
+
+  // ---- Files --------------------------------------------------------------------------
+  // Reads and validates GRAPH. A file whose JSON cannot be read is refused; a graph with
+  // validation problems (an unknown node type, a missing input...) opens so it can be fixed,
+  // and its problems are listed by problems().
+  Status open(const std::string& path);
+  // An empty graph; `path` (optional) is the file Save will write, e.g. a file that does not
+  // exist yet.
+  void new_graph(const std::string& path = "");
+  // Canonical, atomic writes through aq::save_graph_file; clears the dirty flag and removes
+  // the autosave side file.
+  Status save();
+  Status save_as(const std::string& path);
+  const std::string& path() const { return path_; }
+  bool dirty() const;
+
+  // ---- Autosave and recovery -----------------------------------------------------------
+  // GRAPH.json → GRAPH.autosave.json next to it; an untitled graph autosaves in the temp dir.
+  std::string autosave_path() const;
+  // Writes the side file when there are changes it does not hold yet; returns whether written.
+  Result<bool> autosave();
+  // True when a side file exists that is newer than the graph file (a crash left it).
+  bool has_recovery() const;
+  // Replaces the graph with the side file's (as an undoable change, marked unsaved).
+  Status recover();
+  void discard_recovery();
+
+  // ---- The model -----------------------------------------------------------------------
+  const Graph& graph() const { return graph_; }
+  const Registry& registry() const { return registry_; }
+  // Changes every time the graph changes (edits, undo, redo, open): views compare it to know
+  // when to re-validate and re-evaluate.
+  uint64_t revision() const { return revision_; }
+  // Validation problems of the current graph (cached per revision).
+  const std::vector<Problem>& problems() const;
+  std::vector<Problem> problems_of(const std::string& node_id) const;
+  std::optional<Position> position(const std::string& node_id) const;
+
+  // ---- Edits: each is one undoable command, or refused with a reason --------------------
+  // Adds a node of `type`; the id is `type` or `type2`, `type3`... (or `wanted_id` when free).
+  Result<std::string> add_node(const std::string& type, Position at,
+                               const std::string& wanted_id = "");
+  // Removes the nodes and every link into them; the output is cleared if it named one.
+  Status remove_nodes(const std::vector<std::string>& ids);
+  // Copies the nodes with new ids, their parameters, the links among them and the links into
+  // them from outside; the copies sit at `offset` from the originals. Returns the new ids.
+  Result<std::vector<std::string>> duplicate_nodes(const std::vector<std::string>& ids,
+                                                   Position offset = {40, 40});
+  // Links an output to an input (replacing the input's previous link). Refused: unknown node,
+  // port or type, incompatible port types, a link from a node to itself or one closing a cycle.
+  Status link(const PortRef& from, const std::string& to_node, const std::string& to_input);
+  // The reason link() would refuse, or an empty string when it would accept.
+  std::string why_not_link(const PortRef& from, const std::string& to_node,
+                           const std::string& to_input) const;
+  Status unlink(const std::string& node, const std::string& input);
+  // Moves nodes to absolute positions. Pass a coalesce key (e.g. "move") for a drag.
+  Status move_nodes(const std::map<std::string, Position>& positions,
+                    const std::string& coalesce_key = "");
+  // Sets a parameter (checked against its type and range); a null value resets it to its
+  // default. Pass a coalesce key (e.g. "param:blur.sigma") for a slider drag.
+  Status set_param(const std::string& node, const std::string& param, const nlohmann::json& value,
+                   const std::string& coalesce_key = "");
+  Status set_output(const std::optional<PortRef>& output);
+  Status set_settings(const Settings& settings);
+  // Ends a continuous gesture: the next edit starts a new undo step even with the same key.
+  void end_gesture() { gesture_open_ = false; }
+
+  // ---- Undo and redo -------------------------------------------------------------------
+  bool can_undo() const { return !undo_.empty(); }
+  bool can_redo() const { return !redo_.empty(); }
+  std::string undo_label() const { return undo_.empty() ? "" : undo_.back().label; }
+  std::string redo_label() const { return redo_.empty() ? "" : redo_.back().label; }
+  bool undo();
+  bool redo();
+
+  // A free node id for `type` ("blur", then "blur2", "blur3"...).
+  std::string free_id(const std::string& type) const;
+
+ private:
+  NodeState state_of(const std::string& id) const;
+  void apply_side(const std::map<std::string, NodeState>& side, const std::optional<PortRef>& out,
+                  const Settings& settings);
+  // Records and applies a change (merging into the last one when the gesture continues).
+  void commit(Change change);
+  void reset_history();
+  void touch() { ++revision_; }
+  bool depends_on(const std::string& node, const std::string& upstream) const;
+
+  const Registry& registry_;
+  Graph graph_;
+  std::string path_;
+  std::vector<Change> undo_;
+  std::vector<Change> redo_;
+  bool gesture_open_ = false;
+  uint64_t next_serial_ = 1;
+  uint64_t saved_serial_ = 0;   // serial of the change on top of the stack when saved (0: none)
+  bool saved_unknown_ = false;  // recovered from autosave: not equal to any saved state
+  uint64_t revision_ = 1;
+  uint64_t autosaved_revision_ = 0;
+  mutable uint64_t problems_revision_ = 0;
+  mutable std::vector<Problem> problems_;
+};
+
+// Positions live in graph.editor["positions"][id] = [x, y].
+std::optional<Position> read_position(const Graph& graph, const std::string& id);
+void write_position(Graph& graph, const std::string& id, const std::optional<Position>& position);
+
+// The JSON shape a parameter value must have, or why `value` does not fit `param`.
+std::string why_bad_param_value(const ParamInfo& param, const nlohmann::json& value);
+
+}  // namespace aq::editor
