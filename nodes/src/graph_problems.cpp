@@ -42,8 +42,12 @@ std::string format_problem(const Problem& problem) {
 }
 
 std::string format_problems(const std::vector<Problem>& problems) {
+  // One per line, without a final newline: callers print it with their own.
   std::string text;
-  for (const Problem& problem : problems) text += format_problem(problem) + "\n";
+  for (const Problem& problem : problems) {
+    if (!text.empty()) text += "\n";
+    text += format_problem(problem);
+  }
   return text;
 }
 

@@ -15,6 +15,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace {
@@ -662,7 +663,8 @@ TEST(GraphValidate, FormatProblemOmitsEmptyParts) {
   EXPECT_EQ(aq::format_problem(problem),
             "/nodes/blur/params/sigma: node 'blur', parameter 'sigma': broken");
   EXPECT_EQ(aq::format_problems({problem, problem}),
-            aq::format_problem(problem) + "\n" + aq::format_problem(problem) + "\n");
+            aq::format_problem(problem) + "\n" + aq::format_problem(problem));
+  EXPECT_EQ(aq::format_problems({}), "");
 }
 
 // ---- Writing --------------------------------------------------------------------------
@@ -869,6 +871,15 @@ TEST_F(GraphSave, DirectoryAsTargetGivesAnError) {
   EXPECT_TRUE(contains(saved.message(), "is a directory")) << saved.message();
 }
 
+TEST_F(GraphSave, LocationNobodyCanWriteGivesAnError) {
+  // /proc refuses new files even to root, so this runs where permissions cannot fail.
+  if (!fs::exists("/proc/self")) GTEST_SKIP() << "no /proc here";
+  const aq::Status saved = aq::save_graph_file(aq::Graph{}, "/proc/aquarelle_graph.json");
+  ASSERT_FALSE(saved.ok());
+  EXPECT_TRUE(contains(saved.message(), "'/proc/aquarelle_graph.json'")) << saved.message();
+  EXPECT_TRUE(contains(saved.message(), "temporary file")) << saved.message();
+}
+
 TEST_F(GraphSave, UnwritableDirectoryGivesAnErrorAndKeepsTheOldFile) {
   if (::geteuid() == 0) GTEST_SKIP() << "root may write anywhere; permissions cannot fail";
   const fs::path path = directory_ / "graph.json";
@@ -920,6 +931,99 @@ TEST(GraphScale, TenThousandNodeChainValidates) {
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_TRUE(contains(problems[0].message, "cycle: 'n0' -> 'n1' -> 'n2'"))
       << problems[0].message.substr(0, 200);
+}
+
+// ---- The malformed graph files in tests/data/graphs/invalid -----------------------------
+
+// Mirrors the node types those files use (the built-in `read`, the tint, vignette and scene
+// plugins), so the files can be checked without loading plugins; the command-line tests run
+// the same files through `aquarelle validate` with the real plugins.
+aq::Registry file_registry() {
+  aq::Registry registry;
+  std::string why;
+  aq::NodeType reader;
+  reader.name = "read";
+  reader.outputs = {port("image", AQ_PORT_IMAGE)};
+  reader.params = {param("path", AQ_PARAM_PATH, 0, 0, 0),
+                   param("colorspace", AQ_PARAM_STRING, 0, 0, 0)};
+  EXPECT_TRUE(registry.add(reader, &why)) << why;
+
+  aq::NodeType tint;
+  tint.name = "tint";
+  tint.inputs = {port("image", AQ_PORT_IMAGE)};
+  tint.outputs = {port("image", AQ_PORT_IMAGE)};
+  tint.params = {param("amount", AQ_PARAM_FLOAT, 0.75, 0, 1),
+                 param("tint", AQ_PARAM_COLOR, 0, 0, 1)};
+  EXPECT_TRUE(registry.add(tint, &why)) << why;
+
+  aq::NodeType vignette;
+  vignette.name = "vignette";
+  vignette.inputs = {port("image", AQ_PORT_IMAGE)};
+  vignette.outputs = {port("image", AQ_PORT_IMAGE)};
+  vignette.params = {param("radius", AQ_PARAM_FLOAT, 0.45, 0, 2),
+                     param("strength", AQ_PARAM_FLOAT, 0.7, 0, 1),
+                     param("softness", AQ_PARAM_FLOAT, 1, 0, 1)};
+  EXPECT_TRUE(registry.add(vignette, &why)) << why;
+
+  aq::NodeType scene;
+  scene.name = "scene";
+  scene.outputs = {port("scene", AQ_PORT_SCENE)};
+  aq::ParamInfo preset = param("preset", AQ_PARAM_ENUM, 0, 0, 0);
+  preset.enum_values = {"underwater", "plane_box", "pot", "cube", "double_plane", "file"};
+  scene.params = {preset, param("path", AQ_PARAM_PATH, 0, 0, 0),
+                  param("seed", AQ_PARAM_INT, 7, 0, 2147483647)};
+  EXPECT_TRUE(registry.add(scene, &why)) << why;
+  return registry;
+}
+
+std::string trim(const std::string& text) {
+  const size_t first = text.find_first_not_of(' ');
+  const size_t last = text.find_last_not_of(' ');
+  return first == std::string::npos ? "" : text.substr(first, last - first + 1);
+}
+
+TEST(GraphFiles, TheValidGraphTheyBreakIsValid) {
+  const aq::Registry registry = file_registry();
+  const aq::ReadResult result =
+      aq::read_graph_file(AQ_SOURCE_DIR "/tests/data/graphs/valid.json", registry);
+  EXPECT_TRUE(result.ok()) << all_messages(result.problems);
+}
+
+TEST(GraphFiles, EachMalformedFileGivesItsOneProblemAtItsPlace) {
+  const aq::Registry registry = file_registry();
+  const fs::path folder = AQ_SOURCE_DIR "/tests/data/graphs/invalid";
+  std::ifstream expectations(folder / "expected.txt");
+  ASSERT_TRUE(expectations) << "cannot open " << (folder / "expected.txt");
+  std::set<std::string> listed;
+  std::string line;
+  while (std::getline(expectations, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const size_t bar1 = line.find('|');
+    const size_t bar2 = line.find('|', bar1 + 1);
+    ASSERT_NE(bar2, std::string::npos) << "bad line in expected.txt: " << line;
+    const std::string file = trim(line.substr(0, bar1));
+    const std::string place = trim(line.substr(bar1 + 1, bar2 - bar1 - 1));
+    const std::string expected = trim(line.substr(bar2 + 1));
+    listed.insert(file);
+
+    const std::string path = (folder / file).string();
+    const aq::ReadResult result = aq::read_graph_file(path, registry);
+    EXPECT_EQ(result.problems.size(), 1u) << file << ":\n" << all_messages(result.problems);
+    if (result.problems.empty()) continue;
+    const std::string formatted = aq::format_problem(result.problems[0]);
+    EXPECT_EQ(formatted.rfind(path + ":" + place + ": ", 0), 0u)
+        << file << ": expected at " << place << ", got\n"
+        << formatted;
+    EXPECT_TRUE(contains(formatted, expected)) << file << ": expected \"" << expected << "\", got\n"
+                                               << formatted;
+  }
+  // Every file in the folder is listed, so none is silently left unchecked.
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    if (entry.path().extension() == ".json") {
+      EXPECT_EQ(listed.count(entry.path().filename().string()), 1u) << entry.path();
+    }
+  }
+  EXPECT_GE(listed.size(), 40u);
 }
 
 }  // namespace
