@@ -54,6 +54,7 @@ Displacement floor_displacement(double x, double y, const CausticsParams& params
   const double nx = -w.dhdx / length, ny = -w.dhdy / length, nz = 1.0 / length;
   // Snell's law for the light travelling straight down, I = (0, 0, -1): cos(incidence) = nz,
   // T = eta I + (eta cos_i - cos_t) n with cos_t = sqrt(1 - eta^2 (1 - cos_i^2)).
+  if (params.eta >= 1.0) return {};  // no refraction: rays stay vertical
   const double cos_i = nz;
   const double sin_t2 = params.eta * params.eta * (1.0 - cos_i * cos_i);
   if (sin_t2 >= 1.0) return {};  // total internal reflection cannot happen for eta <= 1

@@ -13,7 +13,7 @@ struct CausticsParams {
   int grid = 256;               // grid cells per tile side
   int resolution = 256;         // texture pixels per tile side
   double depth = 0.5;           // floor below the mean water level
-  double amplitude = 0.01;      // height of the normalised 3-octave noise
+  double amplitude = 0.02;      // height of the normalised 3-octave noise
   int wave_scale = 4;           // noise cells per tile of the first octave
   double speed = 0.5;           // noise cells per second along the time axis
   double eta = 1.0 / 1.333;     // refraction ratio n_air / n_water

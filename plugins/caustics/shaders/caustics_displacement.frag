@@ -34,6 +34,10 @@ void main() {
   float a = u_amplitude / total;
   height *= a;
   gradient *= a;
+  if (u_eta >= 1.0) {  // no refraction: exactly vertical rays, exactly flat light
+    o_color = vec4(0.0, 0.0, height, 1.0);
+    return;
+  }
   vec3 normal = normalize(vec3(-gradient, 1.0));
   // eta <= 1 (air to water): no total internal reflection, t.z <= -sqrt(1 - eta^2) < 0.
   vec3 t = refract(vec3(0.0, 0.0, -1.0), normal, u_eta);
