@@ -18,7 +18,7 @@ using aq::reference::CelLightParams;
 
 constexpr int kW = 64, kH = 48;
 
-struct Setup {
+struct LightSetup {
   std::array<double, 3> light_direction{0.3, -1.0, -0.35};  // normalised by the scene node
   std::array<double, 3> light_color{1.0, 0.97, 0.9};
   double intensity = 1.3;
@@ -31,7 +31,7 @@ struct Setup {
   double water_height = 6.0;
 };
 
-std::string graph(const Setup& s, bool shadow, bool caustics) {
+std::string graph(const LightSetup& s, bool shadow, bool caustics) {
   nlohmann::json inputs = {{"scene", "scene.scene"},
                            {"position", "position.image"},
                            {"normal", "normal.image"},
@@ -97,7 +97,8 @@ std::map<std::string, ImageF> as_inputs(const GBufferImages& g) {
   return {{"position", g.position}, {"normal", g.normal}, {"albedo", g.albedo}, {"id", g.id}};
 }
 
-ImageF run(const Setup& s, std::map<std::string, ImageF> images, const char* precision = "float") {
+ImageF run(const LightSetup& s, std::map<std::string, ImageF> images,
+           const char* precision = "float") {
   aq::test::RenderOptions options;
   options.width = kW;
   options.height = kH;
@@ -108,7 +109,7 @@ ImageF run(const Setup& s, std::map<std::string, ImageF> images, const char* pre
   return out.ok() ? *out : ImageF();
 }
 
-CelLightParams reference_params(const Setup& s) {
+CelLightParams reference_params(const LightSetup& s) {
   CelLightParams p;
   double len = std::sqrt(s.light_direction[0] * s.light_direction[0] +
                          s.light_direction[1] * s.light_direction[1] +
@@ -130,7 +131,8 @@ struct Error {
   double psnr = 0;
   int skipped = 0;
 };
-Error compare(const ImageF& got, const GBufferImages& g, const Setup& s, double margin = 1e-4) {
+Error compare(const ImageF& got, const GBufferImages& g, const LightSetup& s,
+              double margin = 1e-4) {
   CelLightParams p = reference_params(s);
   ImageF expected = aq::reference::cel_light(g.normal, g.albedo, g.id, p);
   CelLightParams unquantised = p;
@@ -158,7 +160,7 @@ Error compare(const ImageF& got, const GBufferImages& g, const Setup& s, double 
 
 TEST(CelLight, MatchesTheReferenceInFloat) {
   GBufferImages g = random_gbuffer(21);
-  Setup s;
+  LightSetup s;
   ImageF got = run(s, as_inputs(g));
   ASSERT_FALSE(got.empty());
   Error e = compare(got, g, s);
@@ -171,12 +173,14 @@ TEST(CelLight, MatchesTheReferenceInFloat) {
 
 TEST(CelLight, MatchesTheReferenceInHalf) {
   GBufferImages g = random_gbuffer(22);
-  Setup s;
+  LightSetup s;
   ImageF got = run(s, as_inputs(g), "half");
   ASSERT_FALSE(got.empty());
-  Error e = compare(got, g, s);
-  // RGBA16F output: half an ulp of values up to ~2.6 is 1e-3.
-  EXPECT_LE(e.max_abs, 1.1e-3);
+  // In half precision the inputs are RGBA16F too: albedo and normal carry 2^-11 relative
+  // error in, the output another 2^-11 out; values reach ~2.6, so about 2.5e-3 at most. Pixels
+  // that near a level boundary may legitimately land on the other level are left out.
+  Error e = compare(got, g, s, 3e-3);
+  EXPECT_LE(e.max_abs, 2.5e-3);
   EXPECT_GE(e.psnr, 60.0);
   RecordProperty("max_abs_half", std::to_string(e.max_abs));
 }
@@ -184,12 +188,12 @@ TEST(CelLight, MatchesTheReferenceInHalf) {
 TEST(CelLight, LevelsSweepAndPlainDiffuse) {
   GBufferImages g = random_gbuffer(23);
   for (int levels : {1, 2, 3, 4, 5, 8, 16}) {
-    Setup s;
+    LightSetup s;
     s.levels = levels;
     Error e = compare(run(s, as_inputs(g)), g, s);
     EXPECT_LE(e.max_abs, 2e-5) << levels << " levels";
   }
-  Setup plain;
+  LightSetup plain;
   plain.quantize = false;
   Error e = compare(run(plain, as_inputs(g)), g, plain);
   EXPECT_LE(e.max_abs, 2e-5);
@@ -197,8 +201,8 @@ TEST(CelLight, LevelsSweepAndPlainDiffuse) {
 }
 
 // A light straight down with white colour and no ambient on +y normals: lit = albedo exactly.
-Setup overhead() {
-  Setup s;
+LightSetup overhead() {
+  LightSetup s;
   s.light_direction = {0, -1, 0};
   s.light_color = {1, 1, 1};
   s.intensity = 1.0;
@@ -222,7 +226,7 @@ TEST(CelLight, GreyStaysGreyAndBlackStaysBlack) {
       float v = (x % 4 == 0) ? 0.0f : g.albedo.at(x, y, 0);
       for (int c = 0; c < 3; ++c) g.albedo.at(x, y, c) = v;
     }
-  Setup s;
+  LightSetup s;
   s.light_color = {1, 1, 1};
   s.ambient = {0.25, 0.25, 0.25};
   ImageF got = run(s, as_inputs(g));
@@ -239,7 +243,7 @@ TEST(CelLight, GreyStaysGreyAndBlackStaysBlack) {
 
 TEST(CelLight, ValuesAboveOneStayHdr) {
   // v = 2.9: nearest level of 4 is 3 (= 9/3); hue and saturation kept.
-  Setup s = overhead();
+  LightSetup s = overhead();
   ImageF got = run(s, as_inputs(flat_gbuffer(2.9f, 1.45f, 0.58f)));
   ASSERT_FALSE(got.empty());
   EXPECT_NEAR(got.at(10, 10, 0), 3.0, 1e-5);
@@ -248,7 +252,7 @@ TEST(CelLight, ValuesAboveOneStayHdr) {
 }
 
 TEST(CelLight, ExactlyOnALevelBoundaryIsStableAndRoundsUp) {
-  Setup s = overhead();
+  LightSetup s = overhead();
   s.levels = 2;  // boundary at v = 0.5, exactly representable: rounds half up to 1
   ImageF got = run(s, as_inputs(flat_gbuffer(0.5f, 0.25f, 0.0f)));
   ASSERT_FALSE(got.empty());
@@ -274,7 +278,7 @@ TEST(CelLight, ExactlyOnALevelBoundaryIsStableAndRoundsUp) {
 
 TEST(CelLight, OneLevelIsFlatColour) {
   GBufferImages g = random_gbuffer(25);
-  Setup s;
+  LightSetup s;
   s.levels = 1;
   ImageF got = run(s, as_inputs(g));
   ASSERT_FALSE(got.empty());
@@ -287,7 +291,7 @@ TEST(CelLight, OneLevelIsFlatColour) {
 
 TEST(CelLight, BackgroundGetsTheBackgroundColour) {
   GBufferImages g = random_gbuffer(26);
-  ImageF got = run(Setup{}, as_inputs(g));
+  ImageF got = run(LightSetup{}, as_inputs(g));
   ASSERT_FALSE(got.empty());
   for (int x = 0; x < kW; ++x) {
     EXPECT_FLOAT_EQ(got.at(x, 0, 0), 0.1f);
@@ -301,8 +305,8 @@ TEST(CelLight, NaNInputStaysInItsPixel) {
   g.albedo.at(20, 20, 1) = std::nanf("");
   g.normal.at(30, 30, 0) = std::numeric_limits<float>::infinity();
   g.position.at(40, 40, 2) = std::nanf("");
-  ImageF clean = run(Setup{}, as_inputs(random_gbuffer(27)));
-  ImageF got = run(Setup{}, as_inputs(g));
+  ImageF clean = run(LightSetup{}, as_inputs(random_gbuffer(27)));
+  ImageF got = run(LightSetup{}, as_inputs(g));
   ASSERT_FALSE(got.empty());
   EXPECT_TRUE(aq::test::all_finite(got));
   EXPECT_EQ(got.at(21, 20, 0), clean.at(21, 20, 0));
@@ -312,11 +316,11 @@ TEST(CelLight, NaNInputStaysInItsPixel) {
 TEST(CelLight, ShadowInputDarkensToAmbient) {
   GBufferImages g = random_gbuffer(28);
   auto images = as_inputs(g);
-  Setup s;
+  LightSetup s;
   // A map of zeros: every point is behind an occluder; only ambient remains.
   images["shadow"] = aq::test::constant_image(32, 32, 0, 0, 0, 1);
   ImageF dark = run(s, images);
-  Setup ambient_only = s;
+  LightSetup ambient_only = s;
   ambient_only.intensity = 0.0;
   Error e = compare(dark, g, ambient_only);
   EXPECT_LE(e.max_abs, 2e-5);
@@ -329,7 +333,7 @@ TEST(CelLight, ShadowInputDarkensToAmbient) {
 
 TEST(CelLight, NeutralCausticsChangeNothingAndStrengthScalesTheDirectLight) {
   GBufferImages g = random_gbuffer(29);
-  Setup s;
+  LightSetup s;
   s.quantize = false;
   auto images = as_inputs(g);
   ImageF none = run(s, images);
@@ -341,7 +345,7 @@ TEST(CelLight, NeutralCausticsChangeNothingAndStrengthScalesTheDirectLight) {
   // Strength 0.5 on a caustic of 2: direct light times 1.5, ambient unchanged.
   s.caustic_strength = 0.5;
   ImageF got = run(s, images);
-  Setup brighter = s;
+  LightSetup brighter = s;
   brighter.intensity *= 1.5;
   Error e = compare(got, g, brighter);
   EXPECT_LE(e.max_abs, 2e-5);
@@ -349,7 +353,7 @@ TEST(CelLight, NeutralCausticsChangeNothingAndStrengthScalesTheDirectLight) {
 
 TEST(CelLight, CausticsTileInWorldUnitsAndFollowTheLight) {
   // A caustic texture with one bright quadrant; albedo white, normals up, no ambient.
-  Setup s = overhead();
+  LightSetup s = overhead();
   s.light_direction = {0.4, -1.0, 0.2};
   s.quantize = false;
   s.caustic_tile = 2.0;

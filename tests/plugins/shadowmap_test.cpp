@@ -29,37 +29,40 @@ struct Light {
   }
 };
 
-std::string graph(const std::array<double, 3>& light, int map_size, int pcf_radius) {
-  nlohmann::json g = {{"aquarelle", 1},
-                      {"nodes",
-                       {{"scene",
-                         {{"type", "scene"},
-                          {"params",
-                           {{"preset", "plane_box"},
-                            {"smoothing", 0},
-                            {"camera_position", {0.0, 9.0, 5.0}},
-                            {"camera_target", {0.0, 0.0, 0.0}},
-                            {"fov", 60.0},
-                            {"light_direction", {light[0], light[1], light[2]}},
-                            {"light_color", {1.0, 1.0, 1.0}},
-                            {"light_intensity", 1.0},
-                            {"ambient", {0.0, 0.0, 0.0}}}}}},
-                        {"gbuf", {{"type", "gbuffer"}, {"inputs", {{"scene", "scene.scene"}}}}},
-                        {"shadow",
-                         {{"type", "shadowmap"},
-                          {"params", {{"size", map_size}}},
-                          {"inputs", {{"scene", "scene.scene"}}}}},
-                        {"light",
-                         {{"type", "cel_light"},
-                          {"params", {{"quantize", false}, {"pcf_radius", pcf_radius}}},
-                          {"inputs",
-                           {{"scene", "scene.scene"},
-                            {"position", "gbuf.position"},
-                            {"normal", "gbuf.normal"},
-                            {"albedo", "gbuf.albedo"},
-                            {"id", "gbuf.id"},
-                            {"shadow", "shadow.depth"}}}}}}},
-                      {"output", "light.image"}};
+std::string graph(const std::array<double, 3>& light, int map_size, int pcf_radius,
+                  double slope_bias = 2.0, double constant_bias = 0.005) {
+  nlohmann::json g = {
+      {"aquarelle", 1},
+      {"nodes",
+       {{"scene",
+         {{"type", "scene"},
+          {"params",
+           {{"preset", "plane_box"},
+            {"smoothing", 0},
+            {"camera_position", {0.0, 9.0, 5.0}},
+            {"camera_target", {0.0, 0.0, 0.0}},
+            {"fov", 60.0},
+            {"light_direction", {light[0], light[1], light[2]}},
+            {"light_color", {1.0, 1.0, 1.0}},
+            {"light_intensity", 1.0},
+            {"ambient", {0.0, 0.0, 0.0}}}}}},
+        {"gbuf", {{"type", "gbuffer"}, {"inputs", {{"scene", "scene.scene"}}}}},
+        {"shadow",
+         {{"type", "shadowmap"},
+          {"params",
+           {{"size", map_size}, {"slope_bias", slope_bias}, {"constant_bias", constant_bias}}},
+          {"inputs", {{"scene", "scene.scene"}}}}},
+        {"light",
+         {{"type", "cel_light"},
+          {"params", {{"quantize", false}, {"pcf_radius", pcf_radius}}},
+          {"inputs",
+           {{"scene", "scene.scene"},
+            {"position", "gbuf.position"},
+            {"normal", "gbuf.normal"},
+            {"albedo", "gbuf.albedo"},
+            {"id", "gbuf.id"},
+            {"shadow", "shadow.depth"}}}}}}},
+      {"output", "light.image"}};
   return g.dump();
 }
 
@@ -84,8 +87,9 @@ struct Comparison {
 // Classifies every plane pixel (id 1) of the lit image as lit or shadowed and compares with
 // ray casting from its gbuffer position.
 Comparison compare_with_reference(const std::array<double, 3>& light, int map_size, int pcf,
-                                  const char* precision = "float") {
-  const std::string g = graph(light, map_size, pcf);
+                                  const char* precision = "float", double slope_bias = 2.0,
+                                  double constant_bias = 0.005) {
+  const std::string g = graph(light, map_size, pcf, slope_bias, constant_bias);
   ImageF lit = render(g, "light.image", precision);
   ImageF position = render(g, "gbuf.position", precision);
   ImageF id = render(g, "gbuf.id", precision);
@@ -118,7 +122,7 @@ Comparison compare_with_reference(const std::array<double, 3>& light, int map_si
 TEST(ShadowMap, ShadowLiesWhereRayCastingPutsIt) {
   for (Light light : {Light{45.0}, Light{30.0, 120.0}, Light{60.0, -70.0}}) {
     Comparison c = compare_with_reference(light.direction(), 1024, 0);
-    EXPECT_GT(c.shadow_pixels, 100) << light.angle_from_vertical_degrees;
+    EXPECT_GT(c.shadow_pixels, 40) << light.angle_from_vertical_degrees;
     EXPECT_EQ(c.wrong_interior, 0) << light.angle_from_vertical_degrees;
     EXPECT_LT(c.wrong_edge, c.plane_pixels / 100) << light.angle_from_vertical_degrees;
   }
@@ -134,6 +138,12 @@ TEST(ShadowMap, NoAcneOnThePlaneAtGrazingLight) {
       EXPECT_LT(c.wrong_edge, c.plane_pixels / 50) << "size " << size << " pcf " << pcf;
     }
   }
+}
+
+TEST(ShadowMap, WithoutBiasTheSameSetupShowsAcne) {
+  // The comparison above can fail: with no bias the plane shadows itself at grazing light.
+  Comparison c = compare_with_reference(Light{80.0, 15.0}.direction(), 1024, 0, "float", 0.0, 0.0);
+  EXPECT_GT(c.wrong_interior, c.plane_pixels / 20);
 }
 
 TEST(ShadowMap, HalfPrecisionGivesTheSameShadows) {
@@ -176,7 +186,7 @@ TEST(ShadowMap, SizeSetsTheResolutionAndValuesAreDepths) {
         hi = std::max(hi, depth->at(x, y, 0));
       }
     EXPECT_GE(lo, 0.0f);
-    EXPECT_LE(hi, 1.05f);  // 1 = nothing seen; geometry (plus its bias) inside the volume
+    EXPECT_LE(hi, 1.1f);  // 1 = nothing seen; geometry (plus its bias) inside the volume
     EXPECT_LT(lo, 0.9f);
   }
 }
