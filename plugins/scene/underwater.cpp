@@ -145,7 +145,7 @@ Preset make_underwater(uint64_t seed) {
     add_static(std::move(pot_b));
   }
   // Fish loop: keep its shadow area free of tall things.
-  const glm::vec3 fish_centre(0.6f, 2.4f, -0.5f);
+  const glm::vec3 fish_centre(0.6f, 1.9f, -0.8f);
   const float fish_radius = 2.2f;
 
   Random rocks = random.fork(2);
