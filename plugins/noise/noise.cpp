@@ -21,7 +21,7 @@ constexpr aq_param_desc kParams[] = {
     aq::int_param("octaves", 5, 1, 12, "fbm octaves, each twice the frequency, half the weight"),
     aq::int_param("seed", 0, 0, 16777216, "independent field per seed"),
     aq::enum_param("range", "unit|raw", 0,
-                   "unit: perlin/fbm (v+1)/2, gaussian 0.5+v/6, worley min(F1,1); raw: v"),
+                   "unit: perlin/fbm (v+1)/2, gaussian clamp(0.5+v/6), worley min(F1,1); raw: v"),
     aq::int_param("width", 0, 0, 16384, "output width in pixels; 0 = the graph's width"),
     aq::int_param("height", 0, 0, 16384, "output height in pixels; 0 = the graph's height")};
 

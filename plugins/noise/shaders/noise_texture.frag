@@ -26,7 +26,7 @@ void main() {
     // One standard-normal sample per lattice cell (white noise at the cell size).
     vec2 cell = vec2(aq_wrap_cell(ivec2(floor(p)), u_cells));
     value = aq_gaussian_noise(cell, float(u_seed));
-    if (u_unit_range == 1) value = 0.5 + value / 6.0;  // +-3 sigma onto [0,1]
+    if (u_unit_range == 1) value = clamp(0.5 + value / 6.0, 0.0, 1.0);  // +-3 sigma onto [0,1]
   } else {
     value = aq_worley2_seeded(p, u_cells, seed);
     if (u_unit_range == 1) value = min(value, 1.0);
