@@ -1,0 +1,26 @@
+// Paper wobble (seed §3.4): each lookup moves by the paper height's gradient times `strength`.
+// The gradient is a true derivative: central differences one paper pixel either side, divided
+// by the real step (2 paper pixels). The displacement is in paper pixels and converted to uv,
+// so it covers the same part of the image at every output resolution. The sampler clamps to
+// the edge, so no lookup leaves the image.
+in vec2 v_uv;
+layout(location = 0) out vec4 o_color;
+
+uniform sampler2D u_image;
+uniform sampler2D u_paper;  // height in .r, stretched over the image
+uniform vec2 u_paper_size;  // paper pixels across the image
+uniform float u_strength;   // paper pixels of displacement per unit slope (height per paper pixel)
+
+float paper_height(vec2 uv) { return texture(u_paper, uv).r; }
+
+void main() {
+  vec2 step_uv = 1.0 / u_paper_size;
+  vec2 gradient = vec2(paper_height(v_uv + vec2(step_uv.x, 0.0)) -
+                           paper_height(v_uv - vec2(step_uv.x, 0.0)),
+                       paper_height(v_uv + vec2(0.0, step_uv.y)) -
+                           paper_height(v_uv - vec2(0.0, step_uv.y))) /
+                  2.0;
+  // A NaN or infinite paper would throw the lookup anywhere: keep the pixel in place instead.
+  if (any(isnan(gradient)) || any(isinf(gradient))) gradient = vec2(0.0);
+  o_color = texture(u_image, v_uv + u_strength * gradient * step_uv);
+}

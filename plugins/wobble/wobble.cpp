@@ -1,0 +1,88 @@
+// wobble: paper wobble (seed §3.4). Shifts every lookup of `image` by the gradient of a paper
+// height field times `strength`. The paper is the optional `paper` input (height in red,
+// stretched over the image) or, when unconnected, a procedural paper rendered first into a
+// scratch texture:
+//
+//   [paper input] ─────────────────────────┐
+//   procedural_paper.frag ──► scratch ─────┴──► wobble.frag(image, paper) ──► image
+#include <aquarelle/plugin.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "wobble_shaders.h"
+
+namespace {
+
+constexpr aq_port_desc kInputs[] = {
+    aq::image_port("image", "colour to displace"),
+    aq::optional_image_port("paper",
+                            "paper height in the red channel, stretched over the image; "
+                            "unconnected: a procedural paper")};
+constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "displaced colour")};
+enum Input : uint32_t { kImage, kPaper };
+enum Param : uint32_t { kStrength, kPaperResolution, kGrain, kSeed };
+constexpr aq_param_desc kParams[] = {
+    aq::float_param("strength", 8.0, 0.0, 64.0,
+                    "displacement in paper pixels per unit of height slope (height change per "
+                    "paper pixel); 0 passes the image through"),
+    aq::int_param("paper_resolution", 512, 8, 8192,
+                  "procedural paper only: paper pixels across the image height (the width follows "
+                  "the image's aspect)"),
+    aq::float_param("grain", 6.0, 1.0, 256.0,
+                    "procedural paper only: size of the paper's cells in paper pixels"),
+    aq::int_param("seed", 0, 0, 1 << 20, "procedural paper only: which paper")};
+
+struct Wobble {
+  int process(aq::Context& ctx) {
+    const aq_image in = ctx.input_image(kImage);
+    const double strength = ctx.param_float(kStrength);
+    if (strength == 0.0) return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
+    aq_image paper = ctx.input_image(kPaper);
+    if (!ctx.connected(kPaper) && !render_procedural_paper(ctx, in, &paper)) return AQ_ERROR;
+
+    aq_image out;
+    if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+    const GLuint program = ctx.program(shaders::wobble_frag);
+    if (program == 0) return AQ_ERROR;
+    glUseProgram(program);
+    aq::bind_texture(program, "u_image", 0, in);
+    aq::bind_texture(program, "u_paper", 1, paper);
+    aq::set_vec2(program, "u_paper_size", paper.width, paper.height);
+    aq::set_float(program, "u_strength", strength);
+    const bool drawn = ctx.draw(out);
+    aq::unbind_textures(2);
+    return drawn ? AQ_OK : AQ_ERROR;
+  }
+
+  // The procedural paper is `paper_resolution` lines high and as wide as the image's aspect
+  // asks, so its pixels (the unit of `strength` and `grain`) cover the same part of the image at
+  // any output resolution.
+  static bool render_procedural_paper(aq::Context& ctx, const aq_image& in, aq_image* paper) {
+    const int lines = static_cast<int>(ctx.param_int(kPaperResolution));
+    const double aspect = static_cast<double>(in.width) / static_cast<double>(in.height);
+    const int columns = std::max(1, static_cast<int>(std::lround(lines * aspect)));
+    if (!ctx.scratch(columns, lines, ctx.working_format(), paper)) return false;
+    const GLuint program = ctx.program(shaders::procedural_paper_frag);
+    if (program == 0) return false;
+    glUseProgram(program);
+    aq::set_vec2(program, "u_paper_size", columns, lines);
+    aq::set_float(program, "u_grain", ctx.param_float(kGrain));
+    // Each seed moves the paper by a different whole number of cells; offsets stay below 4096
+    // cells so single-precision coordinates keep their sub-cell detail.
+    const double seed = static_cast<double>(ctx.param_int(kSeed));
+    aq::set_vec2(program, "u_seed_offset", std::fmod(seed * 113.0, 4096.0),
+                 std::fmod(seed * 71.0, 4096.0));
+    const bool drawn = ctx.draw(*paper);
+    glUseProgram(0);
+    return drawn;
+  }
+};
+
+}  // namespace
+
+AQ_NODE(kWobbleNode, Wobble, "wobble", "Watercolor",
+        "Paper wobble: shifts each lookup by the paper height's gradient times a strength "
+        "(in paper pixels, the same at every resolution).",
+        0, kInputs, kOutputs, kParams);
+AQ_PLUGIN("wobble", "1.0", &kWobbleNode)
