@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <sstream>
 #include <system_error>
@@ -123,6 +124,42 @@ std::string why_bad_param_value(const ParamInfo& param, const nlohmann::json& va
   return what + " has a type the editor does not know";
 }
 
+std::map<std::string, Position> automatic_positions(const Graph& graph) {
+  constexpr float kColumnStep = 230.0f;
+  constexpr float kRowStep = 130.0f;
+  // Column = longest path from a source, so the layout flows left to right.
+  std::map<std::string, int> depth;
+  std::set<std::string> visiting;
+  std::function<int(const std::string&)> visit = [&](const std::string& id) -> int {
+    auto known = depth.find(id);
+    if (known != depth.end()) return known->second;
+    auto node = graph.nodes.find(id);
+    if (node == graph.nodes.end() || visiting.count(id)) return 0;  // dangling link or a cycle
+    visiting.insert(id);
+    int d = 0;
+    for (const auto& [port, source] : node->second.inputs) d = std::max(d, visit(source.node) + 1);
+    visiting.erase(id);
+    depth[id] = d;
+    return d;
+  };
+  std::map<int, int> rows;
+  std::map<std::string, Position> out;
+  for (const auto& [id, node] : graph.nodes) {
+    int d = visit(id);
+    out[id] = Position{d * kColumnStep, rows[d]++ * kRowStep};
+  }
+  return out;
+}
+
+void place_unplaced_nodes(Graph& graph) {
+  std::map<std::string, Position> automatic;
+  for (const auto& [id, node] : graph.nodes) {
+    if (read_position(graph, id)) continue;
+    if (automatic.empty()) automatic = automatic_positions(graph);
+    write_position(graph, id, automatic[id]);
+  }
+}
+
 // ---- Document ------------------------------------------------------------------------------
 
 Document::Document(const Registry& registry) : registry_(registry) {}
@@ -163,6 +200,9 @@ Status Document::open(const std::string& path) {
   ReadResult read = read_graph_text(text.str(), registry_, path);
   graph_ = std::move(read.graph);
   graph_.source_path = path;
+  // A graph written by hand has no positions: place them once, so the canvas does not
+  // rearrange itself while links are edited. Not an edit: the file is not marked changed.
+  place_unplaced_nodes(graph_);
   path_ = path;
   reset_history();
   return Ok{};
@@ -226,6 +266,7 @@ Status Document::recover() {
     return make_error("the autosave '" + side + "' is not valid JSON; delete it");
   }
   ReadResult read = read_graph_text(text.str(), registry_, side);
+  place_unplaced_nodes(read.graph);
   Change change;
   change.label = "recover autosave";
   std::set<std::string> ids;
@@ -513,7 +554,7 @@ Status Document::link(const PortRef& from, const std::string& to_node,
   std::string why = why_not_link(from, to_node, to_input);
   if (!why.empty()) return make_error(why);
   Change change;
-  change.label = "link " + from.str() + " → " + to_node + "." + to_input;
+  change.label = "link " + from.str() + " -> " + to_node + "." + to_input;
   change.before[to_node] = state_of(to_node);
   NodeState after = state_of(to_node);
   after.node->inputs[to_input] = from;

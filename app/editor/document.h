@@ -166,6 +166,11 @@ class Document {
 std::optional<Position> read_position(const Graph& graph, const std::string& id);
 void write_position(Graph& graph, const std::string& id, const std::optional<Position>& position);
 
+// Positions for nodes in columns by their longest path from a source (for graphs written by
+// hand), and writing them for the nodes that have none.
+std::map<std::string, Position> automatic_positions(const Graph& graph);
+void place_unplaced_nodes(Graph& graph);
+
 // The JSON shape a parameter value must have, or why `value` does not fit `param`.
 std::string why_bad_param_value(const ParamInfo& param, const nlohmann::json& value);
 

@@ -1,0 +1,101 @@
+// The canvas's geometry without ImGui: where a node, its ports and its links sit on screen for
+// a given pan and zoom, and what lies under a point. The canvas drawing and the mouse handling
+// both read it, so what is drawn is exactly what is hit.
+#pragma once
+
+#include "document.h"
+
+#include <aquarelle/core/graph.h>
+#include <aquarelle/core/registry.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace aq::editor {
+
+struct Vec2 {
+  float x = 0;
+  float y = 0;
+};
+
+struct Rect {
+  Vec2 min;
+  Vec2 max;
+  bool contains(Vec2 p) const {
+    return p.x >= min.x && p.x <= max.x && p.y >= min.y && p.y <= max.y;
+  }
+  bool overlaps(const Rect& o) const {
+    return min.x <= o.max.x && o.min.x <= max.x && min.y <= o.max.y && o.min.y <= max.y;
+  }
+};
+
+// Canvas units are the positions saved in the graph; screen = origin + pan + canvas * zoom.
+struct CanvasView {
+  Vec2 pan{40, 40};
+  float zoom = 1.0f;
+  static constexpr float kMinZoom = 0.2f;
+  static constexpr float kMaxZoom = 3.0f;
+
+  Vec2 to_screen(Vec2 origin, Vec2 canvas) const {
+    return {origin.x + pan.x + canvas.x * zoom, origin.y + pan.y + canvas.y * zoom};
+  }
+  Vec2 to_canvas(Vec2 origin, Vec2 screen) const {
+    return {(screen.x - origin.x - pan.x) / zoom, (screen.y - origin.y - pan.y) / zoom};
+  }
+  // Zooms by `factor` keeping the canvas point under `screen` where it is.
+  void zoom_at(Vec2 origin, Vec2 screen, float factor);
+  // Pan and zoom so that `bounds` (canvas units) fills `size` (screen) with a margin.
+  void fit(Rect bounds, Vec2 size);
+};
+
+// Node geometry in canvas units.
+struct NodeMetrics {
+  static constexpr float kWidth = 170.0f;
+  static constexpr float kHeader = 24.0f;
+  static constexpr float kRow = 20.0f;
+  static constexpr float kFooter = 18.0f;  // GPU time line
+  static constexpr float kPortRadius = 5.5f;
+};
+
+struct PortSpot {
+  std::string port;
+  bool is_input = false;
+  aq_port_type type = AQ_PORT_IMAGE;
+  Vec2 at;  // screen
+};
+
+struct NodeLayout {
+  std::string id;
+  Rect rect;  // screen
+  Rect header;
+  std::vector<PortSpot> inputs;
+  std::vector<PortSpot> outputs;
+};
+
+// Lays out one node on screen. `type` may be null (a type no plugin provides): the node then
+// shows the ports its links name.
+NodeLayout layout_node(const std::string& id, const Node& node, const NodeType* type,
+                       Position position, const CanvasView& view, Vec2 origin);
+
+// Lays out every node; nodes without a saved position are placed in a column by topological
+// depth so a graph written by hand still opens tidy.
+std::vector<NodeLayout> layout_graph(const Graph& graph, const Registry& registry,
+                                     const CanvasView& view, Vec2 origin);
+
+// The position a node is drawn at (saved, or the automatic one).
+Position node_position(const Graph& graph, const std::string& id);
+
+// Canvas-unit bounds of all nodes (empty graph: a unit box at the origin).
+Rect graph_bounds(const Graph& graph, const Registry& registry);
+
+struct PortHit {
+  std::string node;
+  PortSpot spot;
+};
+// The port within reach of `screen` (radius grows a little for the mouse), if any.
+std::optional<PortHit> port_at(const std::vector<NodeLayout>& layouts, Vec2 screen, float reach);
+// The topmost node under `screen` (later in the list is on top).
+std::optional<std::string> node_at(const std::vector<NodeLayout>& layouts, Vec2 screen);
+
+}  // namespace aq::editor

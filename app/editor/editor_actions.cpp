@@ -1,0 +1,208 @@
+// The editor's actions: document edits plus the selection, viewer and status-line bookkeeping
+// that goes with each.
+#include "editor_actions.h"
+
+#include <algorithm>
+
+namespace aq::editor {
+
+std::optional<PortRef> EditorState::shown_output() const {
+  if (viewed) {
+    auto it = doc.graph().nodes.find(viewed->node);
+    if (it != doc.graph().nodes.end()) return viewed;
+  }
+  return doc.graph().output;
+}
+
+namespace actions {
+
+namespace {
+
+// The selection and viewed output may name nodes an undo just removed.
+void forget_missing(EditorState& state) {
+  std::erase_if(state.selection,
+                [&](const std::string& id) { return !state.doc.graph().nodes.count(id); });
+  if (state.viewed && !state.doc.graph().nodes.count(state.viewed->node)) state.viewed.reset();
+}
+
+}  // namespace
+
+void report(EditorState& state, const Status& status, const std::string& success) {
+  if (status.ok()) {
+    state.status = success;
+    state.status_is_error = false;
+  } else {
+    state.status = status.message();
+    state.status_is_error = true;
+    ++state.refused_count;
+  }
+}
+
+Result<std::string> add_node(EditorState& state, const std::string& type, Position at,
+                             const std::string& wanted_id) {
+  auto added = state.doc.add_node(type, at, wanted_id);
+  if (added) {
+    state.selection = {*added};
+    report(state, Ok{}, "added " + *added);
+  } else {
+    report(state, added.error(), "");
+  }
+  return added;
+}
+
+Status link(EditorState& state, const PortRef& from, const std::string& to_node,
+            const std::string& to_input) {
+  Status linked = state.doc.link(from, to_node, to_input);
+  report(state, linked, "linked " + from.str() + " -> " + to_node + "." + to_input);
+  return linked;
+}
+
+Status unlink(EditorState& state, const std::string& node, const std::string& input) {
+  Status unlinked = state.doc.unlink(node, input);
+  report(state, unlinked, "unlinked " + node + "." + input);
+  return unlinked;
+}
+
+Status move(EditorState& state, const std::map<std::string, Position>& positions, bool gesture) {
+  Status moved = state.doc.move_nodes(positions, gesture ? "move" : "");
+  report(state, moved, "moved " + std::to_string(positions.size()) + " node(s)");
+  return moved;
+}
+
+Status set_param(EditorState& state, const std::string& node, const std::string& param,
+                 const nlohmann::json& value, bool gesture) {
+  Status set =
+      state.doc.set_param(node, param, value, gesture ? "param:" + node + "." + param : "");
+  report(state, set,
+         value.is_null() ? node + "." + param + " reset to its default"
+                         : node + "." + param + " = " + value.dump());
+  return set;
+}
+
+void end_gesture(EditorState& state) {
+  state.doc.end_gesture();
+}
+
+Status delete_nodes(EditorState& state, const std::vector<std::string>& ids) {
+  Status removed = state.doc.remove_nodes(ids);
+  report(state, removed, "deleted " + std::to_string(ids.size()) + " node(s)");
+  forget_missing(state);
+  return removed;
+}
+
+Status delete_selection(EditorState& state) {
+  return delete_nodes(state, {state.selection.begin(), state.selection.end()});
+}
+
+Status duplicate_selection(EditorState& state) {
+  auto copies = state.doc.duplicate_nodes({state.selection.begin(), state.selection.end()});
+  if (!copies) {
+    report(state, copies.error(), "");
+    return copies.error();
+  }
+  state.selection = {copies->begin(), copies->end()};
+  report(state, Ok{}, "duplicated into " + std::to_string(copies->size()) + " new node(s)");
+  return Ok{};
+}
+
+void select(EditorState& state, const std::vector<std::string>& ids, bool add) {
+  if (!add) state.selection.clear();
+  for (const auto& id : ids) {
+    if (state.doc.graph().nodes.count(id)) state.selection.insert(id);
+  }
+  state.status = std::to_string(state.selection.size()) + " node(s) selected";
+  state.status_is_error = false;
+}
+
+Status select_output(EditorState& state, const PortRef& output) {
+  auto node = state.doc.graph().nodes.find(output.node);
+  Status checked = Ok{};
+  if (node == state.doc.graph().nodes.end()) {
+    checked =
+        make_error("cannot view " + output.str() + ": there is no node '" + output.node + "'");
+  } else if (const NodeType* type = state.doc.registry().find(node->second.type);
+             type != nullptr && type->output(output.port) == nullptr) {
+    checked = make_error("cannot view " + output.str() + ": '" + type->name + "' has no output '" +
+                         output.port + "'");
+  }
+  if (checked) state.viewed = output;
+  report(state, checked, "viewing " + output.str());
+  return checked;
+}
+
+void cycle_output(EditorState& state, int step) {
+  std::vector<PortRef> all;
+  for (const auto& [id, node] : state.doc.graph().nodes) {
+    if (const NodeType* type = state.doc.registry().find(node.type)) {
+      for (const auto& port : type->outputs) all.push_back({id, port.name});
+    }
+  }
+  if (all.empty()) return;
+  auto shown = state.shown_output();
+  auto it = shown ? std::find(all.begin(), all.end(), *shown) : all.end();
+  long index = it == all.end() ? 0 : (it - all.begin()) + step;
+  long count = static_cast<long>(all.size());
+  index = ((index % count) + count) % count;
+  (void)select_output(state, all[index]);
+}
+
+Status set_graph_output(EditorState& state, const PortRef& output) {
+  Status set = state.doc.set_output(output);
+  report(state, set, "graph output is now " + output.str());
+  return set;
+}
+
+bool undo(EditorState& state) {
+  std::string label = state.doc.undo_label();
+  bool done = state.doc.undo();
+  forget_missing(state);
+  report(state, done ? Status(Ok{}) : Status(make_error("nothing to undo")), "undid " + label);
+  return done;
+}
+
+bool redo(EditorState& state) {
+  std::string label = state.doc.redo_label();
+  bool done = state.doc.redo();
+  forget_missing(state);
+  report(state, done ? Status(Ok{}) : Status(make_error("nothing to redo")), "redid " + label);
+  return done;
+}
+
+Status save(EditorState& state) {
+  Status saved = state.doc.save();
+  report(state, saved, "saved " + state.doc.path());
+  return saved;
+}
+
+Status save_as(EditorState& state, const std::string& path) {
+  Status saved = state.doc.save_as(path);
+  report(state, saved, "saved " + path);
+  return saved;
+}
+
+Status open(EditorState& state, const std::string& path) {
+  Status opened = state.doc.open(path);
+  if (opened) {
+    state.selection.clear();
+    state.viewed.reset();
+    state.frame = state.doc.graph().settings.first_frame;
+  }
+  report(state, opened, "opened " + path);
+  return opened;
+}
+
+void new_graph(EditorState& state) {
+  state.doc.new_graph();
+  state.selection.clear();
+  state.viewed.reset();
+  report(state, Ok{}, "new graph");
+}
+
+void set_frame(EditorState& state, int frame) {
+  const Settings& settings = state.doc.graph().settings;
+  state.frame =
+      std::clamp(frame, settings.first_frame, std::max(settings.first_frame, settings.last_frame));
+}
+
+}  // namespace actions
+}  // namespace aq::editor

@@ -1,0 +1,53 @@
+// Every editor action, as one function each: the canvas's mouse and keyboard handlers, the
+// menus and the scripted mode all call these, so a script exercises the same code as a user.
+// Each updates the status line (the refusal reason when the document refuses) and returns the
+// document's answer.
+#pragma once
+
+#include "editor_state.h"
+
+#include <aquarelle/core/result.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace aq::editor::actions {
+
+Result<std::string> add_node(EditorState& state, const std::string& type, Position at,
+                             const std::string& wanted_id = "");
+Status link(EditorState& state, const PortRef& from, const std::string& to_node,
+            const std::string& to_input);
+Status unlink(EditorState& state, const std::string& node, const std::string& input);
+// `gesture`: part of a drag; call end_gesture() when the mouse is released.
+Status move(EditorState& state, const std::map<std::string, Position>& positions,
+            bool gesture = false);
+Status set_param(EditorState& state, const std::string& node, const std::string& param,
+                 const nlohmann::json& value, bool gesture = false);
+void end_gesture(EditorState& state);
+
+Status delete_nodes(EditorState& state, const std::vector<std::string>& ids);
+Status delete_selection(EditorState& state);
+Status duplicate_selection(EditorState& state);
+void select(EditorState& state, const std::vector<std::string>& ids, bool add = false);
+
+// The viewer shows `output` (any node's any output); the graph's own output is unchanged.
+Status select_output(EditorState& state, const PortRef& output);
+// Steps the viewer through every output of the graph in node order (+1 or -1).
+void cycle_output(EditorState& state, int step);
+// Changes what the graph renders (`output` in the file).
+Status set_graph_output(EditorState& state, const PortRef& output);
+
+bool undo(EditorState& state);
+bool redo(EditorState& state);
+Status save(EditorState& state);
+Status save_as(EditorState& state, const std::string& path);
+Status open(EditorState& state, const std::string& path);
+void new_graph(EditorState& state);
+void set_frame(EditorState& state, int frame);
+
+// Reports an outcome on the status line.
+void report(EditorState& state, const Status& status, const std::string& success);
+
+}  // namespace aq::editor::actions

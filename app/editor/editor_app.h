@@ -1,0 +1,99 @@
+// The editor window: GLFW window with a GL 4.5 core context that the evaluator adopts, Dear
+// ImGui on top, and the frame loop that lays out the menu bar, the canvas, the viewer, the
+// parameter panel, the time bar and the modal prompts (unsaved changes, crash recovery).
+//
+//   frame: poll events ─► advance time ─► viewer.update (evaluate if anything changed)
+//          ─► ImGui: menus, canvas, viewer, parameters, time bar ─► render ─► [screenshot] ─► swap
+#pragma once
+
+#include "canvas.h"
+#include "document.h"
+#include "editor_state.h"
+#include "file_dialog.h"
+#include "param_panel.h"
+#include "viewer.h"
+
+#include <aquarelle/core/gl_context.h>
+#include <aquarelle/core/registry.h>
+#include <aquarelle/core/result.h>
+
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+struct GLFWwindow;
+
+namespace aq::editor {
+
+struct EditorOptions {
+  std::string graph;       // file to open (created on save when it does not exist)
+  std::string script;      // actions to run after the first frame
+  std::string screenshot;  // PNG of the window after the script
+  bool quit = false;       // exit after the screenshot (or the script)
+  int width = 1280;
+  int height = 800;
+};
+
+class EditorApp {
+ public:
+  EditorApp(const Registry& registry, EditorOptions options);
+  ~EditorApp();
+  EditorApp(const EditorApp&) = delete;
+  EditorApp& operator=(const EditorApp&) = delete;
+
+  // Opens the window and runs until it closes; returns the exit status.
+  int run();
+
+ private:
+  enum class Pending { kNone, kQuit, kNew, kOpen };
+
+  Status create_window();
+  void frame();
+  void draw_menu_bar();
+  void draw_time_bar();
+  void draw_modals();
+  void handle_shortcuts();
+  void advance_time(double seconds);
+  void update_feedback();
+  void poll_hot_reload();
+  // Runs `pending` now, or asks first when there are unsaved changes.
+  void request(Pending pending);
+  void perform(Pending pending);
+  void save_or_save_as();
+  void update_title();
+  Status write_screenshot(const std::string& path);
+
+  const Registry& registry_;
+  EditorOptions options_;
+  Document document_;
+  EditorState state_;
+  GLFWwindow* window_ = nullptr;
+  std::unique_ptr<GlContext> context_;
+  std::unique_ptr<Viewer> viewer_;
+  Canvas canvas_;
+  ParamPanel params_;
+  FileDialog file_dialog_;
+  NodeFeedback feedback_;
+
+  Pending pending_ = Pending::kNone;
+  bool ask_unsaved_ = false;
+  bool ask_recovery_ = false;
+  bool save_as_then_continue_ = false;
+  bool running_ = true;
+  double play_accumulator_ = 0;
+  double last_autosave_ = 0;
+  std::string title_;
+
+  bool hot_reload_ = false;
+  double last_reload_poll_ = 0;
+  std::filesystem::file_time_type newest_shader_{};
+};
+
+// The folders whose shader files the hot reload watches: <source>/plugins/*/shaders and
+// <source>/nodes/shaders, where <source> is found by walking up from the executable (a build
+// folder inside the source tree) or named by $AQUARELLE_SOURCE_DIR.
+std::vector<std::filesystem::path> shader_source_folders();
+
+}  // namespace aq::editor

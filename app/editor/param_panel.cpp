@@ -1,0 +1,242 @@
+// The parameter panel. See param_panel.h.
+#include "param_panel.h"
+
+#include "editor_actions.h"
+
+#include <aquarelle/core/graph_io.h>
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <filesystem>
+
+namespace aq::editor {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A path parameter is stored relative to the graph's folder when it lies under it, so a graph
+// and its textures move together.
+std::string relative_to_graph(const std::string& graph_path, const std::string& chosen) {
+  if (graph_path.empty()) return chosen;
+  std::error_code error;
+  fs::path base = fs::absolute(graph_path, error).parent_path();
+  fs::path relative = fs::relative(fs::absolute(chosen, error), base, error);
+  if (error || relative.empty() || relative.string().rfind("..", 0) == 0) return chosen;
+  return relative.string();
+}
+
+// After a continuous widget: ends the undo step when the user lets go.
+void end_gesture_after_edit(EditorState& state) {
+  if (ImGui::IsItemDeactivatedAfterEdit()) actions::end_gesture(state);
+}
+
+}  // namespace
+
+void ParamPanel::draw(EditorState& state, const NodeFeedback& feedback) {
+  if (state.selection.size() == 1 && state.doc.graph().nodes.count(*state.selection.begin())) {
+    draw_node(state, *state.selection.begin(), feedback);
+  } else {
+    if (state.selection.size() > 1) {
+      ImGui::TextDisabled("%zu nodes selected", state.selection.size());
+      ImGui::Separator();
+    }
+    draw_settings(state);
+  }
+  std::string chosen;
+  if (file_dialog_.draw(&chosen)) {
+    auto split = file_target_.find('\n');
+    std::string node = file_target_.substr(0, split);
+    std::string param = file_target_.substr(split + 1);
+    (void)actions::set_param(state, node, param, relative_to_graph(state.doc.path(), chosen));
+  }
+}
+
+void ParamPanel::draw_node(EditorState& state, const std::string& id,
+                           const NodeFeedback& feedback) {
+  const Node& node = state.doc.graph().nodes.at(id);
+  const NodeType* type = state.doc.registry().find(node.type);
+  ImGui::Text("%s", id.c_str());
+  ImGui::SameLine();
+  ImGui::TextDisabled("(%s)", node.type.c_str());
+  if (type == nullptr) {
+    ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "type '%s' is not installed", node.type.c_str());
+    return;
+  }
+  if (!type->description.empty()) ImGui::TextWrapped("%s", type->description.c_str());
+  auto timing = feedback.timings.find(id);
+  if (timing != feedback.timings.end()) {
+    ImGui::TextDisabled("%s: gpu %.3f ms, cpu %.3f ms", timing->second.cached ? "cached" : "ran",
+                        timing->second.gpu_ms, timing->second.cpu_ms);
+  }
+  for (const auto& problem : state.doc.problems_of(id)) {
+    ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", problem.message.c_str());
+  }
+  if (feedback.error_node == id) {
+    ImGui::PushTextWrapPos(0);
+    ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", feedback.error.c_str());
+    ImGui::PopTextWrapPos();
+  }
+
+  if (!type->inputs.empty() && ImGui::CollapsingHeader("Inputs", ImGuiTreeNodeFlags_DefaultOpen)) {
+    for (const auto& port : type->inputs) {
+      ImGui::PushID(port.name.c_str());
+      auto link = node.inputs.find(port.name);
+      if (link != node.inputs.end()) {
+        ImGui::Text("%s <- %s", port.name.c_str(), link->second.str().c_str());
+        ImGui::SameLine();
+        if (ImGui::SmallButton("unlink")) (void)actions::unlink(state, id, port.name);
+      } else {
+        ImGui::TextDisabled("%s: %s", port.name.c_str(),
+                            port.optional ? "(optional)" : "not linked");
+      }
+      ImGui::PopID();
+    }
+  }
+
+  if (type->params.empty()) return;
+  if (!ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  for (const ParamInfo& param : type->params) {
+    ImGui::PushID(param.name.c_str());
+    nlohmann::json value = param_value_or_default(node, param);
+    const char* label = param.name.c_str();
+    bool has_range = param.max_value > param.min_value;
+    switch (param.type) {
+      case AQ_PARAM_FLOAT: {
+        float v = value.is_number() ? value.get<float>() : 0.0f;
+        ImGuiSliderFlags flags = param.ui_hint == "log" ? ImGuiSliderFlags_Logarithmic : 0;
+        bool changed =
+            has_range
+                ? ImGui::SliderFloat(label, &v, static_cast<float>(param.min_value),
+                                     static_cast<float>(param.max_value), "%.4g", flags)
+                : ImGui::DragFloat(label, &v, param.step > 0 ? param.step : 0.01f, 0, 0, "%.4g");
+        if (changed) (void)actions::set_param(state, id, param.name, static_cast<double>(v), true);
+        end_gesture_after_edit(state);
+        break;
+      }
+      case AQ_PARAM_INT: {
+        int v = value.is_number() ? value.get<int>() : 0;
+        bool changed = has_range ? ImGui::SliderInt(label, &v, static_cast<int>(param.min_value),
+                                                    static_cast<int>(param.max_value))
+                                 : ImGui::DragInt(label, &v);
+        if (changed) (void)actions::set_param(state, id, param.name, v, true);
+        end_gesture_after_edit(state);
+        break;
+      }
+      case AQ_PARAM_BOOL: {
+        bool v = value.is_boolean() && value.get<bool>();
+        if (ImGui::Checkbox(label, &v)) (void)actions::set_param(state, id, param.name, v);
+        break;
+      }
+      case AQ_PARAM_ENUM: {
+        std::string current = value.is_string() ? value.get<std::string>() : "";
+        if (value.is_number_integer() && value.get<size_t>() < param.enum_values.size()) {
+          current = param.enum_values[value.get<size_t>()];
+        }
+        if (ImGui::BeginCombo(label, current.c_str())) {
+          for (const auto& name : param.enum_values) {
+            if (ImGui::Selectable(name.c_str(), name == current) && name != current) {
+              (void)actions::set_param(state, id, param.name, name);
+            }
+          }
+          ImGui::EndCombo();
+        }
+        break;
+      }
+      case AQ_PARAM_STRING:
+      case AQ_PARAM_PATH: {
+        std::string text = value.is_string() ? value.get<std::string>() : "";
+        if (param.type == AQ_PARAM_PATH) {
+          if (ImGui::Button("...")) {
+            file_target_ = id + "\n" + param.name;
+            fs::path start = fs::path(state.doc.path()).parent_path() / text;
+            file_dialog_.open("Choose a file for " + id + "." + param.name, start.string());
+          }
+          ImGui::SameLine();
+        }
+        if (ImGui::InputText(label, &text)) {
+          (void)actions::set_param(state, id, param.name, text, true);
+        }
+        end_gesture_after_edit(state);
+        break;
+      }
+      case AQ_PARAM_COLOR:
+      case AQ_PARAM_VEC3: {
+        float v[3] = {0, 0, 0};
+        if (value.is_array() && value.size() == 3) {
+          for (int i = 0; i < 3; ++i) v[i] = value[i].get<float>();
+        }
+        bool changed =
+            param.type == AQ_PARAM_COLOR
+                ? ImGui::ColorEdit3(label, v, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)
+                : ImGui::DragFloat3(label, v, param.step > 0 ? param.step : 0.01f,
+                                    static_cast<float>(param.min_value),
+                                    static_cast<float>(param.max_value), "%.4g");
+        if (changed) {
+          (void)actions::set_param(state, id, param.name, nlohmann::json::array({v[0], v[1], v[2]}),
+                                   true);
+        }
+        end_gesture_after_edit(state);
+        break;
+      }
+    }
+    if (ImGui::BeginPopupContextItem("##reset")) {
+      if (ImGui::MenuItem("reset to default")) {
+        (void)actions::set_param(state, id, param.name, nullptr);
+      }
+      ImGui::EndPopup();
+    }
+    if (ImGui::IsItemHovered() && !param.description.empty()) {
+      ImGui::SetTooltip("%s", param.description.c_str());
+    }
+    ImGui::PopID();
+  }
+}
+
+void ParamPanel::draw_settings(EditorState& state) {
+  const Graph& graph = state.doc.graph();
+  // A drag edits a pending copy; the document changes once, when the drag ends.
+  Settings settings = pending_settings_.value_or(graph.settings);
+  ImGui::TextUnformatted("Graph settings");
+  bool commit = false;
+  int size[2] = {settings.width, settings.height};
+  if (ImGui::DragInt2("resolution", size, 1.0f, 1, 16384)) {
+    settings.width = std::max(size[0], 1);
+    settings.height = std::max(size[1], 1);
+  }
+  commit |= ImGui::IsItemDeactivatedAfterEdit();
+  float fps = static_cast<float>(settings.fps);
+  if (ImGui::DragFloat("fps", &fps, 0.1f, 1.0f, 240.0f)) settings.fps = fps;
+  commit |= ImGui::IsItemDeactivatedAfterEdit();
+  int frames[2] = {settings.first_frame, settings.last_frame};
+  if (ImGui::DragInt2("frames", frames, 1.0f)) {
+    settings.first_frame = frames[0];
+    settings.last_frame = std::max(frames[0], frames[1]);
+  }
+  commit |= ImGui::IsItemDeactivatedAfterEdit();
+  const char* precisions[] = {"half", "float"};
+  int precision = settings.precision == "float" ? 1 : 0;
+  if (ImGui::Combo("precision", &precision, precisions, 2)) {
+    settings.precision = precisions[precision];
+    commit = true;
+  }
+  const char* qualities[] = {"draft", "preview", "final"};
+  int quality = settings.quality == "draft" ? 0 : settings.quality == "preview" ? 1 : 2;
+  if (ImGui::Combo("quality", &quality, qualities, 3)) {
+    settings.quality = qualities[quality];
+    commit = true;
+  }
+  if (commit) {
+    actions::report(state, state.doc.set_settings(settings), "settings changed");
+    pending_settings_.reset();
+  } else if (ImGui::IsAnyItemActive()) {
+    pending_settings_ = settings;
+  } else {
+    pending_settings_.reset();
+  }
+  ImGui::Text("output: %s", graph.output ? graph.output->str().c_str() : "(none)");
+  ImGui::TextDisabled("select a node to edit its parameters");
+}
+
+}  // namespace aq::editor

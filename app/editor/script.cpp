@@ -1,0 +1,158 @@
+// The scripted mode's interpreter. See script.h.
+#include "script.h"
+
+#include "editor_actions.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace aq::editor {
+
+namespace {
+
+std::string text_field(const nlohmann::json& action, const char* key) {
+  auto it = action.find(key);
+  if (it == action.end() || !it->is_string()) {
+    throw std::invalid_argument(std::string("needs a string \"") + key + "\"");
+  }
+  return it->get<std::string>();
+}
+
+PortRef port_field(const nlohmann::json& action, const char* key) {
+  std::string text = text_field(action, key);
+  auto ref = PortRef::parse(text);
+  if (!ref)
+    throw std::invalid_argument(std::string("\"") + key + "\" must be \"node.port\", got '" + text +
+                                "'");
+  return *ref;
+}
+
+Position position_field(const nlohmann::json& action, const char* key, Position fallback) {
+  auto it = action.find(key);
+  if (it == action.end()) return fallback;
+  if (!it->is_array() || it->size() != 2 || !(*it)[0].is_number() || !(*it)[1].is_number()) {
+    throw std::invalid_argument(std::string("\"") + key + "\" must be [x, y]");
+  }
+  return {(*it)[0].get<float>(), (*it)[1].get<float>()};
+}
+
+std::vector<std::string> nodes_field(const nlohmann::json& action) {
+  auto it = action.find("nodes");
+  if (it == action.end() || !it->is_array()) throw std::invalid_argument("needs \"nodes\": [ids]");
+  std::vector<std::string> ids;
+  for (const auto& id : *it) {
+    if (!id.is_string()) throw std::invalid_argument("\"nodes\" must hold node ids (strings)");
+    ids.push_back(id.get<std::string>());
+  }
+  return ids;
+}
+
+Status status_of(bool done, const std::string& why) {
+  return done ? Status(Ok{}) : Status(make_error(why));
+}
+
+Status run_action(EditorState& state, const nlohmann::json& action, const ScriptHooks& hooks) {
+  const std::string kind = text_field(action, "do");
+  if (kind == "add_node") {
+    auto added =
+        actions::add_node(state, text_field(action, "type"), position_field(action, "at", {0, 0}),
+                          action.value("id", std::string()));
+    return added ? Status(Ok{}) : Status(added.error());
+  }
+  if (kind == "link") {
+    PortRef to = port_field(action, "to");
+    return actions::link(state, port_field(action, "from"), to.node, to.port);
+  }
+  if (kind == "unlink") {
+    PortRef to = port_field(action, "to");
+    return actions::unlink(state, to.node, to.port);
+  }
+  if (kind == "set_param") {
+    if (!action.contains("value")) throw std::invalid_argument("needs a \"value\" (null resets)");
+    return actions::set_param(state, text_field(action, "node"), text_field(action, "param"),
+                              action["value"]);
+  }
+  if (kind == "move") {
+    return actions::move(state, {{text_field(action, "node"), position_field(action, "to", {})}});
+  }
+  if (kind == "select_output") return actions::select_output(state, port_field(action, "output"));
+  if (kind == "set_output") return actions::set_graph_output(state, port_field(action, "output"));
+  if (kind == "delete") return actions::delete_nodes(state, nodes_field(action));
+  if (kind == "duplicate") {
+    actions::select(state, nodes_field(action));
+    return actions::duplicate_selection(state);
+  }
+  if (kind == "select") {
+    actions::select(state, nodes_field(action));
+    return Ok{};
+  }
+  if (kind == "undo") return status_of(actions::undo(state), "nothing to undo");
+  if (kind == "redo") return status_of(actions::redo(state), "nothing to redo");
+  if (kind == "save") {
+    return action.contains("path") ? actions::save_as(state, text_field(action, "path"))
+                                   : actions::save(state);
+  }
+  if (kind == "frame") {
+    if (!action.contains("frame") || !action["frame"].is_number_integer()) {
+      throw std::invalid_argument("needs an integer \"frame\"");
+    }
+    actions::set_frame(state, action["frame"].get<int>());
+    return Ok{};
+  }
+  if (kind == "fit") {
+    if (hooks.fit) hooks.fit();
+    return Ok{};
+  }
+  throw std::invalid_argument(
+      "unknown action '" + kind +
+      "' (add_node, link, unlink, set_param, move, select_output, "
+      "set_output, delete, duplicate, select, undo, redo, save, frame, fit)");
+}
+
+}  // namespace
+
+Result<nlohmann::json> read_script(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return make_error("cannot open the script '" + path + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json script = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
+  if (script.is_discarded()) return make_error("the script '" + path + "' is not valid JSON");
+  if (script.is_object() && script.contains("actions")) script = script["actions"];
+  if (!script.is_array()) {
+    return make_error("the script '" + path +
+                      "' must be a list of actions or {\"actions\": [...]}");
+  }
+  return script;
+}
+
+Status run_script(EditorState& state, const nlohmann::json& script, const ScriptHooks& hooks) {
+  int index = 0;
+  for (const auto& action : script) {
+    ++index;
+    std::string where = "script action " + std::to_string(index);
+    if (!action.is_object()) return make_error(where + ": must be an object {\"do\": ...}");
+    where += " (" + action.value("do", std::string("?")) + ")";
+    std::string expect = action.value("expect", std::string("ok"));
+    if (expect != "ok" && expect != "refused") {
+      return make_error(where + ": \"expect\" must be \"ok\" or \"refused\"");
+    }
+    Status outcome = Ok{};
+    state.status.clear();
+    try {
+      outcome = run_action(state, action, hooks);
+    } catch (const std::exception& bad) {  // malformed action, not a refused edit
+      return make_error(where + ": " + bad.what());
+    }
+    if (expect == "ok" && !outcome) return make_error(where + " was refused: " + outcome.message());
+    if (expect == "refused" && outcome) return make_error(where + " was expected to be refused");
+    std::fprintf(stderr, "%s: %s\n", where.c_str(),
+                 outcome ? (state.status.empty() ? "done" : state.status.c_str())
+                         : ("refused as expected: " + outcome.message()).c_str());
+  }
+  return Ok{};
+}
+
+}  // namespace aq::editor

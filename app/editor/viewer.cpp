@@ -1,0 +1,375 @@
+// The viewer: evaluation of the viewed output and its display pass. See viewer.h.
+#include "viewer.h"
+
+#include "editor_actions.h"
+
+#include <glad/gl.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <vector>
+
+namespace aq::editor {
+
+namespace {
+
+// A full-screen triangle from gl_VertexID; v_uv spans 0..1 over the target.
+constexpr const char* kVertexShader = R"(#version 450 core
+out vec2 v_uv;
+void main() {
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  v_uv = p;
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+// Float images on unit 0, integer ids on unit 1: a sampler type never meets a texture of the
+// other kind.
+constexpr const char* kFragmentShader = R"(#version 450 core
+in vec2 v_uv;
+layout(location = 0) out vec4 o_color;
+uniform sampler2D u_image;
+uniform usampler2D u_ids;
+uniform int u_mapping;   // 0 colour, 1 depth, 2 id
+uniform int u_channel;   // 0 rgb, 1 r, 2 g, 3 b, 4 a
+uniform int u_srgb;
+uniform float u_gain;
+uniform vec2 u_range;
+
+float to_srgb(float c) {
+  c = clamp(c, 0.0, 1.0);
+  return c <= 0.0031308 ? 12.92 * c : 1.055 * pow(c, 1.0 / 2.4) - 0.055;
+}
+
+vec3 id_colour(uint id) {
+  if (id == 0u) return vec3(0.0);
+  uint h = id * 747796405u + 2891336453u;
+  h = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;
+  h = (h >> 22u) ^ h;
+  return vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) / 255.0 * 0.8 + 0.2;
+}
+
+void main() {
+  if (u_mapping == 2) {
+    o_color = vec4(id_colour(texture(u_ids, v_uv).r), 1.0);
+    return;
+  }
+  vec4 c = texture(u_image, v_uv);
+  if (u_mapping == 1) {
+    float v = c.r;
+    if (isnan(v) || isinf(v)) { o_color = vec4(1.0, 0.0, 1.0, 1.0); return; }
+    float span = max(u_range.y - u_range.x, 1e-12);
+    float t = clamp((v - u_range.x) / span, 0.0, 1.0);
+    o_color = vec4(vec3(1.0 - t), 1.0);  // near is bright
+    return;
+  }
+  vec3 rgb = c.rgb;
+  if (u_channel == 1) rgb = vec3(c.r);
+  if (u_channel == 2) rgb = vec3(c.g);
+  if (u_channel == 3) rgb = vec3(c.b);
+  if (u_channel == 4) rgb = vec3(c.a);
+  if (any(isnan(rgb)) || any(isinf(rgb))) { o_color = vec4(1.0, 0.0, 1.0, 1.0); return; }
+  rgb *= u_gain;
+  if (u_srgb != 0) rgb = vec3(to_srgb(rgb.r), to_srgb(rgb.g), to_srgb(rgb.b));
+  o_color = vec4(clamp(rgb, 0.0, 1.0), 1.0);
+}
+)";
+
+GLuint compile(GLenum stage, const char* source, std::string* log) {
+  GLuint shader = glCreateShader(stage);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char text[2048];
+    glGetShaderInfoLog(shader, sizeof text, nullptr, text);
+    *log += text;
+    glDeleteShader(shader);
+    return 0;
+  }
+  return shader;
+}
+
+bool is_single_channel_float(uint32_t format) {
+  return format == AQ_FORMAT_R32F || format == AQ_FORMAT_DEPTH32F;
+}
+
+// "node 'blur' (blur): ..." → "blur"
+std::string node_named_in(const std::string& message) {
+  auto start = message.find("node '");
+  if (start == std::string::npos) return "";
+  start += 6;
+  auto end = message.find('\'', start);
+  return end == std::string::npos ? "" : message.substr(start, end - start);
+}
+
+}  // namespace
+
+float linear_to_srgb(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+Viewer::Viewer(GlContext& context, const Registry& registry) : evaluator_(context, registry) {}
+
+Viewer::~Viewer() = default;
+
+void Viewer::update(const EditorState& state, bool force) {
+  std::optional<PortRef> output = state.shown_output();
+  bool changed = force || state.doc.revision() != evaluated_revision_ ||
+                 output != evaluated_output_ || state.frame != evaluated_frame_;
+  if (!changed) return;
+  evaluated_revision_ = state.doc.revision();
+  evaluated_output_ = output;
+  evaluated_frame_ = state.frame;
+  display_stale_ = true;
+  if (!output) {
+    result_.reset();
+    error_ = state.doc.graph().nodes.empty() ? "" : "nothing to view: click an output port";
+    error_node_.clear();
+    return;
+  }
+  EvalOptions options;
+  options.frame = state.frame;
+  options.retain_outputs = true;
+  options.measure_gpu_time = true;
+  auto start = std::chrono::steady_clock::now();
+  Result<TextureRef> evaluated = evaluator_.evaluate(state.doc.graph(), options, output);
+  last_ms_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  // Leave GL as ImGui's renderer expects it.
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (!evaluated) {
+    result_.reset();
+    error_ = evaluated.message();
+    error_node_ = node_named_in(error_);
+    return;
+  }
+  error_.clear();
+  error_node_.clear();
+  result_ = *evaluated;
+  if (range_from_image_) measure_range();
+}
+
+void Viewer::measure_range() {
+  if (!result_ || !is_single_channel_float(result_->image.format)) return;
+  const aq_image& image = result_->image;
+  std::vector<float> values(static_cast<size_t>(image.width) * image.height);
+  GLenum format = image.format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : GL_RED;
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(image.texture, 0, format, GL_FLOAT,
+                    static_cast<GLsizei>(values.size() * sizeof(float)), values.data());
+  std::vector<float> finite;
+  finite.reserve(values.size());
+  for (float v : values) {
+    if (std::isfinite(v)) finite.push_back(v);
+  }
+  float lo = 0;
+  float hi = 1;
+  if (!finite.empty()) {
+    auto [min_it, max_it] = std::minmax_element(finite.begin(), finite.end());
+    lo = *min_it;
+    hi = *max_it;
+    // Background (nothing drawn) holds one value, the far plane or a cleared 1.0, over much of
+    // the image; spreading the range to it would leave the scene one flat shade. Map the
+    // scene's own range and let the background fall to black.
+    size_t at_max = static_cast<size_t>(std::count(finite.begin(), finite.end(), hi));
+    if (at_max > finite.size() / 100 && at_max < finite.size()) {
+      float below = lo;
+      for (float v : finite) {
+        if (v < hi) below = std::max(below, v);
+      }
+      hi = below;
+    }
+  }
+  range_[0] = lo;
+  range_[1] = hi > lo ? hi : lo + 1.0f;
+}
+
+bool Viewer::ensure_program() {
+  if (program_) return true;
+  std::string log;
+  GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader, &log);
+  GLuint fs = compile(GL_FRAGMENT_SHADER, kFragmentShader, &log);
+  if (vs == 0 || fs == 0) {
+    error_ = "viewer display shader: " + log;
+    return false;
+  }
+  GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glLinkProgram(program);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint linked = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &linked);
+  if (!linked) {
+    glDeleteProgram(program);
+    error_ = "viewer display shader failed to link";
+    return false;
+  }
+  program_.reset(program);
+  GLuint vao = 0;
+  glCreateVertexArrays(1, &vao);
+  vertex_array_.reset(vao);
+  GLuint fbo = 0;
+  glCreateFramebuffers(1, &fbo);
+  framebuffer_.reset(fbo);
+  return true;
+}
+
+void Viewer::render_display_texture() {
+  if (!result_ || !ensure_program()) return;
+  const aq_image& image = result_->image;
+  if (!display_ || display_width_ != image.width || display_height_ != image.height) {
+    GLuint texture = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+    glTextureStorage2D(texture, 1, GL_RGBA8, image.width, image.height);
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    // Nearest when magnified so 1:1 and closer show real pixels.
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    display_.reset(texture);
+    display_width_ = image.width;
+    display_height_ = image.height;
+    glNamedFramebufferTexture(framebuffer_.get(), GL_COLOR_ATTACHMENT0, texture, 0);
+  }
+  Mapping mapping = image.format == AQ_FORMAT_R32UI         ? Mapping::kId
+                    : is_single_channel_float(image.format) ? Mapping::kDepth
+                                                            : Mapping::kColor;
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
+  glViewport(0, 0, image.width, image.height);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_SCISSOR_TEST);
+  glUseProgram(program_.get());
+  glUniform1i(glGetUniformLocation(program_.get(), "u_image"), 0);
+  glUniform1i(glGetUniformLocation(program_.get(), "u_ids"), 1);
+  glUniform1i(glGetUniformLocation(program_.get(), "u_mapping"), static_cast<int>(mapping));
+  glUniform1i(glGetUniformLocation(program_.get(), "u_channel"), channel_);
+  glUniform1i(glGetUniformLocation(program_.get(), "u_srgb"), srgb_ ? 1 : 0);
+  glUniform1f(glGetUniformLocation(program_.get(), "u_gain"), std::exp2(exposure_));
+  glUniform2f(glGetUniformLocation(program_.get(), "u_range"), range_[0], range_[1]);
+  glBindTextureUnit(mapping == Mapping::kId ? 1 : 0, image.texture);
+  if (image.format == AQ_FORMAT_DEPTH32F) {
+    glTextureParameteri(image.texture, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+  }
+  glBindVertexArray(vertex_array_.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glBindTextureUnit(0, 0);
+  glBindTextureUnit(1, 0);
+  glUseProgram(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+  display_stale_ = false;
+}
+
+void Viewer::draw(EditorState& state) {
+  // Toolbar.
+  auto shown = state.shown_output();
+  ImGui::TextUnformatted(shown ? shown->str().c_str() : "(no output)");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("<")) actions::cycle_output(state, -1);
+  ImGui::SameLine();
+  if (ImGui::SmallButton(">")) actions::cycle_output(state, +1);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("next output (key: C, Shift+C back)");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("fit", fit_)) fit_ = true;
+  ImGui::SameLine();
+  if (ImGui::RadioButton("1:1", !fit_)) fit_ = false;
+  if (result_) {
+    const aq_image& image = result_->image;
+    ImGui::SameLine();
+    ImGui::TextDisabled("%dx%d %s  %.1f ms", image.width, image.height, format_name(image.format),
+                        last_ms_);
+    bool single = is_single_channel_float(image.format);
+    if (image.format == AQ_FORMAT_R32UI) {
+      ImGui::TextDisabled("object ids: one colour per id, 0 black");
+    } else if (single) {
+      ImGui::SetNextItemWidth(220);
+      if (ImGui::DragFloatRange2("depth range", &range_[0], &range_[1], 0.01f)) {
+        range_from_image_ = false;
+        display_stale_ = true;
+      }
+      ImGui::SameLine();
+      if (ImGui::SmallButton("auto")) {
+        range_from_image_ = true;
+        measure_range();
+        display_stale_ = true;
+      }
+    } else {
+      const char* channels[] = {"rgb", "r", "g", "b", "a"};
+      ImGui::SetNextItemWidth(70);
+      if (ImGui::Combo("##channel", &channel_, channels, 5)) display_stale_ = true;
+      ImGui::SameLine();
+      ImGui::SetNextItemWidth(120);
+      if (ImGui::SliderFloat("exposure", &exposure_, -8.0f, 8.0f, "%.1f")) display_stale_ = true;
+      ImGui::SameLine();
+      if (ImGui::Checkbox("sRGB", &srgb_)) display_stale_ = true;
+    }
+  }
+  if (!error_.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+    ImGui::TextWrapped("%s", error_.c_str());
+    ImGui::PopStyleColor();
+  }
+  if (!result_) return;
+  if (display_stale_) render_display_texture();
+  if (!display_) return;
+
+  const aq_image& image = result_->image;
+  ImVec2 avail = ImGui::GetContentRegionAvail();
+  avail.y -= ImGui::GetTextLineHeightWithSpacing();  // the probe line below
+  float scale = 1.0f;
+  if (fit_) {
+    scale = std::min(avail.x / image.width, avail.y / image.height);
+    scale = std::max(scale, 0.01f);
+  }
+  ImVec2 size(image.width * scale, image.height * scale);
+  ImGui::BeginChild("##viewer_image", ImVec2(0, avail.y), false,
+                    fit_ ? ImGuiWindowFlags_None : ImGuiWindowFlags_HorizontalScrollbar);
+  ImVec2 top_left = ImGui::GetCursorScreenPos();
+  // The display texture has row 0 at the bottom: flip v.
+  ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(display_.get())), size,
+               ImVec2(0, 1), ImVec2(1, 0));
+  bool hovered = ImGui::IsItemHovered();
+  ImGui::EndChild();
+
+  if (hovered) {
+    ImVec2 mouse = ImGui::GetMousePos();
+    int x = static_cast<int>((mouse.x - top_left.x) / scale);
+    int y = image.height - 1 - static_cast<int>((mouse.y - top_left.y) / scale);
+    if (x >= 0 && y >= 0 && x < image.width && y < image.height) {
+      char line[160];
+      if (image.format == AQ_FORMAT_R32UI) {
+        GLuint id = 0;
+        glGetTextureSubImage(image.texture, 0, x, y, 0, 1, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                             sizeof id, &id);
+        std::snprintf(line, sizeof line, "(%d, %d)  id %u", x, y, id);
+      } else if (is_single_channel_float(image.format)) {
+        float v = 0;
+        GLenum format = image.format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : GL_RED;
+        glGetTextureSubImage(image.texture, 0, x, y, 0, 1, 1, 1, format, GL_FLOAT, sizeof v, &v);
+        std::snprintf(line, sizeof line, "(%d, %d)  %.6g", x, y, v);
+      } else {
+        float v[4] = {0, 0, 0, 0};
+        glGetTextureSubImage(image.texture, 0, x, y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof v, v);
+        std::snprintf(line, sizeof line, "(%d, %d)  r %.4f  g %.4f  b %.4f  a %.4f", x, y, v[0],
+                      v[1], v[2], v[3]);
+      }
+      ImGui::TextUnformatted(line);
+      return;
+    }
+  }
+  ImGui::TextDisabled("hover the image for pixel values (row 0 is the bottom)");
+}
+
+}  // namespace aq::editor

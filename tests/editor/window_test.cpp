@@ -1,0 +1,185 @@
+// The real editor window under Xvfb, in scripted mode: open a copy of graphs/underwater.json
+// (graphs/tint.json while the flagship graph is not in the tree), run edits through the same
+// actions the mouse uses (add, link, a refused link, parameter changes, move, undo, redo,
+// select an output to view, save), then check the saved graph and the screenshot.
+#include <aquarelle/core/color.h>
+#include <aquarelle/core/image_io.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "support/harness.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kWidth = 1024;
+constexpr int kHeight = 640;
+
+bool have_xvfb() {
+  return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+}
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// The first node of `type` in the graph, or "".
+std::string node_of_type(const nlohmann::json& graph, const std::string& type) {
+  for (const auto& [id, node] : graph["nodes"].items()) {
+    if (node.value("type", "") == type) return id;
+  }
+  return "";
+}
+
+class EditorWindowTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb)";
+    dir_ = fs::temp_directory_path() /
+           ("aq_editor_window_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!dir_.empty() && !HasFailure()) fs::remove_all(dir_);
+  }
+
+  // Runs `aquarelle edit` under xvfb-run; returns the exit status, stderr in `log`.
+  int run_editor(const std::string& args, std::string* log) {
+    fs::path log_path = dir_ / "editor.log";
+    std::string command =
+        "cd '" + dir_.string() + "' && xvfb-run -a -s '-screen 0 1600x1200x24' '" +
+        std::string(AQ_APP_PATH) + "' edit " + args + " > '" + log_path.string() + "' 2>&1";
+    int status = std::system(command.c_str());
+    std::ifstream in(log_path);
+    std::stringstream text;
+    text << in.rdbuf();
+    *log = text.str();
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(EditorWindowTest, ScriptedEditsSaveAndScreenshot) {
+  fs::path source = aq::test::source_path("graphs/underwater.json");
+  if (!fs::exists(source)) source = aq::test::source_path("graphs/tint.json");
+  ASSERT_TRUE(fs::exists(source)) << source;
+  const fs::path graph_path = dir_ / "graph.json";
+  fs::copy_file(source, graph_path);
+  const nlohmann::json original = read_json(graph_path);
+  const std::string output = original["output"].get<std::string>();
+  const std::string scene = node_of_type(original, "scene");
+  const std::string gbuffer = node_of_type(original, "gbuffer");
+  ASSERT_FALSE(scene.empty()) << "the test graph needs a scene node";
+  ASSERT_FALSE(gbuffer.empty()) << "the test graph needs a gbuffer node";
+
+  nlohmann::json script = {
+      {"actions",
+       {
+           {{"do", "add_node"}, {"type", "blur"}, {"id", "soft"}, {"at", {900, 40}}},
+           {{"do", "link"}, {"from", output}, {"to", "soft.image"}},
+           {{"do", "link"},
+            {"from", scene + ".scene"},
+            {"to", "soft.image"},
+            {"expect", "refused"}},
+           {{"do", "link"},
+            {"from", "soft.image"},
+            {"to", output.substr(0, output.find('.')) + ".image"},
+            {"expect", "refused"}},
+           {{"do", "set_param"}, {"node", "soft"}, {"param", "sigma"}, {"value", 2.5}},
+           {{"do", "set_param"},
+            {"node", "soft"},
+            {"param", "sigma"},
+            {"value", -1.0},
+            {"expect", "refused"}},
+           {{"do", "move"}, {"node", "soft"}, {"to", {950, 60}}},
+           {{"do", "add_node"}, {"type", "vignette"}, {"id", "extra"}},
+           {{"do", "undo"}},
+           {{"do", "redo"}},
+           {{"do", "undo"}},
+           {{"do", "link"}, {"from", gbuffer + ".depth"}, {"to", "soft.depth"}},
+           {{"do", "set_output"}, {"output", "soft.image"}},
+           {{"do", "select"}, {"nodes", {"soft"}}},
+           {{"do", "select_output"}, {"output", gbuffer + ".depth"}},
+           {{"do", "fit"}},
+           {{"do", "save"}},
+       }}};
+  std::ofstream(dir_ / "script.json") << script.dump(2);
+
+  std::string log;
+  int status = run_editor("graph.json --script script.json --screenshot shot.png --quit --size " +
+                              std::to_string(kWidth) + "x" + std::to_string(kHeight),
+                          &log);
+  ASSERT_EQ(status, 0) << log;
+  EXPECT_NE(log.find("refused as expected: cannot link " + scene + ".scene"), std::string::npos)
+      << log;
+  EXPECT_NE(log.find("cycle"), std::string::npos) << log;
+
+  // The saved graph: the new node, its links and parameter, its position; the undone node gone;
+  // every original id kept.
+  nlohmann::json saved = read_json(graph_path);
+  ASSERT_TRUE(saved["nodes"].contains("soft")) << saved.dump(2);
+  EXPECT_EQ(saved["nodes"]["soft"]["type"], "blur");
+  EXPECT_EQ(saved["nodes"]["soft"]["inputs"]["image"], output);
+  EXPECT_EQ(saved["nodes"]["soft"]["inputs"]["depth"], gbuffer + ".depth");
+  EXPECT_DOUBLE_EQ(saved["nodes"]["soft"]["params"]["sigma"].get<double>(), 2.5);
+  EXPECT_FALSE(saved["nodes"].contains("extra"));
+  EXPECT_EQ(saved["output"], "soft.image");
+  EXPECT_EQ(saved["editor"]["positions"]["soft"], nlohmann::json::array({950, 60}));
+  for (const auto& [id, node] : original["nodes"].items()) {
+    ASSERT_TRUE(saved["nodes"].contains(id)) << id;
+    EXPECT_EQ(saved["nodes"][id]["type"], node["type"]) << id;
+    EXPECT_TRUE(saved["editor"]["positions"].contains(id)) << "no position saved for " << id;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "graph.autosave.json"));
+
+  // The screenshot: the window's size, and a real picture (canvas, nodes, the viewed depth).
+  auto config = aq::ColorConfig::load();
+  ASSERT_TRUE(config.ok()) << config.message();
+  auto shot = aq::read_image((dir_ / "shot.png").string(), *config);
+  ASSERT_TRUE(shot.ok()) << shot.message();
+  EXPECT_EQ(shot->width, kWidth);
+  EXPECT_EQ(shot->height, kHeight);
+  std::set<uint32_t> colours;
+  for (size_t i = 0; i + 3 < shot->pixels.size(); i += 4) {
+    auto q = [&](int c) { return static_cast<uint32_t>(shot->pixels[i + c] * 255.0f + 0.5f); };
+    colours.insert(q(0) << 16 | q(1) << 8 | q(2));
+  }
+  EXPECT_GT(colours.size(), 50u) << "the screenshot looks blank";
+}
+
+TEST_F(EditorWindowTest, UnexpectedRefusalFailsTheScript) {
+  fs::copy_file(aq::test::source_path("graphs/tint.json"), dir_ / "graph.json");
+  std::ofstream(dir_ / "script.json")
+      << R"([{"do": "link", "from": "scene.scene", "to": "tint.image"}])";
+  std::string log;
+  EXPECT_EQ(run_editor("graph.json --script script.json --quit --size 320x240", &log), 1) << log;
+  EXPECT_NE(log.find("incompatible port types"), std::string::npos) << log;
+  // Nothing was saved: the file is unchanged.
+  EXPECT_EQ(read_json(dir_ / "graph.json"), read_json(aq::test::source_path("graphs/tint.json")));
+}
+
+TEST_F(EditorWindowTest, UnknownActionIsAnError) {
+  std::ofstream(dir_ / "script.json") << R"([{"do": "fly"}])";
+  std::string log;
+  EXPECT_EQ(run_editor("new.json --script script.json --quit --size 320x240", &log), 1) << log;
+  EXPECT_NE(log.find("unknown action 'fly'"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir_ / "new.json"));
+}
+
+}  // namespace
