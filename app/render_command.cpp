@@ -185,6 +185,17 @@ int run_render(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", format_problems(problems).c_str());
     return kExitBadInput;
   }
+  if (frames.empty() && output.find('#') == std::string::npos &&
+      settings.last_frame > settings.first_frame) {
+    // One output file and no explicit range: a still of the first frame, like a viewer.
+    if (!quiet) {
+      std::fprintf(stderr,
+                   "aquarelle: rendering frame %d only; use --frames %d-%d and `####` in the "
+                   "output name for the whole range\n",
+                   settings.first_frame, settings.first_frame, settings.last_frame);
+    }
+    settings.last_frame = settings.first_frame;
+  }
   const int first = settings.first_frame, last = settings.last_frame;
   if (last > first && output.find('#') == std::string::npos) {
     std::fprintf(stderr,
