@@ -42,14 +42,20 @@ constexpr aq_param_desc kParams[] = {
     aq::bool_param("normalize_energy", true,
                    "rescale so the tile's mean is exactly 1 (corrects clamp and sampling loss)")};
 
-// Bound of |aq_perlin3| (improved-gradient Perlin noise stays within about +-1.04).
-constexpr double kNoiseBound = 1.1;
+// A run of grid cells along one axis: [first, first + count).
+struct CellRange {
+  int first = 0;
+  int count = 0;
+};
 
-// Largest horizontal travel of a refracted ray, in tiles: the ray turns from vertical by at
-// most 90deg - asin(eta) (grazing incidence), i.e. tan = sqrt(1 - eta^2) / eta per unit drop.
-double max_displacement(double eta, double depth, double amplitude) {
-  eta = std::clamp(eta, 1e-3, 1.0);
-  return std::sqrt(1.0 - eta * eta) / eta * (depth + kNoiseBound * amplitude);
+// The cells of a copy shifted by `shift` tiles whose refracted triangles can reach the tile
+// [0, grid] along one axis: the cell [c, c + 1] moved by shift * grid and by at most `reach`
+// cells must overlap it. One cell of margin on each side keeps rounding harmless.
+CellRange cells_reaching_tile(int shift, int grid, double reach) {
+  const double offset = double(shift) * grid;
+  const int first = std::max(0, static_cast<int>(std::floor(-offset - reach - 1.0)) - 1);
+  const int last = std::min(grid - 1, static_cast<int>(std::ceil(grid - offset + reach)) + 1);
+  return {first, last - first + 1};
 }
 
 struct Caustics {
@@ -77,7 +83,14 @@ struct Caustics {
     if (!ctx.output(0, resolution, resolution, ctx.working_format(), &out)) return AQ_ERROR;
 
     if (!refract_grid(ctx, displacement, grid, depth, amplitude, eta)) return AQ_ERROR;
-    const double reach = max_displacement(eta, depth, amplitude);
+    // Measured rather than bounded: the analytic bound (grazing refraction) is ~20x too large
+    // for ordinary waves and would make the wrap copies draw most of the grid several times.
+    const double reach = largest_displacement(displacement);
+    if (!std::isfinite(reach)) {
+      return ctx.fail("caustics: the refracted grid has non-finite positions (depth " +
+                      std::to_string(depth) + ", amplitude " + std::to_string(amplitude) +
+                      "); this is a bug, please report it with these parameters");
+    }
     if (!accumulate(ctx, displacement, accumulated, grid, reach)) return AQ_ERROR;
     double scale = 1.0;
     if (ctx.param_bool(kNormalizeEnergy)) {
@@ -119,16 +132,13 @@ struct Caustics {
       empty_vertex_array.create();
       vertex_array_generation = ctx.raw()->gl_generation;
     }
-    // Copies of the grid one tile apart, as many rings as the largest displacement needs.
-    const int rings = reach > 0.0 ? static_cast<int>(std::ceil(reach)) : 0;
-    const int copies = (2 * rings + 1) * (2 * rings + 1);
-
     glUseProgram(program);
     aq::bind_texture(program, "u_displacement", 0, displacement);
     aq::set_int(program, "u_grid", grid);
-    aq::set_int(program, "u_rings", rings);
-    aq::set_float(program, "u_reach", reach * grid);
     aq::set_float(program, "u_max_intensity", ctx.param_float(kMaxIntensity));
+    const GLint first_cell_location = glGetUniformLocation(program, "u_first_cell");
+    const GLint columns_location = glGetUniformLocation(program, "u_columns");
+    const GLint shift_location = glGetUniformLocation(program, "u_shift");
 
     const GLboolean blend_was_on = glIsEnabled(GL_BLEND);
     const GLboolean cull_was_on = glIsEnabled(GL_CULL_FACE);
@@ -139,13 +149,41 @@ struct Caustics {
     glDisable(GL_CULL_FACE);  // folded triangles are back-facing and must count too
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(empty_vertex_array.get());
-    glDrawArraysInstanced(GL_TRIANGLES, 0, 6 * grid * grid, copies);
+    // Copies of the grid shifted by whole tiles, as many rings as the largest displacement
+    // needs; of each copy only the cells whose triangles can reach the tile.
+    const double reach_cells = reach * grid;
+    const int rings = reach > 0.0 ? static_cast<int>(std::ceil(reach + 2.0 / grid)) : 0;
+    for (int sy = -rings; sy <= rings; ++sy) {
+      const CellRange rows = cells_reaching_tile(sy, grid, reach_cells);
+      if (rows.count <= 0) continue;
+      for (int sx = -rings; sx <= rings; ++sx) {
+        const CellRange columns = cells_reaching_tile(sx, grid, reach_cells);
+        if (columns.count <= 0) continue;
+        glUniform2i(first_cell_location, columns.first, rows.first);
+        glUniform1i(columns_location, columns.count);
+        glUniform2i(shift_location, sx, sy);
+        glDrawArrays(GL_TRIANGLES, 0, 6 * columns.count * rows.count);
+      }
+    }
     glBindVertexArray(0);
     if (!blend_was_on) glDisable(GL_BLEND);
     if (cull_was_on) glEnable(GL_CULL_FACE);
     if (depth_was_on) glEnable(GL_DEPTH_TEST);
     aq::unbind_textures(1);
     return true;
+  }
+
+  // Largest |displacement| component over the grid, in tiles (NaN if any is not finite).
+  static double largest_displacement(const aq_image& image) {
+    std::vector<float> rg(static_cast<size_t>(image.width) * image.height * 2);
+    glGetTextureImage(image.texture, 0, GL_RG, GL_FLOAT,
+                      static_cast<GLsizei>(rg.size() * sizeof(float)), rg.data());
+    double largest = 0.0;
+    for (float v : rg) {
+      if (!std::isfinite(v)) return std::nan("");
+      largest = std::max(largest, double(std::abs(v)));
+    }
+    return largest;
   }
 
   // Mean of the red channel over the tile, summed in double on the CPU.

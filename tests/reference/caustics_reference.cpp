@@ -13,8 +13,6 @@ namespace {
 constexpr int kOctaves = 3;
 // Offset of octave k along the time axis so the octaves are not aligned at t = 0.
 constexpr double kOctaveTimeOffset = 17.0;
-// Bound of |aq_perlin3| (improved-gradient Perlin noise stays within about +-1.04).
-constexpr double kNoiseBound = 1.1;
 
 int wrap_index(int i, int n) {
   const int m = i % n;
@@ -64,13 +62,6 @@ Displacement floor_displacement(double x, double y, const CausticsParams& params
   // Down the refracted ray from the surface (height h) to the floor (height -depth).
   const double drop = std::max(params.depth + w.height, 0.0);
   return {tx * drop / -tz, ty * drop / -tz};
-}
-
-double max_displacement(const CausticsParams& params) {
-  // The ray turns away from vertical by at most 90deg - asin(eta) (grazing incidence), so the
-  // horizontal travel per unit drop is at most tan of that: sqrt(1 - eta^2) / eta.
-  const double eta = std::clamp(params.eta, 1e-3, 1.0);
-  return std::sqrt(1.0 - eta * eta) / eta * (params.depth + kNoiseBound * params.amplitude);
 }
 
 ImageF caustics_by_grid(const CausticsParams& params, int grid) {

@@ -37,9 +37,6 @@ WaterSample water_surface(double x, double y, const CausticsParams& params);
 // Where the vertical light ray through (x, y) meets the floor, minus (x, y).
 Displacement floor_displacement(double x, double y, const CausticsParams& params);
 
-// Bound on |displacement| per axis for any wave (used to size the wrap copies).
-double max_displacement(const CausticsParams& params);
-
 // Grid refraction with `grid` cells per side: every refracted triangle adds
 // min(original area / |refracted area|, max_intensity) to the pixel centres it covers (wrapped
 // around the tile). With grid >> resolution this converges to the point-sampled caustic

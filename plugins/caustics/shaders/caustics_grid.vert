@@ -1,12 +1,14 @@
 // Pass 2 of `caustics`: draws the refracted grid, 6 vertices (2 triangles) per cell, no vertex
 // buffer. Each vertex fetches its triangle's three refracted corners and passes the triangle's
-// intensity, original area / refracted area, as a flat value. Instances are copies of the
-// whole grid shifted by whole tiles so that triangles refracted across an edge of the tile
-// reappear on the opposite side (the texture wraps, nothing is left unrendered).
+// intensity, original area / refracted area, as a flat value. One draw covers a rectangle of
+// cells, shifted by whole tiles (u_shift), so that triangles refracted across an edge of the
+// tile reappear on the opposite side (the texture wraps, nothing is left unrendered); the host
+// side draws only the cells of each shifted copy that can reach the tile.
 uniform sampler2D u_displacement;  // u_grid x u_grid, rg = displacement in tile widths
 uniform int u_grid;
-uniform int u_rings;            // copies at tile offsets -u_rings..u_rings on each axis
-uniform float u_reach;          // bound on |displacement| per axis, in grid cells
+uniform ivec2 u_first_cell;     // the rectangle of cells this draw covers
+uniform int u_columns;
+uniform ivec2 u_shift;          // copy offset in whole tiles
 uniform float u_max_intensity;  // clamp of a triangle's intensity (degenerate triangles)
 
 flat out float v_intensity;
@@ -23,20 +25,7 @@ void main() {
   int cell_index = gl_VertexID / 6;
   int corner = gl_VertexID % 6;
   int first = corner < 3 ? 0 : 3;
-  ivec2 cell = ivec2(cell_index % u_grid, cell_index / u_grid);
-  int side = 2 * u_rings + 1;
-  ivec2 copy = ivec2(gl_InstanceID % side, gl_InstanceID / side) - ivec2(u_rings);
-  ivec2 shift = copy * u_grid;
-
-  // A copy of this cell that cannot reach the tile is dropped before any fetch (the same
-  // decision for the three vertices: it depends on the cell and the copy only).
-  vec2 low = vec2(cell + shift) - u_reach;
-  vec2 high = vec2(cell + shift + 1) + u_reach;
-  if (any(greaterThan(low, vec2(u_grid))) || any(lessThan(high, vec2(0.0)))) {
-    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
-    v_intensity = 0.0;
-    return;
-  }
+  ivec2 cell = u_first_cell + ivec2(cell_index % u_columns, cell_index / u_columns);
 
   ivec2 v0 = cell + kCorner[first];
   ivec2 v1 = cell + kCorner[first + 1];
@@ -55,6 +44,6 @@ void main() {
   // Integer part first, then the displacement: a vertex shared by two copies gets bit-identical
   // coordinates in both, so the rasterizer's tie rule leaves no crack and no double cover.
   ivec2 v = cell + kCorner[corner];
-  vec2 position = vec2(v + shift) + displacement_of(v);
+  vec2 position = vec2(v + u_shift * u_grid) + displacement_of(v);
   gl_Position = vec4(position * (2.0 / float(u_grid)) - 1.0, 0.0, 1.0);
 }
