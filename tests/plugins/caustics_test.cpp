@@ -241,6 +241,16 @@ TEST(Caustics, ConvergesToTheReferenceAsTheGridIsRefined) {
   EXPECT_LT(errors.back(), 0.08);
 }
 
+TEST(Caustics, DraftQualityUsesAQuarterOfTheGrid) {
+  CausticsParams p = small(64, 128);
+  aq::test::RenderOptions draft;
+  draft.quality = "draft";
+  auto got = aq::test::run_node("caustics", {}, to_json(p, false), draft);
+  ASSERT_TRUE(got.ok()) << got.message();
+  EXPECT_LT(mean_abs_red(*got, aq::reference::caustics_by_grid(p, 32)), 0.01);
+  EXPECT_GT(mean_abs_red(*got, aq::reference::caustics_by_grid(p, 128)), 0.05);
+}
+
 TEST(Caustics, HalfPrecisionMatchesFloat) {
   const CausticsParams p = small(64, 64);
   const ImageF f = run(p, false, "float");
