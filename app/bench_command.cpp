@@ -1,13 +1,288 @@
-// `aquarelle bench`: placeholder entry until the benchmark lands (issue 7).
-#include <cstdio>
+// `aquarelle bench`: speed against error. Times a full-screen copy pass as the yardstick, then
+// every node of a graph (every node running, and static nodes cached), then sweeps the quality
+// settings of the nodes against references and writes a table, JSON, CSV and a plot.
+#include <aquarelle/core/evaluator.h>
 
+#include <cstdio>
+#include <set>
+
+#include "bench_copy_pass.h"
+#include "bench_pipeline.h"
+#include "bench_plot.h"
+#include "bench_report.h"
+#include "bench_sweep.h"
 #include "commands.h"
+#include "session.h"
 
 namespace aq::app {
 
-int run_bench(int, char**) {
-  std::fprintf(stderr, "aquarelle bench: not built yet in this version\n");
-  return kExitEnvironment;
+namespace {
+
+constexpr const char* kBenchHelp =
+    R"(usage: aquarelle bench [GRAPH] [options]
+
+Measures speed against error. First times a full-screen copy pass of the graph's size and
+format (the yardstick), then each node of GRAPH over N frames after warm-up (median GPU and CPU
+time with their spread), once with every node running each frame and once with static nodes
+cached, and reports the frame cost as copy passes per frame. Then sweeps the quality settings
+of the graph's nodes (blur method and taps, caustic grid, erode/dilate size and footprint,
+shadow map size, half or float precision) measuring time and error (max abs, mean abs, PSNR)
+against a reference: the double-precision CPU references of tests/reference where they exist,
+else the node at its highest quality in float; and the graph's quality presets against a float
+reference render.
+
+  GRAPH                   graph file (default: graphs/underwater.json)
+  --size WxH              render size (default 256x144; the issue's figure is 1280x720)
+  --frames N              timed frames per measurement (default 5; sweeps use min(N, 3))
+  --warmup N              untimed frames before timing (default 2)
+  --node TYPE             sweep only this node type (repeatable); a type not in the graph is
+                          swept alone on the fixed test input when it has a CPU reference
+  --no-sweep              timing only, no sweeps
+  --precision half|float  working precision (default: the graph's settings.precision)
+  --csv OUT.csv           write every measurement as CSV
+  --plot OUT.png          plot time against mean abs error, one curve per sweep
+  --json                  print the report as JSON instead of the table
+  --gl auto|egl|osmesa    GL backend (default auto)
+  -q, --quiet             no progress messages on stderr
+
+Exit codes: 0 ok, 1 bad input (graph, arguments, files), 2 no usable GL or plugins.
+)";
+
+struct Arguments {
+  std::string graph_path = "graphs/underwater.json";
+  std::string size = "256x144";
+  int frames = 5;
+  int warmup = 2;
+  std::set<std::string> node_types;
+  bool sweep = true;
+  std::string precision;
+  std::string csv;
+  std::string plot;
+  bool json = false;
+  std::string gl = "auto";
+  bool quiet = false;
+};
+
+// Parses the arguments; returns an exit code when the command should stop (help, error).
+std::optional<int> parse_arguments(int argc, char** argv, Arguments* args) {
+  bool graph_given = false;
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    auto value = [&]() -> std::optional<std::string> {
+      auto v = option_value(argc, argv, &i);
+      if (!v.ok()) {
+        std::fprintf(stderr, "aquarelle bench: %s\n", v.message().c_str());
+        return std::nullopt;
+      }
+      return *v;
+    };
+    auto count = [&](const char* name, int minimum, int* out) -> bool {
+      auto v = value();
+      if (!v) return false;
+      try {
+        size_t used = 0;
+        int n = std::stoi(*v, &used);
+        if (used == v->size() && n >= minimum && n <= 100000) {
+          *out = n;
+          return true;
+        }
+      } catch (const std::exception&) {
+      }
+      std::fprintf(stderr, "aquarelle bench: %s '%s': expected a whole number >= %d\n", name,
+                   v->c_str(), minimum);
+      return false;
+    };
+    if (arg == "--help" || arg == "-h") {
+      std::fputs(kBenchHelp, stdout);
+      return kExitOk;
+    } else if (arg == "--size") {
+      auto v = value();
+      if (!v) return kExitBadInput;
+      args->size = *v;
+    } else if (arg == "--frames") {
+      if (!count("--frames", 1, &args->frames)) return kExitBadInput;
+    } else if (arg == "--warmup") {
+      if (!count("--warmup", 0, &args->warmup)) return kExitBadInput;
+    } else if (arg == "--node") {
+      auto v = value();
+      if (!v) return kExitBadInput;
+      args->node_types.insert(*v);
+    } else if (arg == "--no-sweep") {
+      args->sweep = false;
+    } else if (arg == "--precision") {
+      auto v = value();
+      if (!v) return kExitBadInput;
+      if (*v != "half" && *v != "float") {
+        std::fprintf(stderr, "aquarelle bench: --precision must be half or float\n");
+        return kExitBadInput;
+      }
+      args->precision = *v;
+    } else if (arg == "--csv") {
+      auto v = value();
+      if (!v) return kExitBadInput;
+      args->csv = *v;
+    } else if (arg == "--plot") {
+      auto v = value();
+      if (!v) return kExitBadInput;
+      args->plot = *v;
+    } else if (arg == "--json") {
+      args->json = true;
+    } else if (arg == "--gl") {
+      auto v = value();
+      if (!v) return kExitBadInput;
+      args->gl = *v;
+    } else if (arg == "-q" || arg == "--quiet") {
+      args->quiet = true;
+    } else if (!arg.empty() && arg[0] == '-') {
+      std::fprintf(stderr, "aquarelle bench: unknown option '%s' (see --help)\n", arg.c_str());
+      return kExitBadInput;
+    } else if (!graph_given) {
+      args->graph_path = arg;
+      graph_given = true;
+    } else {
+      std::fprintf(stderr, "aquarelle bench: more than one graph given ('%s')\n", arg.c_str());
+      return kExitBadInput;
+    }
+  }
+  return std::nullopt;
+}
+
+void progress(const Arguments& args, const char* what) {
+  if (!args.quiet) std::fprintf(stderr, "aquarelle bench: %s\n", what);
+}
+
+}  // namespace
+
+int run_bench(int argc, char** argv) {
+  Arguments args;
+  if (auto stop = parse_arguments(argc, argv, &args)) return *stop;
+
+  auto backend = parse_backend(args.gl);
+  if (!backend.ok()) {
+    std::fprintf(stderr, "aquarelle bench: --gl: %s\n", backend.message().c_str());
+    return kExitBadInput;
+  }
+  auto plugins = load_plugins(args.quiet);
+  if (!plugins.ok()) {
+    std::fprintf(stderr, "aquarelle bench: %s\n", plugins.message().c_str());
+    return kExitEnvironment;
+  }
+  const Registry& registry = (*plugins)->registry;
+  for (const auto& type : args.node_types) {
+    if (registry.find(type) == nullptr) {
+      std::string names;
+      for (const auto& name : registry.names()) names += (names.empty() ? "" : ", ") + name;
+      std::fprintf(stderr, "aquarelle bench: --node '%s': no such node type (installed: %s)\n",
+                   type.c_str(), names.c_str());
+      return kExitBadInput;
+    }
+  }
+  ReadResult read = read_graph_file(args.graph_path, registry);
+  if (!read.ok()) {
+    std::fprintf(stderr, "%s\n", format_problems(read.problems).c_str());
+    return kExitBadInput;
+  }
+  Graph graph = std::move(read.graph);
+  if (auto s = parse_size(args.size, &graph.settings.width, &graph.settings.height); !s.ok()) {
+    std::fprintf(stderr, "aquarelle bench: %s\n", s.message().c_str());
+    return kExitBadInput;
+  }
+  if (!args.precision.empty()) graph.settings.precision = args.precision;
+
+  auto context = create_headless_context(*backend);
+  if (!context.ok()) {
+    std::fprintf(stderr, "aquarelle bench: %s\n", context.message().c_str());
+    return kExitEnvironment;
+  }
+  (*context)->activate();
+
+  BenchReport report;
+  report.graph = args.graph_path;
+  report.gl = (*context)->description();
+  report.width = graph.settings.width;
+  report.height = graph.settings.height;
+  report.precision = graph.settings.precision;
+  report.frames = args.frames;
+  report.warmup = args.warmup;
+  report.cpu_references = have_cpu_references();
+  if (!args.quiet) std::fprintf(stderr, "aquarelle bench: %s\n", report.gl.c_str());
+
+  progress(args, "timing a full-screen copy pass");
+  const uint32_t format =
+      graph.settings.precision == "float" ? AQ_FORMAT_RGBA32F : AQ_FORMAT_RGBA16F;
+  auto copy = time_copy_pass(report.width, report.height, format, std::max(args.frames, 9),
+                             args.warmup + 1);
+  if (!copy.ok()) {
+    std::fprintf(stderr, "aquarelle bench: %s\n", copy.message().c_str());
+    return kExitEnvironment;
+  }
+  report.copy_pass = *copy;
+
+  for (bool retain : {false, true}) {
+    progress(args, retain ? "timing the graph with static nodes cached"
+                          : "timing the graph with every node running");
+    TimingPlan plan;
+    plan.frames = args.frames;
+    plan.warmup = std::max(args.warmup, 1);
+    plan.retain_outputs = retain;
+    auto timing = time_pipeline(**context, registry, graph, plan);
+    if (!timing.ok()) {
+      std::fprintf(stderr, "aquarelle bench: %s: %s\n", args.graph_path.c_str(),
+                   timing.message().c_str());
+      return kExitBadInput;
+    }
+    (retain ? report.cached : report.every_node_runs) = *timing;
+  }
+
+  if (args.sweep) {
+    SweepPlan plan;
+    plan.width = report.width;
+    plan.height = report.height;
+    plan.frames = std::min(args.frames, 3);
+    plan.warmup = 1;
+    std::set<std::string> types = args.node_types;
+    if (types.empty()) {
+      for (const auto& [id, node] : graph.nodes) types.insert(node.type);
+    }
+    plan.pipeline = args.node_types.empty();
+    progress(args, report.cpu_references ? "sweeping quality settings against CPU references"
+                                         : "no CPU references in this build");
+    auto reference_sweeps = run_reference_sweeps(**context, registry, graph, plan, types);
+    if (!reference_sweeps.ok()) {
+      std::fprintf(stderr, "aquarelle bench: %s\n", reference_sweeps.message().c_str());
+      return kExitBadInput;
+    }
+    report.sweeps = *reference_sweeps;
+    progress(args, "sweeping quality settings at the graph's output and its presets");
+    auto graph_sweeps = run_graph_sweeps(**context, registry, graph, plan, types);
+    if (!graph_sweeps.ok()) {
+      std::fprintf(stderr, "aquarelle bench: %s\n", graph_sweeps.message().c_str());
+      return kExitBadInput;
+    }
+    report.sweeps.insert(report.sweeps.end(), graph_sweeps->begin(), graph_sweeps->end());
+  }
+
+  if (args.json) {
+    std::printf("%s\n", report_json(report).dump(2).c_str());
+  } else {
+    print_report(report, stdout);
+  }
+  if (!args.csv.empty()) {
+    if (auto s = write_report_csv(report, args.csv); !s.ok()) {
+      std::fprintf(stderr, "aquarelle bench: --csv: %s\n", s.message().c_str());
+      return kExitBadInput;
+    }
+  }
+  if (!args.plot.empty()) {
+    char title[160];
+    std::snprintf(title, sizeof(title), "%s %dx%d %s", args.graph_path.c_str(), report.width,
+                  report.height, report.precision.c_str());
+    if (auto s = write_plot(report.sweeps, title, args.plot); !s.ok()) {
+      std::fprintf(stderr, "aquarelle bench: --plot: %s\n", s.message().c_str());
+      return kExitBadInput;
+    }
+  }
+  return kExitOk;
 }
 
 }  // namespace aq::app

@@ -1,0 +1,153 @@
+// Times a full-screen copy pass with GL timestamp queries (see bench_copy_pass.h). The GL is
+// written out here rather than borrowed from the evaluator so that the yardstick is exactly
+// one draw with one texture read per pixel and nothing else.
+#include "bench_copy_pass.h"
+
+#include <aquarelle/core/gl_objects.h>
+#include <aquarelle/plugin.h>
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace aq::app {
+
+namespace {
+
+constexpr int kCopiesPerSample = 4;
+
+constexpr const char* kVertexShader = R"(#version 450 core
+out vec2 v_uv;
+void main() {
+  // One triangle covering the viewport: (-1,-1), (3,-1), (-1,3).
+  vec2 corner = vec2(float((gl_VertexID & 1) << 2), float((gl_VertexID & 2) << 1)) - 1.0;
+  v_uv = corner * 0.5 + 0.5;
+  gl_Position = vec4(corner, 0.0, 1.0);
+}
+)";
+
+constexpr const char* kFragmentShader = R"(#version 450 core
+in vec2 v_uv;
+layout(binding = 0) uniform sampler2D u_image;
+layout(location = 0) out vec4 o_color;
+void main() { o_color = texture(u_image, v_uv); }
+)";
+
+Result<gl::Shader> compile(GLenum stage, const char* source) {
+  gl::Shader shader(glCreateShader(stage));
+  glShaderSource(shader.get(), 1, &source, nullptr);
+  glCompileShader(shader.get());
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    char log[2048] = {};
+    glGetShaderInfoLog(shader.get(), sizeof(log), nullptr, log);
+    return make_error(std::string("copy pass shader did not compile: ") + log);
+  }
+  return shader;
+}
+
+Result<gl::Program> link_copy_program() {
+  auto vertex = compile(GL_VERTEX_SHADER, kVertexShader);
+  if (!vertex.ok()) return vertex.error();
+  auto fragment = compile(GL_FRAGMENT_SHADER, kFragmentShader);
+  if (!fragment.ok()) return fragment.error();
+  gl::Program program(glCreateProgram());
+  glAttachShader(program.get(), vertex->get());
+  glAttachShader(program.get(), fragment->get());
+  glLinkProgram(program.get());
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    char log[2048] = {};
+    glGetProgramInfoLog(program.get(), sizeof(log), nullptr, log);
+    return make_error(std::string("copy pass program did not link: ") + log);
+  }
+  return program;
+}
+
+// A texture set up as the pool makes them: clamp-to-edge, linear filtering.
+gl::Texture make_image_texture(int width, int height, GLenum internal_format) {
+  gl::Texture texture = gl::make_texture();
+  glBindTexture(GL_TEXTURE_2D, texture.get());
+  glTexStorage2D(GL_TEXTURE_2D, 1, internal_format, width, height);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  return texture;
+}
+
+}  // namespace
+
+Result<CopyPassTiming> time_copy_pass(int width, int height, uint32_t format, int repetitions,
+                                      int warmup) {
+  if (format != AQ_FORMAT_RGBA16F && format != AQ_FORMAT_RGBA32F) {
+    return make_error("copy pass: format must be RGBA16F or RGBA32F");
+  }
+  const GLenum internal_format = format == AQ_FORMAT_RGBA32F ? GL_RGBA32F : GL_RGBA16F;
+  auto program = link_copy_program();
+  if (!program.ok()) return program.error();
+
+  gl::Texture source = make_image_texture(width, height, internal_format);
+  gl::Texture target = make_image_texture(width, height, internal_format);
+  // Defined contents, so the copy reads numbers rather than whatever memory held.
+  std::vector<float> pixels(static_cast<size_t>(width) * height * 4);
+  for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<float>(i % 251) / 250.0f;
+  glBindTexture(GL_TEXTURE_2D, source.get());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, pixels.data());
+  glBindTexture(GL_TEXTURE_2D, 0);
+
+  gl::Framebuffer framebuffer = gl::make_framebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target.get(), 0);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return make_error("copy pass: the target framebuffer is incomplete");
+  }
+  gl::VertexArray vertex_array = gl::make_vertex_array();
+  gl::Query start = gl::make_query();
+  gl::Query end = gl::make_query();
+
+  glViewport(0, 0, width, height);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(program->get());
+  glBindVertexArray(vertex_array.get());
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, source.get());
+
+  // Each sample is a batch of copies between two glFinish calls, divided by the batch size:
+  // the sync cost is shared, and the copies are rasterised as they would be in a pipeline.
+  std::vector<double> gpu_ms, wall_ms;
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  glFinish();
+  for (int i = 0; i < warmup + repetitions; ++i) {
+    auto wall_start = std::chrono::steady_clock::now();
+    glQueryCounter(start.get(), GL_TIMESTAMP);
+    for (int k = 0; k < kCopiesPerSample; ++k) glDrawArrays(GL_TRIANGLES, 0, 3);
+    glQueryCounter(end.get(), GL_TIMESTAMP);
+    glFinish();
+    auto wall_end = std::chrono::steady_clock::now();
+    GLuint64 begin_ns = 0, end_ns = 0;
+    glGetQueryObjectui64v(start.get(), GL_QUERY_RESULT, &begin_ns);
+    glGetQueryObjectui64v(end.get(), GL_QUERY_RESULT, &end_ns);
+    if (i < warmup) continue;
+    gpu_ms.push_back(
+        end_ns > begin_ns ? static_cast<double>(end_ns - begin_ns) * 1e-6 / kCopiesPerSample : 0.0);
+    wall_ms.push_back(std::chrono::duration<double, std::milli>(wall_end - wall_start).count() /
+                      kCopiesPerSample);
+  }
+
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glBindVertexArray(0);
+  glUseProgram(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (glGetError() != GL_NO_ERROR) return make_error("copy pass: a GL call failed");
+  return CopyPassTiming{summarize(wall_ms), summarize(gpu_ms)};
+}
+
+}  // namespace aq::app

@@ -1,0 +1,166 @@
+// The sweeps of `aquarelle bench` measured at the graph's output: quality parameters of nodes
+// without a CPU reference (against the node at the sweep's highest quality in float), and the
+// quality presets of the whole pipeline (against the pipeline reference render). See
+// bench_sweep.h.
+#include <string>
+
+#include "bench_graph_build.h"
+#include "bench_pipeline.h"
+#include "bench_sweep.h"
+
+namespace aq::app {
+
+namespace {
+
+using json = nlohmann::json;
+
+// A quality parameter with no CPU reference: the values swept and the one taken as reference.
+struct QualityParam {
+  const char* type;
+  const char* param;
+  std::vector<int> values;
+  int reference_value;
+};
+
+const QualityParam kQualityParams[] = {
+    {"shadowmap", "size", {256, 512, 1024, 2048}, 4096},
+};
+
+// The pipeline reference: float precision, final quality, and each approximating node at its
+// most exact setting.
+Graph reference_pipeline(const Graph& graph) {
+  Graph reference = graph;
+  reference.settings.precision = "float";
+  reference.settings.quality = "final";
+  for (auto& [id, node] : reference.nodes) {
+    if (node.type == "blur") {
+      node.params["method"] = "gaussian";
+      node.params["linear_taps"] = false;
+    } else if (node.type == "caustics") {
+      node.params["grid"] = 1024;
+    } else if (node.type == "shadowmap") {
+      node.params["size"] = 4096;
+    }
+  }
+  return reference;
+}
+
+Result<Sweep> quality_param_sweep(GlContext& context, const Registry& registry, const Graph& graph,
+                                  const SweepPlan& plan, const QualityParam& quality,
+                                  const std::string& node_id) {
+  Sweep sweep;
+  sweep.series = std::string(quality.type) + " " + quality.param;
+  sweep.node_type = quality.type;
+  sweep.kind = "highest_quality";
+  sweep.reference = "the graph's output with '" + node_id + "." + quality.param +
+                    "' = " + std::to_string(quality.reference_value) + " in float precision";
+  sweep.time_measure = "node gpu";
+  Evaluator evaluator(context, registry);
+  auto configure = [&](int value, const std::string& precision) {
+    Graph g = graph;
+    g.settings.width = plan.width;
+    g.settings.height = plan.height;
+    g.settings.precision = precision;
+    g.nodes[node_id].params[quality.param] = value;
+    return g;
+  };
+  auto reference = measure_node(evaluator, configure(quality.reference_value, "float"), node_id,
+                                nullptr, 0, plan.warmup);
+  if (!reference.ok()) return make_error("sweep of '" + node_id + "': " + reference.message());
+
+  std::vector<std::pair<int, std::string>> configs;
+  for (int value : quality.values) configs.emplace_back(value, graph.settings.precision);
+  configs.emplace_back(quality.reference_value, "float");
+  for (size_t i = 0; i < configs.size(); ++i) {
+    const auto& [value, precision] = configs[i];
+    auto measured = measure_node(evaluator, configure(value, precision), node_id, nullptr,
+                                 plan.frames, plan.warmup);
+    if (!measured.ok()) return make_error("sweep of '" + node_id + "': " + measured.message());
+    auto error = compare_images(measured->output, reference->output);
+    if (!error.ok()) return make_error("sweep of '" + node_id + "': " + error.message());
+    SweepPoint point;
+    point.setting = std::string(quality.param) + "=" + std::to_string(value);
+    point.params = {{quality.param, value}};
+    point.precision = precision;
+    point.time_ms = measured->gpu_ms;
+    point.cpu_ms = measured->cpu_ms;
+    point.error = *error;
+    point.is_reference = i + 1 == configs.size();
+    sweep.points.push_back(point);
+  }
+  return sweep;
+}
+
+Result<Sweep> preset_sweep(GlContext& context, const Registry& registry, const Graph& graph,
+                           const SweepPlan& plan) {
+  Sweep sweep;
+  sweep.series = "pipeline";
+  sweep.node_type = "pipeline";
+  sweep.kind = "pipeline_reference";
+  sweep.reference =
+      "the whole graph at quality final, float precision, exact blur taps, caustic grid 1024, "
+      "shadow map 4096";
+  sweep.time_measure = "frame wall";
+  Graph sized = graph;
+  sized.settings.width = plan.width;
+  sized.settings.height = plan.height;
+  Evaluator evaluator(context, registry);
+  const Graph reference_graph = reference_pipeline(sized);
+  auto reference = run_frames(evaluator, reference_graph, 0, 1);
+  if (!reference.ok()) return make_error("pipeline reference: " + reference.message());
+
+  struct Config {
+    std::string quality, precision;
+    bool is_reference;
+  };
+  std::vector<Config> configs;
+  for (const char* quality : {"draft", "preview", "final"}) {
+    for (const char* precision : {"half", "float"}) configs.push_back({quality, precision, false});
+  }
+  configs.push_back({"final", "float", true});
+  for (const auto& config : configs) {
+    Graph g = config.is_reference ? reference_graph : sized;
+    g.settings.quality = config.quality;
+    g.settings.precision = config.precision;
+    auto run = run_frames(evaluator, g, plan.frames, plan.warmup);
+    if (!run.ok()) {
+      return make_error("pipeline at quality " + config.quality + ", " + config.precision + ": " +
+                        run.message());
+    }
+    auto error = compare_images(run->first, reference->first);
+    if (!error.ok()) return make_error("pipeline: " + error.message());
+    SweepPoint point;
+    point.setting = config.is_reference ? "reference" : "quality=" + config.quality;
+    point.params = {{"quality", config.quality}};
+    point.precision = config.precision;
+    point.time_ms = run->frame_ms;
+    point.error = *error;
+    point.is_reference = config.is_reference;
+    sweep.points.push_back(point);
+  }
+  return sweep;
+}
+
+}  // namespace
+
+Result<std::vector<Sweep>> run_graph_sweeps(GlContext& context, const Registry& registry,
+                                            const Graph& graph, const SweepPlan& plan,
+                                            const std::set<std::string>& types) {
+  std::vector<Sweep> sweeps;
+  for (const auto& quality : kQualityParams) {
+    if (types.count(quality.type) == 0) continue;
+    const std::string node_id = first_node_of_type(graph, quality.type);
+    if (node_id.empty()) continue;  // measured at the graph's output: needs the node in it
+    auto sweep = quality_param_sweep(context, registry, graph, plan, quality, node_id);
+    if (!sweep.ok()) return sweep.error();
+    sweeps.push_back(*sweep);
+  }
+  if (plan.pipeline) {
+    auto sweep = preset_sweep(context, registry, graph, plan);
+    if (!sweep.ok()) return sweep.error();
+    sweeps.push_back(*sweep);
+  }
+  return sweeps;
+}
+
+}  // namespace aq::app

@@ -1,0 +1,75 @@
+// One configuration's time and error for the sweeps of `aquarelle bench` (see bench_measure.h).
+#include "bench_measure.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace aq::app {
+
+Result<ErrorStats> compare_images(const ImageF& got, const ImageF& reference) {
+  if (got.width != reference.width || got.height != reference.height) {
+    return make_error("output is " + std::to_string(got.width) + "x" + std::to_string(got.height) +
+                      " but the reference is " + std::to_string(reference.width) + "x" +
+                      std::to_string(reference.height));
+  }
+  const int channels = std::min({got.channels, reference.channels, 3});
+  double max_abs = 0, sum_abs = 0, sum_squared = 0;
+  bool finite = true;
+  for (int y = 0; y < got.height; ++y) {
+    for (int x = 0; x < got.width; ++x) {
+      for (int c = 0; c < channels; ++c) {
+        const double d = std::abs(double(got.at(x, y, c)) - double(reference.at(x, y, c)));
+        if (!std::isfinite(d)) {
+          finite = false;
+          continue;
+        }
+        max_abs = std::max(max_abs, d);
+        sum_abs += d;
+        sum_squared += d * d;
+      }
+    }
+  }
+  const double count = double(got.width) * got.height * channels;
+  const double infinity = std::numeric_limits<double>::infinity();
+  ErrorStats stats;
+  stats.max_abs = finite ? max_abs : infinity;
+  stats.mean_abs = finite ? sum_abs / count : infinity;
+  const double mse = sum_squared / count;
+  stats.psnr = !finite ? 0.0 : mse > 0 ? 10.0 * std::log10(1.0 / mse) : infinity;
+  return stats;
+}
+
+Result<NodeMeasurement> measure_node(Evaluator& evaluator, const Graph& graph,
+                                     const std::string& node_id,
+                                     const std::map<std::string, ImageF>* images, int frames,
+                                     int warmup) {
+  NodeMeasurement measurement;
+  std::vector<double> gpu, cpu;
+  for (int i = 0; i < warmup + std::max(frames, 1); ++i) {
+    EvalOptions options;
+    options.frame = graph.settings.first_frame;
+    options.retain_outputs = false;
+    options.measure_gpu_time = true;
+    options.images = images;
+    auto result = evaluator.evaluate(graph, options);
+    if (!result.ok()) return result.error();
+    if (i < warmup) continue;
+    for (const auto& t : evaluator.last_timings()) {
+      if (t.node != node_id) continue;
+      gpu.push_back(t.gpu_ms);
+      cpu.push_back(t.cpu_ms);
+    }
+    if (i + 1 == warmup + std::max(frames, 1)) {
+      auto pixels = evaluator.read_back(*result);
+      if (!pixels.ok()) return pixels.error();
+      measurement.output = std::move(*pixels);
+    }
+  }
+  measurement.gpu_ms = summarize(gpu);
+  measurement.cpu_ms = summarize(cpu);
+  return measurement;
+}
+
+}  // namespace aq::app

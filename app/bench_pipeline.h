@@ -1,0 +1,54 @@
+// Per-node and per-frame timing of a whole graph for `aquarelle bench`, in the two ways a
+// pipeline can run: every node re-runs each frame (outputs are not kept), or unchanged nodes
+// are reused from the previous frame (what an animation with static parts really costs).
+#pragma once
+
+#include <aquarelle/core/evaluator.h>
+#include <aquarelle/core/gl_context.h>
+#include <aquarelle/core/graph.h>
+#include <aquarelle/core/registry.h>
+#include <aquarelle/core/result.h>
+
+#include <string>
+#include <vector>
+
+#include "bench_stats.h"
+
+namespace aq::app {
+
+struct NodeStats {
+  std::string id;
+  std::string type;
+  Spread gpu_ms;  // per frame; 0 on frames where the node was reused
+  Spread cpu_ms;
+  int runs = 0;  // frames (of the timed ones) on which process() ran
+};
+
+struct PipelineTiming {
+  bool retain_outputs = false;
+  std::vector<NodeStats> nodes;  // in evaluation order
+  // Wall time of evaluate() + glFinish with node timing switched off (timer queries make the
+  // CPU wait for each node, which would inflate the frame).
+  Spread frame_ms;
+  Spread node_gpu_sum_ms;  // per frame, the sum of the nodes' GPU times
+};
+
+struct TimingPlan {
+  int frames = 5;  // timed frames
+  int warmup = 2;  // untimed frames first: shader compilation, first allocations
+  bool retain_outputs = false;
+};
+
+// Evaluates frames first_frame, first_frame+1, ... (time-dependent nodes see time advance).
+Result<PipelineTiming> time_pipeline(GlContext& context, const Registry& registry,
+                                     const Graph& graph, const TimingPlan& plan);
+
+// Wall time of evaluate() + glFinish over `frames` frames after `warmup`, with outputs kept
+// between frames (the animation case); the warm-up frame's output is read back to `first`.
+struct FrameRun {
+  Spread frame_ms;
+  ImageF first;  // output at graph.settings.first_frame
+};
+Result<FrameRun> run_frames(Evaluator& evaluator, const Graph& graph, int frames, int warmup);
+
+}  // namespace aq::app

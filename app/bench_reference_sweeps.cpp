@@ -1,0 +1,340 @@
+// The node sweeps of `aquarelle bench` that have a CPU reference: each node runs alone on the
+// fixed test input at every quality setting and precision, and its output is compared with the
+// double-precision implementation in tests/reference/ (see bench_sweep.h).
+#include <chrono>
+#include <memory>
+
+#include "bench_graph_build.h"
+#include "bench_sweep.h"
+
+#ifdef AQ_HAVE_CPU_REFERENCES
+#include "reference/blur.h"
+#include "reference/caustics_reference.h"
+#include "reference/morphology.h"
+#include "reference/tint.h"
+#include "reference/vignette.h"
+#endif
+
+namespace aq::app {
+
+bool have_cpu_references() {
+#ifdef AQ_HAVE_CPU_REFERENCES
+  return true;
+#else
+  return false;
+#endif
+}
+
+#ifndef AQ_HAVE_CPU_REFERENCES
+
+Result<std::vector<Sweep>> run_reference_sweeps(GlContext&, const Registry&, const Graph&,
+                                                const SweepPlan&, const std::set<std::string>&) {
+  return std::vector<Sweep>{};
+}
+
+#else
+
+namespace {
+
+using json = nlohmann::json;
+
+struct Config {
+  std::string setting;
+  json params;
+  std::string precision;
+  std::shared_ptr<const ImageF> reference;
+};
+
+const char* const kPrecisions[] = {"half", "float"};
+
+// Times a CPU reference computation, adding its milliseconds to `total_ms`.
+template <typename F>
+std::shared_ptr<const ImageF> timed_reference(double* total_ms, F&& compute) {
+  auto start = std::chrono::steady_clock::now();
+  auto image = std::make_shared<const ImageF>(compute());
+  *total_ms +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return image;
+}
+
+// Runs every configuration of one node type and compares each with its reference.
+Status run_configs(GlContext& context, const Registry& registry, const SweepPlan& plan,
+                   const std::string& type, const json& base_params,
+                   const std::map<std::string, std::string>& inputs,
+                   const std::map<std::string, ImageF>& images, const std::vector<Config>& configs,
+                   int width, int height, Sweep* sweep) {
+  Evaluator evaluator(context, registry);
+  for (const auto& config : configs) {
+    json params = base_params;
+    for (const auto& [name, value] : config.params.items()) params[name] = value;
+    Graph graph =
+        single_node_graph(registry, type, params, inputs, width, height, config.precision);
+    auto measured =
+        measure_node(evaluator, graph, kNodeUnderTest, &images, plan.frames, plan.warmup);
+    if (!measured.ok()) {
+      return make_error("sweep of '" + type + "' at " + config.setting + " (" + config.precision +
+                        "): " + measured.message());
+    }
+    auto error = compare_images(measured->output, *config.reference);
+    if (!error.ok()) {
+      return make_error("sweep of '" + type + "' at " + config.setting + ": " + error.message());
+    }
+    SweepPoint point;
+    point.setting = config.setting;
+    point.params = config.params;
+    point.precision = config.precision;
+    point.time_ms = measured->gpu_ms;
+    point.cpu_ms = measured->cpu_ms;
+    point.error = *error;
+    sweep->points.push_back(point);
+  }
+  return Ok{};
+}
+
+Sweep cpu_sweep(const std::string& series, const std::string& type, const std::string& reference) {
+  Sweep sweep;
+  sweep.series = series;
+  sweep.node_type = type;
+  sweep.kind = "cpu_reference";
+  sweep.reference = reference;
+  sweep.time_measure = "node gpu";
+  return sweep;
+}
+
+double number(const json& value, double fallback) {
+  return value.is_number() ? value.get<double>() : fallback;
+}
+
+// Blur, uniform σ (no depth input: strength 1 everywhere) against the exact Gaussian, and
+// depth-varying σ against the ideal per-pixel Gaussian.
+Result<std::vector<Sweep>> blur_sweeps(GlContext& context, const Registry& registry,
+                                       const Graph& graph, const SweepPlan& plan) {
+  const int w = plan.width, h = plan.height;
+  const double sigma = number(graph_param(graph, registry, "blur", "sigma"), 4.0);
+  const std::map<std::string, ImageF> images{{"image", sweep_test_image(w, h)},
+                                             {"depth", sweep_depth_image(w, h)}};
+  const json methods[] = {{{"method", "gaussian"}, {"linear_taps", true}},
+                          {{"method", "gaussian"}, {"linear_taps", false}},
+                          {{"method", "strided"}, {"linear_taps", false}}};
+  const char* names[] = {"gaussian linear_taps", "gaussian exact_taps", "strided"};
+  std::vector<Sweep> sweeps;
+
+  char label[64];
+  std::snprintf(label, sizeof(label), "blur sigma=%g", sigma);
+  Sweep uniform = cpu_sweep(label, "blur", "reference::gaussian_blur (separable, double, 8 sigma)");
+  uniform.reference = "exact Gaussian, double precision (reference::gaussian_blur)";
+  auto exact = timed_reference(&uniform.reference_ms,
+                               [&] { return reference::gaussian_blur(images.at("image"), sigma); });
+  std::vector<Config> configs;
+  for (const char* precision : kPrecisions) {
+    for (size_t m = 0; m < 3; ++m) configs.push_back({names[m], methods[m], precision, exact});
+  }
+  const json uniform_params = {{"sigma", sigma}, {"depth_weight", 1.0}, {"radial_weight", 0.0}};
+  if (auto s = run_configs(context, registry, plan, "blur", uniform_params, {{"image", "image"}},
+                           images, configs, w, h, &uniform);
+      !s.ok()) {
+    return s.error();
+  }
+  sweeps.push_back(uniform);
+
+  std::snprintf(label, sizeof(label), "blur depth sigma=%g", sigma);
+  Sweep varying = cpu_sweep(label, "blur", "");
+  varying.reference =
+      "ideal variable blur: each pixel's own exact Gaussian, double precision "
+      "(reference::exact_variable_blur) on a depth ramp 0.5..40";
+  reference::BlurParams params;
+  params.sigma = sigma;
+  params.distance_scale = number(graph_param(graph, registry, "blur", "distance_scale"), 20.0);
+  params.depth_weight = number(graph_param(graph, registry, "blur", "depth_weight"), 1.0);
+  params.radial_weight = number(graph_param(graph, registry, "blur", "radial_weight"), 0.35);
+  auto ideal = timed_reference(&varying.reference_ms, [&] {
+    return reference::exact_variable_blur(images.at("image"), &images.at("depth"), params);
+  });
+  configs.clear();
+  for (const char* precision : kPrecisions) {
+    for (size_t m = 0; m < 3; ++m) configs.push_back({names[m], methods[m], precision, ideal});
+  }
+  const json varying_params = {{"sigma", params.sigma},
+                               {"distance_scale", params.distance_scale},
+                               {"depth_weight", params.depth_weight},
+                               {"radial_weight", params.radial_weight}};
+  if (auto s =
+          run_configs(context, registry, plan, "blur", varying_params,
+                      {{"image", "image"}, {"depth", "depth"}}, images, configs, w, h, &varying);
+      !s.ok()) {
+    return s.error();
+  }
+  sweeps.push_back(varying);
+  return sweeps;
+}
+
+// Caustics: grid resolution at a fixed texture resolution against a converged grid in double.
+Result<Sweep> caustics_sweep(GlContext& context, const Registry& registry, const Graph& graph,
+                             const SweepPlan& plan) {
+  constexpr int kResolution = 128;
+  constexpr int kReferenceGrid = 1024;
+  reference::CausticsParams p;
+  p.resolution = kResolution;
+  p.depth = number(graph_param(graph, registry, "caustics", "depth"), p.depth);
+  p.amplitude = number(graph_param(graph, registry, "caustics", "amplitude"), p.amplitude);
+  p.wave_scale = static_cast<int>(
+      number(graph_param(graph, registry, "caustics", "wave_scale"), p.wave_scale));
+  p.speed = number(graph_param(graph, registry, "caustics", "speed"), p.speed);
+  p.eta = number(graph_param(graph, registry, "caustics", "eta"), p.eta);
+  p.max_intensity =
+      number(graph_param(graph, registry, "caustics", "max_intensity"), p.max_intensity);
+  p.time = 0.0;  // the graph's first frame
+
+  Sweep sweep = cpu_sweep("caustics", "caustics", "");
+  sweep.reference = "grid refraction on a " + std::to_string(kReferenceGrid) + "x" +
+                    std::to_string(kReferenceGrid) +
+                    " grid in double precision (reference::caustics_by_grid), texture " +
+                    std::to_string(kResolution) + "x" + std::to_string(kResolution) +
+                    ", energy normalisation off on both sides";
+  auto converged = timed_reference(&sweep.reference_ms,
+                                   [&] { return reference::caustics_by_grid(p, kReferenceGrid); });
+  // The reference's own error, estimated against half its grid.
+  const ImageF coarser = reference::caustics_by_grid(p, kReferenceGrid / 2);
+  if (auto own = compare_images(coarser, *converged); own.ok()) {
+    char note[160];
+    std::snprintf(note, sizeof(note),
+                  "reference grid %d vs %d differ by %.4f mean abs (%.3f max abs): a bound on "
+                  "the reference's own error",
+                  kReferenceGrid / 2, kReferenceGrid, own->mean_abs, own->max_abs);
+    sweep.note = note;
+  }
+  const json base = {
+      {"resolution", kResolution},        {"depth", p.depth},         {"amplitude", p.amplitude},
+      {"wave_scale", p.wave_scale},       {"speed", p.speed},         {"eta", p.eta},
+      {"max_intensity", p.max_intensity}, {"normalize_energy", false}};
+  std::vector<Config> configs;
+  for (const char* precision : kPrecisions) {
+    for (int grid : {16, 32, 64, 128, 256, 512}) {
+      configs.push_back({"grid=" + std::to_string(grid), {{"grid", grid}}, precision, converged});
+    }
+  }
+  if (auto s = run_configs(context, registry, plan, "caustics", base, {}, {}, configs, plan.width,
+                           plan.height, &sweep);
+      !s.ok()) {
+    return s.error();
+  }
+  return sweep;
+}
+
+// Erode or dilate: window size and footprint against flat morphology by definition.
+Result<Sweep> morphology_sweep(GlContext& context, const Registry& registry, const Graph& graph,
+                               const SweepPlan& plan, const std::string& type) {
+  const int w = plan.width, h = plan.height;
+  const std::map<std::string, ImageF> images{{"image", sweep_test_image(w, h)}};
+  const json mode = graph_param(graph, registry, type, "mode");
+  reference::MorphologyParams params;
+  params.op = type == "erode" ? reference::MorphologyOp::kErode : reference::MorphologyOp::kDilate;
+  params.order = mode == "luminance" ? reference::MorphologyOrder::kLuminance
+                                     : reference::MorphologyOrder::kPerChannel;
+  Sweep sweep = cpu_sweep(type, type,
+                          "flat morphology by definition (reference::morphology): min/max over "
+                          "every pixel of the footprint, borders clamped");
+  std::vector<Config> configs;
+  for (const char* footprint : {"square", "disc"}) {
+    for (int size : {3, 5, 9}) {
+      params.size = size;
+      params.footprint = std::string(footprint) == "disc" ? reference::MorphologyFootprint::kDisc
+                                                          : reference::MorphologyFootprint::kSquare;
+      auto exact = timed_reference(
+          &sweep.reference_ms, [&] { return reference::morphology(images.at("image"), params); });
+      for (const char* precision : kPrecisions) {
+        configs.push_back({std::string(footprint) + " size=" + std::to_string(size),
+                           {{"size", size}, {"footprint", footprint}},
+                           precision,
+                           exact});
+      }
+    }
+  }
+  if (auto s = run_configs(context, registry, plan, type, {{"mode", mode}}, {{"image", "image"}},
+                           images, configs, w, h, &sweep);
+      !s.ok()) {
+    return s.error();
+  }
+  return sweep;
+}
+
+// A pointwise node with no quality setting but precision: half against float, both against
+// the reference.
+template <typename Reference>
+Result<Sweep> precision_sweep(GlContext& context, const Registry& registry, const SweepPlan& plan,
+                              const std::string& type, const json& params,
+                              const std::string& reference_name, Reference&& compute) {
+  const int w = plan.width, h = plan.height;
+  const std::map<std::string, ImageF> images{{"image", sweep_test_image(w, h)}};
+  Sweep sweep = cpu_sweep(type, type, reference_name);
+  auto exact = timed_reference(&sweep.reference_ms, [&] { return compute(images.at("image")); });
+  std::vector<Config> configs;
+  for (const char* precision : kPrecisions) configs.push_back({"default", {}, precision, exact});
+  if (auto s = run_configs(context, registry, plan, type, params, {{"image", "image"}}, images,
+                           configs, w, h, &sweep);
+      !s.ok()) {
+    return s.error();
+  }
+  return sweep;
+}
+
+json vec3_or(const json& value, const json& fallback) {
+  return value.is_array() && value.size() == 3 ? value : fallback;
+}
+
+}  // namespace
+
+Result<std::vector<Sweep>> run_reference_sweeps(GlContext& context, const Registry& registry,
+                                                const Graph& graph, const SweepPlan& plan,
+                                                const std::set<std::string>& types) {
+  std::vector<Sweep> sweeps;
+  auto wanted = [&](const char* type) {
+    return types.count(type) > 0 && registry.find(type) != nullptr;
+  };
+  if (wanted("blur")) {
+    auto blur = blur_sweeps(context, registry, graph, plan);
+    if (!blur.ok()) return blur.error();
+    sweeps.insert(sweeps.end(), blur->begin(), blur->end());
+  }
+  if (wanted("caustics")) {
+    auto caustics = caustics_sweep(context, registry, graph, plan);
+    if (!caustics.ok()) return caustics.error();
+    sweeps.push_back(*caustics);
+  }
+  for (const char* type : {"erode", "dilate"}) {
+    if (!wanted(type)) continue;
+    auto morphology = morphology_sweep(context, registry, graph, plan, type);
+    if (!morphology.ok()) return morphology.error();
+    sweeps.push_back(*morphology);
+  }
+  if (wanted("tint")) {
+    reference::TintParams p;
+    p.amount = number(graph_param(graph, registry, "tint", "amount"), p.amount);
+    const json tint = vec3_or(graph_param(graph, registry, "tint", "tint"), {0.0, 0.07, 0.1});
+    for (int c = 0; c < 3; ++c) p.tint[c] = tint[c].get<double>();
+    auto sweep =
+        precision_sweep(context, registry, plan, "tint", {{"amount", p.amount}, {"tint", tint}},
+                        "reference::tint in double precision",
+                        [&](const ImageF& image) { return reference::tint(image, p); });
+    if (!sweep.ok()) return sweep.error();
+    sweeps.push_back(*sweep);
+  }
+  if (wanted("vignette")) {
+    reference::VignetteParams p;
+    p.radius = number(graph_param(graph, registry, "vignette", "radius"), p.radius);
+    p.strength = number(graph_param(graph, registry, "vignette", "strength"), p.strength);
+    p.softness = number(graph_param(graph, registry, "vignette", "softness"), p.softness);
+    auto sweep =
+        precision_sweep(context, registry, plan, "vignette",
+                        {{"radius", p.radius}, {"strength", p.strength}, {"softness", p.softness}},
+                        "reference::vignette in double precision",
+                        [&](const ImageF& image) { return reference::vignette(image, p); });
+    if (!sweep.ok()) return sweep.error();
+    sweeps.push_back(*sweep);
+  }
+  return sweeps;
+}
+
+#endif  // AQ_HAVE_CPU_REFERENCES
+
+}  // namespace aq::app

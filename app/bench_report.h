@@ -1,0 +1,44 @@
+// What `aquarelle bench` found, and its three renderings: the text table, the JSON document
+// (`--json`) and the CSV of every measurement (`--csv`).
+#pragma once
+
+#include <aquarelle/core/result.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "bench_copy_pass.h"
+#include "bench_pipeline.h"
+#include "bench_sweep.h"
+
+namespace aq::app {
+
+struct BenchReport {
+  std::string graph;
+  std::string gl;  // the context's description
+  int width = 0;
+  int height = 0;
+  std::string precision;
+  int frames = 0;
+  int warmup = 0;
+  CopyPassTiming copy_pass;
+  PipelineTiming every_node_runs;  // outputs not kept: every node runs every frame
+  PipelineTiming cached;           // outputs kept: unchanged (static) nodes reused
+  bool cpu_references = false;
+  std::vector<Sweep> sweeps;
+
+  // The cached pipeline's median frame time over the copy pass's median (both wall
+  // time).
+  double copy_passes_per_frame() const;
+  double copy_passes_per_frame_every_node_runs() const;
+};
+
+nlohmann::json report_json(const BenchReport& report);
+void print_report(const BenchReport& report, std::FILE* out);
+// One row per measurement (copy pass, node timings of both modes, sweep points).
+Status write_report_csv(const BenchReport& report, const std::string& path);
+
+}  // namespace aq::app

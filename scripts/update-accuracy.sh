@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# Regenerates the measured part of docs/accuracy.md (tables between the bench markers), the plot
+# docs/accuracy/bench.png, and the raw docs/accuracy/bench.{csv,json} with one command:
+#
+#   scripts/update-accuracy.sh [GRAPH] [bench options...]
+#   scripts/update-accuracy.sh graphs/underwater.json --size 1280x720 --frames 10
+#
+# GRAPH defaults to graphs/underwater.json, or graphs/scene_light.json while the full pipeline is
+# not in the tree. AQ_BUILD_DIR chooses the build folder (default: build); it is configured
+# (tests on, so the CPU references are linked) and the app and plugins are built first.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build=${AQ_BUILD_DIR:-build}
+graph=graphs/underwater.json
+if [ $# -gt 0 ] && [ "${1#-}" = "$1" ]; then
+  graph=$1
+  shift
+elif [ ! -f "$graph" ]; then
+  graph=graphs/scene_light.json
+fi
+
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  generator=()
+  if command -v ninja >/dev/null; then generator=(-G Ninja); fi
+  cmake -S . -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DAQUARELLE_BUILD_TESTS=ON
+fi
+mapfile -t plugins < <(cmake --build "$build" --target help |
+  grep -o 'aquarelle_plugin_[a-z0-9_]*' | grep -v '_test_' | sort -u)
+cmake --build "$build" --target aquarelle "${plugins[@]}" -j"$(nproc)"
+
+out=docs/accuracy
+mkdir -p "$out"
+"$build/app/aquarelle" bench "$graph" --csv "$out/bench.csv" --plot "$out/bench.png" --json \
+  "$@" > "$out/bench.json.tmp"
+mv "$out/bench.json.tmp" "$out/bench.json"
+
+# The tables go between the markers of docs/accuracy.md; the prose around them stays.
+/usr/bin/python3 - "$out/bench.json" docs/accuracy.md "$graph $*" <<'PYTHON'
+import json, re, sys
+
+report = json.load(open(sys.argv[1]))
+doc_path, command = sys.argv[2], sys.argv[3].strip()
+
+
+def ms(value):
+    return "-" if value is None else f"{value:.3f}"
+
+
+def err(value):
+    return "-" if value is None else ("0" if value == 0 else f"{value:.3g}")
+
+
+lines = []
+w, h = report["size"]
+lines.append(f"Measured by `scripts/update-accuracy.sh {command}`: graph `{report['graph']}` at "
+             f"{w}x{h}, {report['precision']} precision, {report['frames']} timed frames after "
+             f"{report['warmup']} warm-up; {report['gl']}.")
+lines.append("")
+copy = report["copy_pass"]["gpu_ms"]
+lines.append(f"- copy pass (the yardstick): **{ms(copy['median'])} ms** GPU median "
+             f"(min {ms(copy['min'])}, max {ms(copy['max'])})")
+modes = report["modes"]
+lines.append(f"- frame, every node running: {ms(modes['every_node_runs']['frame_ms']['median'])} ms"
+             f" = {report['copy_passes_per_frame_every_node_runs']:.1f} copy passes")
+lines.append(f"- frame, static nodes cached: {ms(modes['cached_static_nodes']['frame_ms']['median'])}"
+             f" ms = **{report['copy_passes_per_frame']:.1f} copy passes per frame**")
+lines.append("")
+lines.append("| node | type | GPU ms median [min .. max], every node runs | GPU ms median, cached | "
+             "CPU ms median | runs (cached) |")
+lines.append("| --- | --- | --- | --- | --- | --- |")
+cached = {n["id"]: n for n in modes["cached_static_nodes"]["nodes"]}
+for n in modes["every_node_runs"]["nodes"]:
+    c = cached.get(n["id"])
+    g = n["gpu_ms"]
+    lines.append(f"| {n['id']} | {n['type']} | {ms(g['median'])} [{ms(g['min'])} .. {ms(g['max'])}] "
+                 f"| {ms(c['gpu_ms']['median']) if c else '-'} | {ms(n['cpu_ms']['median'])} "
+                 f"| {c['runs'] if c else '-'} of {report['frames']} |")
+lines.append("")
+if not report["cpu_references"]:
+    lines.append("No CPU references in this build (configure with AQUARELLE_BUILD_TESTS=ON).")
+    lines.append("")
+for sweep in report["sweeps"]:
+    lines.append(f"#### {sweep['series']} ({sweep['kind'].replace('_', ' ')})")
+    lines.append("")
+    lines.append(f"Reference: {sweep['reference']}." + (f" {sweep['note']}." if sweep["note"] else ""))
+    lines.append("")
+    unit = "frame ms" if sweep["time_measure"] == "frame wall" else "GPU ms"
+    lines.append(f"| setting | precision | {unit} | max abs | mean abs | PSNR dB | Pareto |")
+    lines.append("| --- | --- | --- | --- | --- | --- | --- |")
+    for p in sweep["points"]:
+        psnr = "inf" if p["psnr"] is None and p["mean_abs"] == 0 else (
+            "-" if p["psnr"] is None else f"{p['psnr']:.1f}")
+        setting = p["setting"] + (" (reference)" if p["is_reference"] else "")
+        lines.append(f"| {setting} | {p['precision']} | {ms(p['time_ms']['median'])} | "
+                     f"{err(p['max_abs'])} | {err(p['mean_abs'])} | {psnr} | "
+                     f"{'yes' if p['pareto'] else ''} |")
+    lines.append("")
+
+block = "\n".join(lines)
+doc = open(doc_path).read()
+pattern = re.compile(r"(<!-- bench:begin -->\n).*?(<!-- bench:end -->)", re.S)
+if not pattern.search(doc):
+    sys.exit(f"{doc_path}: the markers <!-- bench:begin --> and <!-- bench:end --> are missing")
+doc = pattern.sub(lambda m: m.group(1) + block + "\n" + m.group(2), doc)
+open(doc_path, "w").write(doc)
+print(f"updated {doc_path} and {sys.argv[1].rsplit('/', 1)[0]}/bench.{{png,csv,json}}")
+PYTHON
