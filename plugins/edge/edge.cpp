@@ -1,0 +1,62 @@
+// edge: edge darkening (seed §3.5). Detects edges with the 3×3 Laplacian (−8 centre) or the
+// Sobel magnitude and scales the HSV value of edge pixels by `factor` through a smooth
+// threshold. With the optional `source` input connected, edges are found on that effect-free
+// image and the main image is darkened, the seed's §7.3 fix for caustic and shadow borders.
+//
+//   image ─────────────┐
+//   [source] ──► edges ┴──► image · mix(1, factor, smoothstep(response)) ──► image
+#include <aquarelle/plugin.hpp>
+
+#include <algorithm>
+
+#include "edge_shaders.h"
+
+namespace {
+
+constexpr aq_port_desc kInputs[] = {
+    aq::image_port("image", "colour to darken"),
+    aq::optional_image_port("source",
+                            "effect-free image to detect edges on (seed §7.3); "
+                            "unconnected: the image itself")};
+constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "colour with darkened edges")};
+enum Input : uint32_t { kImage, kSource };
+enum Param : uint32_t { kKernel, kFactor, kThreshold, kSoftness };
+constexpr aq_param_desc kParams[] = {
+    aq::enum_param("kernel", "laplacian|sobel", 0,
+                   "laplacian: 3×3, −8 centre (the seed's kernel); sobel: gradient magnitude"),
+    aq::float_param("factor", 0.7, 0.0, 1.0,
+                    "HSV value multiplier on full edges; 1 passes the image through"),
+    aq::float_param("threshold", 0.1, 0.0, 8.0,
+                    "edge response where darkening starts (largest channel response)"),
+    aq::float_param("softness", 0.2, 0.001, 8.0,
+                    "width of the smooth ramp above the threshold to full darkening")};
+
+struct Edge {
+  int process(aq::Context& ctx) {
+    const aq_image in = ctx.input_image(kImage);
+    if (ctx.param_float(kFactor) >= 1.0) return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
+    const aq_image source = ctx.connected(kSource) ? ctx.input_image(kSource) : in;
+    aq_image out;
+    if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+    const GLuint program = ctx.program(shaders::edge_frag);
+    if (program == 0) return AQ_ERROR;
+    glUseProgram(program);
+    aq::bind_texture(program, "u_image", 0, in);
+    aq::bind_texture(program, "u_source", 1, source);
+    aq::set_int(program, "u_kernel", static_cast<int>(ctx.param_enum(kKernel)));
+    aq::set_float(program, "u_factor", ctx.param_float(kFactor));
+    aq::set_float(program, "u_threshold", ctx.param_float(kThreshold));
+    aq::set_float(program, "u_softness", std::max(ctx.param_float(kSoftness), 1e-3));
+    const bool drawn = ctx.draw(out);
+    aq::unbind_textures(2);
+    return drawn ? AQ_OK : AQ_ERROR;
+  }
+};
+
+}  // namespace
+
+AQ_NODE(kEdgeNode, Edge, "edge", "Watercolor",
+        "Edge darkening: Laplacian or Sobel edges (optionally of an effect-free `source`) scale "
+        "the HSV value by `factor` through a smooth threshold.",
+        0, kInputs, kOutputs, kParams);
+AQ_PLUGIN("edge", "1.0", &kEdgeNode)
