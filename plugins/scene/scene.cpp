@@ -57,7 +57,7 @@ constexpr aq_param_desc kParams[] = {
     aq::vec3_param("camera_position", 0.3, 2.2, 6.0, -1000, 1000, "camera position (world)"),
     aq::vec3_param("camera_target", -0.3, 0.9, -0.5, -1000, 1000, "point the camera looks at"),
     aq::float_param("fov", 50.0, 5.0, 150.0, "vertical field of view in degrees", 0.0, "angle"),
-    aq::vec3_param("light_direction", 0.3, -1.0, -0.35, -1, 1,
+    aq::vec3_param("light_direction", 0.7, -1.0, -0.15, -1, 1,
                    "direction the light travels (from the water surface down), normalised"),
     aq::color_param("light_color", 1.0, 0.97, 0.9, "light colour (linear)"),
     aq::float_param("light_intensity", 1.0, 0.0, 20.0, "light colour multiplier (HDR)"),

@@ -7,12 +7,18 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "support/harness.h"
+
+// The test process holds the harness's EGL context; the scene node is driven directly through
+// its C entry points below, and loads its GL functions (it calls none) from that context.
+extern "C" void* eglGetProcAddress(const char* name);
 
 namespace {
 
@@ -300,6 +306,167 @@ TEST(SceneNode, TheFishSwimsAndTheRestStaysStill) {
     for (int x = 0; x < first.width; ++x) changed += first.at(x, y, 0) != later.at(x, y, 0);
   EXPECT_GT(changed, 5);
   EXPECT_LT(changed, first.width * first.height / 4);
+}
+
+// ---- The scene node through its C ABI, with a host that records what it publishes ---------
+
+struct RecordingHost {
+  aq_host host{};
+  const aq_scene* scene = nullptr;
+  std::string error;
+};
+
+RecordingHost* recording(void* host_data) {
+  return static_cast<RecordingHost*>(host_data);
+}
+
+class DirectSceneNode {
+ public:
+  DirectSceneNode() {
+    // A real render first, so the harness's GL context is current on this thread.
+    render(scene_graph("warm_up", {{"preset", "cube"}}), "gbuf.id");
+    type_ = aq::test::registry().find("scene");
+    if (type_ == nullptr || type_->desc == nullptr) return;
+    recorder_.host.abi_version = AQ_ABI_VERSION;
+    recorder_.host.struct_size = sizeof(aq_host);
+    recorder_.host.get_proc_address = [](const char* name) { return eglGetProcAddress(name); };
+    recorder_.host.fail = [](void* data, const char* message) { recording(data)->error = message; };
+    recorder_.host.log = [](void*, int, const char*) {};
+    recorder_.host.output_scene = [](void* data, uint32_t, const aq_scene* scene) {
+      recording(data)->scene = scene;
+      return static_cast<int>(AQ_OK);
+    };
+    for (const aq::ParamInfo& p : type_->params) {
+      aq_param_value value{};
+      for (int k = 0; k < 3; ++k) value.f[k] = p.default_value[k];
+      value.i = static_cast<int64_t>(p.default_value[0]);
+      strings_.push_back(p.default_string);
+      params_.push_back(value);
+    }
+    for (size_t i = 0; i < params_.size(); ++i) params_[i].s = strings_[i].c_str();
+    instance_ = type_->desc->create(&recorder_.host);
+  }
+  ~DirectSceneNode() {
+    if (instance_ != nullptr) type_->desc->destroy(instance_);
+  }
+  bool ready() const { return instance_ != nullptr; }
+  aq_param_value& param(const std::string& name) {
+    return params_[static_cast<size_t>(type_->param_index(name))];
+  }
+  const aq_scene* run(double time) {
+    aq_process_ctx ctx{};
+    ctx.struct_size = sizeof(ctx);
+    ctx.host = &recorder_.host;
+    ctx.host_data = &recorder_;
+    ctx.node_id = "scene";
+    ctx.params = params_.data();
+    ctx.param_count = static_cast<uint32_t>(params_.size());
+    ctx.width = ctx.height = 64;
+    ctx.time = time;
+    ctx.fps = 24;
+    ctx.gl_generation = 0x5CE9Eu;
+    recorder_.scene = nullptr;
+    int status = type_->desc->process(instance_, &ctx);
+    EXPECT_EQ(status, AQ_OK) << recorder_.error;
+    return recorder_.scene;
+  }
+
+ private:
+  const aq::NodeType* type_ = nullptr;
+  RecordingHost recorder_;
+  std::vector<aq_param_value> params_;
+  std::vector<std::string> strings_;
+  void* instance_ = nullptr;
+};
+
+std::vector<uint64_t> revisions(const aq_scene* scene) {
+  std::vector<uint64_t> out;
+  for (uint32_t i = 0; i < scene->mesh_count; ++i)
+    out.push_back(scene->meshes[i].geometry_revision);
+  return out;
+}
+
+TEST(SceneData, RevisionsChangeOnlyWithVertexData) {
+  DirectSceneNode node;
+  ASSERT_TRUE(node.ready());
+  const aq_scene* scene = node.run(0.0);
+  ASSERT_NE(scene, nullptr);
+  ASSERT_GT(scene->mesh_count, 10u);
+  const std::vector<uint64_t> first = revisions(scene);
+  EXPECT_EQ(std::set<uint64_t>(first.begin(), first.end()).size(), first.size()) << "unique";
+
+  EXPECT_EQ(revisions(node.run(0.0)), first) << "same time, same data";
+
+  node.param("camera_position").f[0] = 3.0;
+  node.param("light_direction").f[2] = 0.5;
+  EXPECT_EQ(revisions(node.run(0.0)), first) << "camera and light touch no geometry";
+
+  scene = node.run(1.5);
+  const std::vector<uint64_t> later = revisions(scene);
+  ASSERT_EQ(later.size(), first.size());
+  int changed = 0;
+  for (size_t i = 0; i < first.size(); ++i) changed += later[i] != first[i];
+  // Only the animated objects (seaweed clusters and the fish, published last) changed.
+  EXPECT_GE(changed, 2);
+  EXPECT_LE(changed, 8);
+  for (size_t i = 0; i < first.size() - static_cast<size_t>(changed); ++i) {
+    EXPECT_EQ(later[i], first[i]) << "static mesh " << i;
+  }
+
+  node.param("seed").i = 8;
+  const std::vector<uint64_t> reseeded = revisions(node.run(1.5));
+  for (size_t i = 0; i < std::min(reseeded.size(), later.size()); ++i) {
+    EXPECT_NE(reseeded[i], later[i]) << "a new seed is new geometry";
+  }
+}
+
+TEST(SceneData, BoundsHoldEveryVertexAtEveryTimeAndStayPut) {
+  DirectSceneNode node;
+  ASSERT_TRUE(node.ready());
+  float first_min[3] = {0, 0, 0}, first_max[3] = {0, 0, 0};
+  for (double time : {0.0, 2.0, 5.5, 11.0, 17.0}) {
+    const aq_scene* scene = node.run(time);
+    ASSERT_NE(scene, nullptr);
+    if (time == 0.0) {
+      std::copy(scene->bounds_min, scene->bounds_min + 3, first_min);
+      std::copy(scene->bounds_max, scene->bounds_max + 3, first_max);
+    }
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(scene->bounds_min[k], first_min[k]) << "bounds move with time";
+      EXPECT_EQ(scene->bounds_max[k], first_max[k]) << "bounds move with time";
+    }
+    for (uint32_t m = 0; m < scene->mesh_count; ++m) {
+      const aq_mesh& mesh = scene->meshes[m];
+      for (uint32_t v = 0; v < mesh.vertex_count; ++v) {
+        double p[3];
+        for (int r = 0; r < 3; ++r) {
+          p[r] = mesh.model[12 + r];
+          for (int c = 0; c < 3; ++c) p[r] += mesh.model[4 * c + r] * mesh.positions[3 * v + c];
+        }
+        for (int k = 0; k < 3; ++k) {
+          ASSERT_GE(p[k], scene->bounds_min[k] - 1e-4) << "mesh " << m << " t " << time;
+          ASSERT_LE(p[k], scene->bounds_max[k] + 1e-4) << "mesh " << m << " t " << time;
+        }
+        for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(mesh.normals[3 * v + k]));
+      }
+    }
+  }
+}
+
+TEST(SceneData, SameSeedSameVerticesInTwoInstances) {
+  DirectSceneNode a, b;
+  ASSERT_TRUE(a.ready() && b.ready());
+  const aq_scene* sa = a.run(3.25);
+  const aq_scene* sb = b.run(3.25);
+  ASSERT_EQ(sa->mesh_count, sb->mesh_count);
+  for (uint32_t m = 0; m < sa->mesh_count; ++m) {
+    const aq_mesh &ma = sa->meshes[m], &mb = sb->meshes[m];
+    ASSERT_EQ(ma.vertex_count, mb.vertex_count);
+    EXPECT_EQ(ma.object_id, mb.object_id);
+    EXPECT_EQ(0, std::memcmp(ma.positions, mb.positions, 12u * ma.vertex_count)) << m;
+    EXPECT_EQ(0, std::memcmp(ma.normals, mb.normals, 12u * ma.vertex_count)) << m;
+    EXPECT_EQ(0, std::memcmp(ma.colors, mb.colors, 12u * ma.vertex_count)) << m;
+  }
 }
 
 TEST(SceneNode, MissingFileIsAClearError) {
