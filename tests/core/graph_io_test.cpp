@@ -578,6 +578,28 @@ TEST(GraphProblems, DeepNestingIsRefusedWithoutCrashing) {
                   .ok());
 }
 
+TEST(GraphProblems, OddBytesAreMalformedJson) {
+  // Invalid UTF-8 inside a string, a NUL byte, a lone surrogate escape.
+  const aq::Problem utf8 = only_problem(valid_graph_with("\"gbuf\": {",
+                                                         "\"g\xFF"
+                                                         "buf\": {"));
+  EXPECT_TRUE(contains(utf8.message, "malformed JSON")) << utf8.message;
+  EXPECT_EQ(utf8.line, 6);
+  const aq::Problem nul =
+      only_problem(valid_graph_with("\"tint.image\"", std::string("\"tint\0.image\"", 13)));
+  EXPECT_TRUE(contains(nul.message, "malformed JSON")) << nul.message;
+  EXPECT_EQ(nul.line, 12);
+  const aq::Problem surrogate =
+      only_problem(valid_graph_with("\"tint.image\"", "\"tint\\ud800.image\""));
+  EXPECT_TRUE(contains(surrogate.message, "malformed JSON")) << surrogate.message;
+  // Escaped keys are matched as nlohmann decodes them: "\u0073igma" is "sigma".
+  const aq::Problem escaped =
+      only_problem(valid_graph_with("\"sigma\": 3.0", "\"\\u0073igma\": 300"));
+  EXPECT_EQ(escaped.field, "sigma");
+  EXPECT_EQ(escaped.line, 7);
+  EXPECT_EQ(escaped.column, 43);
+}
+
 TEST(GraphProblems, ColumnsCountCharactersNotBytes) {
   const aq::Problem problem = only_problem(
       "{ \"aquarelle\": 1, \"nodes\": { \"r\": { \"type\": \"read\", \"params\": { \"label\": "
