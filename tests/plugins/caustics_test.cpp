@@ -251,6 +251,16 @@ TEST(Caustics, DraftQualityUsesAQuarterOfTheGrid) {
   EXPECT_GT(mean_abs_red(*got, aq::reference::caustics_by_grid(p, 128)), 0.05);
 }
 
+TEST(Caustics, SmallestSizesWork) {
+  CausticsParams p = small(16, 4);
+  const ImageF got = run(p, true);
+  ASSERT_EQ(got.width, 16);
+  const Stats s = stats_of(got);
+  EXPECT_TRUE(s.finite);
+  EXPECT_GT(s.min, 0.0);
+  EXPECT_NEAR(s.mean, 1.0, 1e-4);
+}
+
 TEST(Caustics, HalfPrecisionMatchesFloat) {
   const CausticsParams p = small(64, 64);
   const ImageF f = run(p, false, "float");

@@ -191,6 +191,29 @@ TEST(Noise, RawRangesHold) {
   }
 }
 
+TEST(Noise, TinyAndThinSizesMatchTheReference) {
+  for (auto [w, h] : {std::pair{1, 1}, std::pair{1, 37}, std::pair{200, 2}}) {
+    for (NoiseType type : kAllTypes) {
+      const NoiseTextureParams p = of_type(type, 3);
+      const ImageF got = run(p, w, h);
+      ASSERT_EQ(got.width, w);
+      ASSERT_EQ(got.height, h);
+      EXPECT_LT(aq::test::max_abs_diff(got, aq::reference::noise_texture(p, w, h)), 2e-5)
+          << name_of(type) << " " << w << "x" << h;
+    }
+  }
+}
+
+TEST(Noise, ZeroSizeFollowsTheGraph) {
+  aq::test::RenderOptions options;
+  options.width = 40;
+  options.height = 24;
+  auto out = aq::test::run_node("noise", {}, {{"type", "perlin"}}, options);
+  ASSERT_TRUE(out.ok()) << out.message();
+  EXPECT_EQ(out->width, 40);
+  EXPECT_EQ(out->height, 24);
+}
+
 TEST(Noise, ParameterSweepMatchesReferenceAndStaysInUnitRange) {
   for (NoiseType type : kAllTypes) {
     for (int scale : {1, 3, 16, 100}) {

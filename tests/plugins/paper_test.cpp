@@ -120,6 +120,17 @@ TEST(Paper, SameSeedIsIdenticalOtherSeedDiffers) {
   EXPECT_GT(aq::test::mean_abs_diff(a, c, 3), 0.03);
 }
 
+TEST(Paper, TinyAndThinSizesMatchTheReference) {
+  for (auto [w, h] : {std::pair{1, 1}, std::pair{3, 50}, std::pair{120, 1}}) {
+    const PaperParams p = small_paper();
+    const ImageF got = run(p, w, h);
+    ASSERT_EQ(got.width, w);
+    ASSERT_EQ(got.height, h);
+    EXPECT_LT(aq::test::max_abs_diff(got, aq::reference::paper_texture(p, w, h)), 2e-5)
+        << w << "x" << h;
+  }
+}
+
 TEST(Paper, ParameterSweepStaysInUnitRangeAndMatchesReference) {
   for (double fiber_weight : {0.0, 0.35, 1.0}) {
     for (double roughness : {0.25, 1.0}) {
