@@ -70,14 +70,14 @@ void ParamPanel::draw_node(EditorState& state, const std::string& id,
     ImGui::TextDisabled("%s: gpu %.3f ms, cpu %.3f ms", timing->second.cached ? "cached" : "ran",
                         timing->second.gpu_ms, timing->second.cpu_ms);
   }
+  ImGui::PushTextWrapPos(0);
   for (const auto& problem : state.doc.problems_of(id)) {
     ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", problem.message.c_str());
   }
   if (feedback.error_node == id) {
-    ImGui::PushTextWrapPos(0);
     ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", feedback.error.c_str());
-    ImGui::PopTextWrapPos();
   }
+  ImGui::PopTextWrapPos();
 
   if (!type->inputs.empty() && ImGui::CollapsingHeader("Inputs", ImGuiTreeNodeFlags_DefaultOpen)) {
     for (const auto& port : type->inputs) {
