@@ -7,7 +7,7 @@
 // `gaussian` (default): exact separable Gaussians. A uniform σ is two passes (horizontal into a
 // float scratch texture, then vertical). A varying σ renders a small stack of exact blurs at
 // σmax, σmax/2, σmax/4 ... and mixes the two levels around each pixel's σ so that the mixed
-// kernel has exactly the variance σ²:
+// kernel has exactly the variance σ² (levels_per_octave = 2 or 3 puts levels closer):
 //
 //   image ─► H(σ1) ─► V(σ1) ─► level 1 ─┐
 //         ─► H(σ2) ─► V(σ2) ─► level 2 ─┼─► composite(depth) ─► image
@@ -17,6 +17,7 @@
 #include <aquarelle/plugin.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -30,7 +31,15 @@ constexpr aq_port_desc kInputs[] = {
     aq::optional_image_port("depth",
                             "linear view depth (R32F); without it the depth term is 1 (far)")};
 constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "blurred colour")};
-enum Param { kMethod, kSigma, kDistanceScale, kDepthWeight, kRadialWeight, kLinearTaps };
+enum Param {
+  kMethod,
+  kSigma,
+  kDistanceScale,
+  kDepthWeight,
+  kRadialWeight,
+  kLinearTaps,
+  kLevelsPerOctave
+};
 enum Method { kGaussian = 0, kStrided = 1 };
 constexpr aq_param_desc kParams[] = {
     aq::enum_param("method", "gaussian|strided", kGaussian,
@@ -47,10 +56,13 @@ constexpr aq_param_desc kParams[] = {
                     "weight of the squared distance from the centre (1 at the corners)"),
     aq::bool_param("linear_taps", true,
                    "read two Gaussian taps with one bilinear fetch (half the reads; error "
-                   "measured in the tests)")};
+                   "measured in the tests)"),
+    aq::int_param("levels_per_octave", 1, 1, 3,
+                  "blurs per doubling of sigma in the stack used when sigma varies per pixel: "
+                  "more is closer to the ideal per-pixel Gaussian and slower")};
 
-constexpr int kMaxLevels = 6;           // blurred levels in the stack, besides the input
-constexpr double kSmallestLevel = 1.0;  // the stack stops halving σ below one pixel
+constexpr int kMaxLevels = 12;          // blurred levels in the stack besides the input (shader)
+constexpr double kSmallestLevel = 0.5;  // below this a Gaussian is nearly the identity
 
 // The shared strength function followed by a shader that calls it.
 aq_shader_source with_strength(const aq_shader_source& main, std::string& storage) {
@@ -83,18 +95,20 @@ struct Blur {
     if (ctx.param_enum(kMethod) == kStrided) {
       ok = strided(ctx, in, out, sigma);
     } else if (uniform) {
-      ok = gaussian(ctx, in, out, max_sigma);
+      aq_image horizontal;
+      ok = ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &horizontal) &&
+           gaussian(ctx, in, horizontal, out, max_sigma);
     } else {
       ok = variable_gaussian(ctx, in, out, sigma, max_sigma);
     }
-    aq::unbind_textures(8);
+    aq::unbind_textures(16);
     return ok ? AQ_OK : AQ_ERROR;
   }
 
-  // Exact separable Gaussian of `in` into `out` (same size), through a float scratch texture.
-  static bool gaussian(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma) {
-    aq_image horizontal;
-    if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &horizontal)) return false;
+  // Exact separable Gaussian of `in` into `out` (same size), through `horizontal`, a float
+  // texture of the same size.
+  static bool gaussian(aq::Context& ctx, const aq_image& in, const aq_image& horizontal,
+                       const aq_image& out, double sigma) {
     GLuint program = ctx.program(shaders::blur_gaussian_frag);
     if (program == 0) return false;
     glUseProgram(program);
@@ -120,19 +134,22 @@ struct Blur {
   // σ per pixel: a stack of exact blurs mixed per pixel by the composite shader.
   bool variable_gaussian(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma,
                          double max_sigma) {
+    const double ratio = std::exp2(1.0 / static_cast<double>(ctx.param_int(kLevelsPerOctave)));
     std::vector<double> level_sigmas{max_sigma};
     while (static_cast<int>(level_sigmas.size()) < kMaxLevels &&
-           level_sigmas.back() * 0.5 >= kSmallestLevel) {
-      level_sigmas.push_back(level_sigmas.back() * 0.5);
+           level_sigmas.back() / ratio >= kSmallestLevel) {
+      level_sigmas.push_back(level_sigmas.back() / ratio);
     }
     level_sigmas.push_back(0.0);  // level 0: the input itself
     std::reverse(level_sigmas.begin(), level_sigmas.end());
 
+    aq_image horizontal;
+    if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &horizontal)) return false;
     std::vector<aq_image> levels{in};
     for (size_t k = 1; k < level_sigmas.size(); ++k) {
       aq_image level;
       if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &level)) return false;
-      if (!gaussian(ctx, in, level, level_sigmas[k])) return false;
+      if (!gaussian(ctx, in, horizontal, level, level_sigmas[k])) return false;
       levels.push_back(level);
     }
 
@@ -162,10 +179,10 @@ struct Blur {
     return ctx.draw(out);
   }
 
-  // Uniforms of blur_strength.glsl; the depth texture goes on unit 7.
+  // Uniforms of blur_strength.glsl; the depth texture goes on unit 15, after the levels.
   static void set_strength_uniforms(aq::Context& ctx, GLuint program, const aq_image& in) {
     const bool has_depth = ctx.connected(1);
-    if (has_depth) aq::bind_texture(program, "u_depth", 7, ctx.input_image(1));
+    if (has_depth) aq::bind_texture(program, "u_depth", 15, ctx.input_image(1));
     aq::set_int(program, "u_has_depth", has_depth ? 1 : 0);
     aq::set_float(program, "u_distance_scale", ctx.param_float(kDistanceScale));
     aq::set_float(program, "u_depth_weight", ctx.param_float(kDepthWeight));

@@ -25,6 +25,7 @@ aq::test::RenderOptions with_precision(const char* precision) {
 nlohmann::json to_json(const BlurParams& p, bool linear_taps = true,
                        const char* method = "gaussian") {
   return {{"method", method},
+          {"levels_per_octave", p.levels_per_octave},
           {"sigma", p.sigma},
           {"distance_scale", p.distance_scale},
           {"depth_weight", p.depth_weight},
@@ -163,22 +164,31 @@ TEST(Blur, CheckerboardHasNoArtefactsWithGaussianButDoesWithStrided) {
 }
 
 TEST(Blur, VariableBlurMatchesItsDefinitionAndApproachesTheIdeal) {
+  // White noise is the hardest case for a stack of blurs (every frequency is present).
   const ImageF input = aq::test::random_image(80, 60, 26);
   const ImageF depth = depth_ramp(80, 60, 30.0);
-  const BlurParams params{6.0, 20.0, 1.0, 0.35};
-  const ImageF got = run(input, to_json(params), &depth);
-  ASSERT_FALSE(got.empty());
-  const ImageF stacked = aq::reference::stacked_blur(input, &depth, params);
-  const ImageF ideal = aq::reference::exact_variable_blur(input, &depth, params);
-  const double err = aq::test::max_abs_diff(got, stacked);
-  EXPECT_LE(err, 1e-4);
-  const double ideal_max = aq::test::max_abs_diff(got, ideal);
-  const double ideal_mean = aq::test::mean_abs_diff(got, ideal);
-  // The stack mixes two Gaussians of the right variance instead of one: measured, bounded.
-  EXPECT_LE(ideal_mean, 0.02);
-  std::printf(
-      "[blur variable] vs definition %.3g; vs ideal per-pixel Gaussian max %.3g mean %.3g\n", err,
-      ideal_max, ideal_mean);
+  // Error vs the ideal per-pixel Gaussian allowed for 1, 2, 3 levels per octave (measured on
+  // llvmpipe: mean 0.0046, 0.0013, 0.0006; max 0.072, 0.031, 0.016).
+  const double mean_bounds[] = {0.006, 0.002, 0.001};
+  const double max_bounds[] = {0.1, 0.05, 0.03};
+  for (int levels = 1; levels <= 3; ++levels) {
+    const BlurParams params{6.0, 20.0, 1.0, 0.35, levels};
+    const ImageF got = run(input, to_json(params), &depth);
+    ASSERT_FALSE(got.empty());
+    const ImageF stacked = aq::reference::stacked_blur(input, &depth, params);
+    const ImageF ideal = aq::reference::exact_variable_blur(input, &depth, params);
+    const double err = aq::test::max_abs_diff(got, stacked);
+    EXPECT_LE(err, 1e-4) << "levels per octave " << levels;
+    const double ideal_max = aq::test::max_abs_diff(got, ideal);
+    const double ideal_mean = aq::test::mean_abs_diff(got, ideal);
+    // The stack mixes two Gaussians of the right variance instead of one: measured, bounded.
+    EXPECT_LE(ideal_mean, mean_bounds[levels - 1]) << "levels per octave " << levels;
+    EXPECT_LE(ideal_max, max_bounds[levels - 1]) << "levels per octave " << levels;
+    std::printf(
+        "[blur variable] levels/octave %d: vs definition %.3g; vs ideal per-pixel Gaussian max "
+        "%.3g mean %.3g\n",
+        levels, err, ideal_max, ideal_mean);
+  }
 }
 
 TEST(Blur, ParameterSweepMatchesReference) {
@@ -187,7 +197,7 @@ TEST(Blur, ParameterSweepMatchesReference) {
   for (double sigma : {0.7, 2.0, 9.0}) {
     for (double radial : {0.0, 0.5}) {
       for (double scale : {5.0, 40.0}) {
-        const BlurParams params{sigma, scale, 0.8, radial};
+        const BlurParams params{sigma, scale, 0.8, radial, 1};
         for (const ImageF* d : {&depth, static_cast<const ImageF*>(nullptr)}) {
           const ImageF got = run(input, to_json(params), d);
           ASSERT_FALSE(got.empty());

@@ -26,7 +26,9 @@ TEST(Tint, MatchesReferenceWithDefaults) {
   EXPECT_LE(aq::test::max_abs_diff(*got, expected), 2e-6 * 4);
   auto half = run(image, {}, "half");
   ASSERT_TRUE(half.ok()) << half.message();
-  EXPECT_LE(aq::test::max_abs_diff(*half, expected), 5e-4);
+  // Outputs reach 1.07; RGBA16F keeps 11 significant bits and llvmpipe's conversion may be off
+  // by one unit in the last place: 2^-10 in [1, 2).
+  EXPECT_LE(aq::test::max_abs_diff(*half, expected), 1.0e-3);
   std::printf("[tint] float max abs %.3g, half max abs %.3g\n",
               aq::test::max_abs_diff(*got, expected), aq::test::max_abs_diff(*half, expected));
 }

@@ -109,8 +109,10 @@ double blur_strength(int x, int y, int width, int height, const ImageF* depth,
 
 ImageF stacked_blur(const ImageF& image, const ImageF* depth, const BlurParams& params) {
   const double max_sigma = params.sigma * std::min(1.0, params.depth_weight + params.radial_weight);
+  const double ratio = std::pow(2.0, 1.0 / params.levels_per_octave);
   std::vector<double> sigmas{max_sigma};
-  while (sigmas.size() < 6 && sigmas.back() / 2 >= 1.0) sigmas.push_back(sigmas.back() / 2);
+  while (sigmas.size() < 12 && sigmas.back() / ratio >= 0.5)
+    sigmas.push_back(sigmas.back() / ratio);
   sigmas.push_back(0.0);
   std::reverse(sigmas.begin(), sigmas.end());
   const ImageD input = to_double(image);

@@ -15,6 +15,7 @@ struct BlurParams {
   double distance_scale = 20.0;
   double depth_weight = 1.0;
   double radial_weight = 0.35;
+  int levels_per_octave = 1;  // stack density of the varying-σ `gaussian` method
 };
 
 // Sampled Gaussian exp(-i²/2σ²) for i = 0..ceil(truncation_sigmas·σ), normalised so that the
@@ -29,8 +30,9 @@ ImageF gaussian_blur(const ImageF& image, double sigma, double truncation_sigmas
 double blur_strength(int x, int y, int width, int height, const ImageF* depth,
                      const BlurParams& params);
 
-// The `gaussian` method as specified: a stack of exact blurs at σmax, σmax/2, ... (at most 6,
-// none below 1 px) over the input, mixed per pixel by variance.
+// The `gaussian` method as specified: a stack of exact blurs at σmax, σmax/r, σmax/r², ...
+// (r = 2^(1/levels_per_octave); at most 12 levels, none below 0.5 px) over the input, mixed
+// per pixel by variance.
 ImageF stacked_blur(const ImageF& image, const ImageF* depth, const BlurParams& params);
 
 // The ideal variable blur: at each pixel the exact Gaussian of that pixel's own σ (gather).

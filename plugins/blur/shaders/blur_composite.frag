@@ -11,7 +11,13 @@ uniform sampler2D u_level3;
 uniform sampler2D u_level4;
 uniform sampler2D u_level5;
 uniform sampler2D u_level6;
-uniform float u_level_sigma[7];  // ascending, u_level_sigma[0] = 0
+uniform sampler2D u_level7;
+uniform sampler2D u_level8;
+uniform sampler2D u_level9;
+uniform sampler2D u_level10;
+uniform sampler2D u_level11;
+uniform sampler2D u_level12;
+uniform float u_level_sigma[13];  // ascending, u_level_sigma[0] = 0
 uniform int u_level_count;       // including level 0
 uniform float u_sigma;           // σ at strength 1
 
@@ -26,7 +32,13 @@ vec4 level(int k) {
     case 3: return texelFetch(u_level3, p, 0);
     case 4: return texelFetch(u_level4, p, 0);
     case 5: return texelFetch(u_level5, p, 0);
-    default: return texelFetch(u_level6, p, 0);
+    case 6: return texelFetch(u_level6, p, 0);
+    case 7: return texelFetch(u_level7, p, 0);
+    case 8: return texelFetch(u_level8, p, 0);
+    case 9: return texelFetch(u_level9, p, 0);
+    case 10: return texelFetch(u_level10, p, 0);
+    case 11: return texelFetch(u_level11, p, 0);
+    default: return texelFetch(u_level12, p, 0);
   }
 }
 
