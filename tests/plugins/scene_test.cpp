@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <set>
 #include <string>
 #include <vector>
@@ -467,6 +469,37 @@ TEST(SceneData, SameSeedSameVerticesInTwoInstances) {
     EXPECT_EQ(0, std::memcmp(ma.normals, mb.normals, 12u * ma.vertex_count)) << m;
     EXPECT_EQ(0, std::memcmp(ma.colors, mb.colors, 12u * ma.vertex_count)) << m;
   }
+}
+
+TEST(SceneNode, LoadsAnObjFileWithItsMaterialColour) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "aq_scene_test";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream mtl(dir / "box.mtl");
+    mtl << "newmtl red\nKd 0.8 0.2 0.1\n";
+    std::ofstream obj(dir / "box.obj");
+    obj << "mtllib box.mtl\nusemtl red\n"
+           "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\n"
+           "v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\n"
+           "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";
+  }
+  const nlohmann::json params = {{"preset", "file"},
+                                 {"path", (dir / "box.obj").string()},
+                                 {"camera_position", {1.6, 1.2, 2.2}},
+                                 {"camera_target", {0, 0, 0}}};
+  ImageF id = render(scene_graph("file_scene", params), "gbuf.id");
+  ImageF albedo = render(scene_graph("file_scene", params), "gbuf.albedo");
+  ImageF normal = render(scene_graph("file_scene", params), "gbuf.normal");
+  ImageF cube = render(scene_graph("cube_scene", {{"preset", "cube"},
+                                                  {"camera_position", {1.6, 1.2, 2.2}},
+                                                  {"camera_target", {0, 0, 0}}}),
+                       "gbuf.id");
+  ASSERT_FALSE(id.empty());
+  EXPECT_EQ(id.pixels, cube.pixels) << "the same cube, from a file, covers the same pixels";
+  EXPECT_NEAR(albedo.at(48, 32, 0), 0.8, 1e-6);
+  EXPECT_NEAR(albedo.at(48, 32, 1), 0.2, 1e-6);
+  EXPECT_NEAR(albedo.at(48, 32, 2), 0.1, 1e-6);
+  EXPECT_TRUE(aq::test::all_finite(normal));
 }
 
 TEST(SceneNode, MissingFileIsAClearError) {
