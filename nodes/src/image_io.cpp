@@ -325,9 +325,14 @@ Status write_image(const std::string& path, const ImageF& image, const WriteOpti
     return make_error("cannot write image " + path + ": it is a directory; give a file name");
   }
 
-  // JPEG has no alpha: drop it by striding over 4 floats while writing 3.
+  // JPEG and Radiance HDR have no alpha: drop it by striding over 4 floats while writing 3.
+  const bool rgb_only = ext == "jpg" || ext == "jpeg" || ext == "hdr";
   int channels = image.channels;
-  if ((ext == "jpg" || ext == "jpeg") && channels == 4) channels = 3;
+  if (rgb_only && channels == 4) channels = 3;
+  if (ext == "hdr" && channels == 1) {
+    return make_error("cannot write image " + path +
+                      ": Radiance HDR holds only RGB; write grey images as .exr");
+  }
   OIIO::ImageSpec spec(image.width, image.height, channels, *type);
   if (channels == 4) spec.alpha_channel = 3;
   if (!is_linear_format(ext)) {

@@ -68,6 +68,13 @@ class ImageIo : public ::testing::Test {
   fs::path dir_;
 };
 
+void expect_error_naming(const aq::Status& status, const std::string& path,
+                         const std::string& reason_fragment) {
+  ASSERT_FALSE(status.ok()) << "expected an error for " << path;
+  EXPECT_NE(status.message().find(path), std::string::npos) << status.message();
+  EXPECT_NE(status.message().find(reason_fragment), std::string::npos) << status.message();
+}
+
 double max_abs_diff(const aq::ImageF& a, const aq::ImageF& b, int channels) {
   double worst = 0;
   for (int y = 0; y < a.height; ++y) {
@@ -201,6 +208,17 @@ TEST_F(ImageIo, HdrKeepsLinearDataWithinRgbePrecision) {
   }
 }
 
+TEST_F(ImageIo, HdrDropsAlphaAndRefusesGrey) {
+  const std::string file = path("alpha.hdr");
+  ASSERT_TRUE(aq::write_image(file, aq::ImageF(4, 4, 4, 0.5f)).ok());
+  auto back = aq::read_image(file, config());
+  ASSERT_TRUE(back.ok()) << back.message();
+  EXPECT_NEAR(back->at(1, 1, 0), 0.5, 0.5 / 128);
+  EXPECT_EQ(back->at(1, 1, 3), 1.0f);
+  const std::string grey = path("grey.hdr");
+  expect_error_naming(aq::write_image(grey, aq::ImageF(4, 4, 1, 0.5f)), grey, ".exr");
+}
+
 TEST_F(ImageIo, GreyFileBecomesRgbWithOpaqueAlpha) {
   aq::ImageF grey(8, 4, 1);
   for (int y = 0; y < 4; ++y) {
@@ -309,13 +327,6 @@ TEST_F(ImageIo, FormatClassification) {
 }
 
 // ---- errors ----------------------------------------------------------------------------
-
-void expect_error_naming(const aq::Status& status, const std::string& path,
-                         const std::string& reason_fragment) {
-  ASSERT_FALSE(status.ok()) << "expected an error for " << path;
-  EXPECT_NE(status.message().find(path), std::string::npos) << status.message();
-  EXPECT_NE(status.message().find(reason_fragment), std::string::npos) << status.message();
-}
 
 template <typename T>
 aq::Status as_status(const aq::Result<T>& result) {

@@ -35,7 +35,7 @@ struct WriteOptions {
 // Writes `image` (row 0 at the bottom; 1, 3 or 4 channels). EXR/HDR keep linear data as given
 // (associated alpha); PNG/JPEG/TIFF expect display-referred pixels with straight alpha (the
 // output of DisplayTransform), which are clamped to [0,1], quantised and stored unchanged
-// (JPEG drops alpha). Atomic: the pixels go to
+// (JPEG and HDR drop alpha). Atomic: the pixels go to
 // PATH.tmp-<pid>.<ext> first and are renamed over PATH; on any failure (disk full,
 // unwritable directory) nothing is left behind and the error names the path and the reason.
 Status write_image(const std::string& path, const ImageF& image, const WriteOptions& options = {});
