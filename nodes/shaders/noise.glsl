@@ -73,12 +73,17 @@ vec2 aq_fade(vec2 t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 vec3 aq_fade(vec3 t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 vec3 aq_fade_derivative(vec3 t) { return 30.0 * t * t * (t * (t - 2.0) + 1.0); }
 
-// One of 8 unit gradients (multiples of 45 degrees) chosen by the hash of (cell, seed).
+// One of 8 unit gradients, k * 45 degrees for k = hash of (cell, seed) & 7: the base (1, 0) or
+// (d, d) by the parity of k, turned by 90 degrees (k >> 1) times. Selects, not a table (see
+// aq_perlin3_gradient).
 vec2 aq_perlin2_gradient(ivec2 cell, uint seed) {
   const float d = 0.70710678118654752;
-  const vec2 directions[8] = vec2[8](vec2(1.0, 0.0), vec2(d, d), vec2(0.0, 1.0), vec2(-d, d),
-                                     vec2(-1.0, 0.0), vec2(-d, -d), vec2(0.0, -1.0), vec2(d, -d));
-  return directions[aq_pcg3d(uvec3(uvec2(cell), seed)).x & 7u];
+  uint k = aq_pcg3d(uvec3(uvec2(cell), seed)).x & 7u;
+  vec2 g = (k & 1u) == 0u ? vec2(1.0, 0.0) : vec2(d, d);
+  uint quarter_turns = k >> 1u;
+  if ((quarter_turns & 1u) != 0u) g = vec2(-g.y, g.x);
+  if ((quarter_turns & 2u) != 0u) g = -g;
+  return g;
 }
 
 // 2D gradient noise, periodic with `period` cells per axis (0 = not periodic). The sum of the
@@ -97,15 +102,19 @@ float aq_perlin2_seeded(vec2 p, vec2 period, uint seed) {
 
 float aq_perlin2(vec2 p, vec2 period) { return aq_perlin2_seeded(p, period, 0u); }
 
-// One of Perlin's 12 cube-edge gradients (length sqrt(2)); 16 entries with 4 repeated, as in
-// Perlin's "Improving Noise" (2002), so that a 4-bit index can be used without bias.
+// One of Perlin's 12 cube-edge gradients (length sqrt(2)) from the low 4 bits h of the cell's
+// hash, 16 entries with 4 repeated as in Perlin's "Improving Noise" (2002):
+//   h = 0..3: (+-1, +-1, 0), 4..7: (+-1, 0, +-1), 8..11: (0, +-1, +-1) with the first sign
+//   from bit 0 and the second from bit 1; h = 12, 13, 14, 15 repeat h = 0, 1, 9, 11.
+// Computed with selects rather than a table: dynamic indexing of a constant array is slow to
+// compile and to run on llvmpipe.
 vec3 aq_perlin3_gradient(ivec3 cell) {
-  const vec3 edges[16] = vec3[16](
-      vec3(1, 1, 0), vec3(-1, 1, 0), vec3(1, -1, 0), vec3(-1, -1, 0), vec3(1, 0, 1),
-      vec3(-1, 0, 1), vec3(1, 0, -1), vec3(-1, 0, -1), vec3(0, 1, 1), vec3(0, -1, 1),
-      vec3(0, 1, -1), vec3(0, -1, -1), vec3(1, 1, 0), vec3(-1, 1, 0), vec3(0, -1, 1),
-      vec3(0, -1, -1));
-  return edges[aq_pcg3d(uvec3(cell)).x & 15u];
+  uint h = aq_pcg3d(uvec3(cell)).x & 15u;
+  if (h >= 12u) h = h == 12u ? 0u : h == 13u ? 1u : h == 14u ? 9u : 11u;
+  float a = (h & 1u) == 0u ? 1.0 : -1.0;
+  float b = (h & 2u) == 0u ? 1.0 : -1.0;
+  uint group = h >> 2u;
+  return group == 0u ? vec3(a, b, 0.0) : group == 1u ? vec3(a, 0.0, b) : vec3(0.0, a, b);
 }
 
 // 3D gradient noise with its analytic gradient: returns vec4(value, d/dx, d/dy, d/dz).
