@@ -54,7 +54,7 @@ Result<Sweep> quality_param_sweep(GlContext& context, const Registry& registry, 
   sweep.kind = "highest_quality";
   sweep.reference = "the graph's output with '" + node_id + "." + quality.param +
                     "' = " + std::to_string(quality.reference_value) + " in float precision";
-  sweep.time_measure = "node gpu";
+  sweep.time_measure = "node wall";
   Evaluator evaluator(context, registry);
   auto configure = [&](int value, const std::string& precision) {
     Graph g = graph;
@@ -82,8 +82,8 @@ Result<Sweep> quality_param_sweep(GlContext& context, const Registry& registry, 
     point.setting = std::string(quality.param) + "=" + std::to_string(value);
     point.params = {{quality.param, value}};
     point.precision = precision;
-    point.time_ms = measured->gpu_ms;
-    point.cpu_ms = measured->cpu_ms;
+    point.time_ms = measured->wall_ms;
+    point.gpu_ms = measured->gpu_ms;
     point.error = *error;
     point.is_reference = i + 1 == configs.size();
     sweep.points.push_back(point);

@@ -52,6 +52,7 @@ Result<NodeMeasurement> measure_node(Evaluator& evaluator, const Graph& graph,
     options.frame = graph.settings.first_frame;
     options.retain_outputs = false;
     options.measure_gpu_time = true;
+    options.finish_each_node = true;
     options.images = images;
     auto result = evaluator.evaluate(graph, options);
     if (!result.ok()) return result.error();
@@ -68,7 +69,7 @@ Result<NodeMeasurement> measure_node(Evaluator& evaluator, const Graph& graph,
     }
   }
   measurement.gpu_ms = summarize(gpu);
-  measurement.cpu_ms = summarize(cpu);
+  measurement.wall_ms = summarize(cpu);
   return measurement;
 }
 

@@ -24,9 +24,9 @@ struct ErrorStats {
 Result<ErrorStats> compare_images(const ImageF& got, const ImageF& reference);
 
 struct NodeMeasurement {
-  Spread gpu_ms;  // of `node_id`'s process()
-  Spread cpu_ms;
-  ImageF output;  // the graph's output
+  Spread wall_ms;  // of `node_id`'s process(), glFinish before and after (holds its GPU work)
+  Spread gpu_ms;   // its GL_TIMESTAMP pair (llvmpipe underestimates single draws)
+  ImageF output;   // the graph's output
 };
 
 // Evaluates `graph` at its first frame warmup + frames times with outputs released after use,

@@ -27,17 +27,18 @@ Result<PipelineTiming> time_pipeline(GlContext& context, const Registry& registr
   std::vector<std::string> order;
   std::map<std::string, NodeStats> stats;
   std::map<std::string, std::vector<double>> gpu, cpu;
-  std::vector<double> gpu_sums;
+  std::vector<double> wall_sums;
   for (int i = 0; i < plan.warmup + plan.frames; ++i) {
     EvalOptions options;
     options.frame = first + i;
     options.retain_outputs = plan.retain_outputs;
     options.measure_gpu_time = true;
+    options.finish_each_node = true;
     auto result = evaluator.evaluate(graph, options);
     if (!result.ok())
       return make_error("frame " + std::to_string(options.frame) + ": " + result.message());
     if (i < plan.warmup) continue;
-    double gpu_sum = 0;
+    double wall_sum = 0;
     for (const auto& t : evaluator.last_timings()) {
       auto [it, inserted] = stats.try_emplace(t.node);
       if (inserted) {
@@ -48,17 +49,17 @@ Result<PipelineTiming> time_pipeline(GlContext& context, const Registry& registr
       if (!t.cached) ++it->second.runs;
       gpu[t.node].push_back(t.gpu_ms);
       cpu[t.node].push_back(t.cpu_ms);
-      gpu_sum += t.gpu_ms;
+      wall_sum += t.cpu_ms;
     }
-    gpu_sums.push_back(gpu_sum);
+    wall_sums.push_back(wall_sum);
   }
   for (const auto& id : order) {
     NodeStats node = stats[id];
     node.gpu_ms = summarize(gpu[id]);
-    node.cpu_ms = summarize(cpu[id]);
+    node.wall_ms = summarize(cpu[id]);
     timing.nodes.push_back(node);
   }
-  timing.node_gpu_sum_ms = summarize(gpu_sums);
+  timing.node_wall_sum_ms = summarize(wall_sums);
 
   // The frame cost without the timer queries' waits, in a fresh evaluator so the same frames
   // are evaluated from the same state.

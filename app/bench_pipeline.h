@@ -19,8 +19,11 @@ namespace aq::app {
 struct NodeStats {
   std::string id;
   std::string type;
-  Spread gpu_ms;  // per frame; 0 on frames where the node was reused
-  Spread cpu_ms;
+  // Per frame, 0 on frames where the node was reused. wall_ms: process() with glFinish before
+  // and after, so it holds the node's GPU work (the figure to quote on llvmpipe); gpu_ms: the
+  // evaluator's GL_TIMESTAMP pair, which llvmpipe underestimates for single draws.
+  Spread wall_ms;
+  Spread gpu_ms;
   int runs = 0;  // frames (of the timed ones) on which process() ran
 };
 
@@ -30,7 +33,7 @@ struct PipelineTiming {
   // Wall time of evaluate() + glFinish with node timing switched off (timer queries make the
   // CPU wait for each node, which would inflate the frame).
   Spread frame_ms;
-  Spread node_gpu_sum_ms;  // per frame, the sum of the nodes' GPU times
+  Spread node_wall_sum_ms;  // per frame, the sum of the nodes' synced wall times
 };
 
 struct TimingPlan {

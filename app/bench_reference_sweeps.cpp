@@ -10,6 +10,7 @@
 #ifdef AQ_HAVE_CPU_REFERENCES
 #include "reference/blur.h"
 #include "reference/caustics_reference.h"
+#include "reference/edge.h"
 #include "reference/morphology.h"
 #include "reference/tint.h"
 #include "reference/vignette.h"
@@ -83,8 +84,8 @@ Status run_configs(GlContext& context, const Registry& registry, const SweepPlan
     point.setting = config.setting;
     point.params = config.params;
     point.precision = config.precision;
-    point.time_ms = measured->gpu_ms;
-    point.cpu_ms = measured->cpu_ms;
+    point.time_ms = measured->wall_ms;
+    point.gpu_ms = measured->gpu_ms;
     point.error = *error;
     sweep->points.push_back(point);
   }
@@ -97,7 +98,7 @@ Sweep cpu_sweep(const std::string& series, const std::string& type, const std::s
   sweep.node_type = type;
   sweep.kind = "cpu_reference";
   sweep.reference = reference;
-  sweep.time_measure = "node gpu";
+  sweep.time_measure = "node wall";
   return sweep;
 }
 
@@ -316,6 +317,25 @@ Result<std::vector<Sweep>> run_reference_sweeps(GlContext& context, const Regist
         precision_sweep(context, registry, plan, "tint", {{"amount", p.amount}, {"tint", tint}},
                         "reference::tint in double precision",
                         [&](const ImageF& image) { return reference::tint(image, p); });
+    if (!sweep.ok()) return sweep.error();
+    sweeps.push_back(*sweep);
+  }
+  if (wanted("edge")) {
+    reference::EdgeParams p;
+    const json kernel = graph_param(graph, registry, "edge", "kernel");
+    p.kernel =
+        kernel == "sobel" ? reference::EdgeKernel::kSobel : reference::EdgeKernel::kLaplacian;
+    p.factor = number(graph_param(graph, registry, "edge", "factor"), p.factor);
+    p.threshold = number(graph_param(graph, registry, "edge", "threshold"), p.threshold);
+    p.softness = number(graph_param(graph, registry, "edge", "softness"), p.softness);
+    auto sweep = precision_sweep(
+        context, registry, plan, "edge",
+        {{"kernel", kernel},
+         {"factor", p.factor},
+         {"threshold", p.threshold},
+         {"softness", p.softness}},
+        "reference::edge_darkening in double precision (edges of the image itself)",
+        [&](const ImageF& image) { return reference::edge_darkening(image, nullptr, p); });
     if (!sweep.ok()) return sweep.error();
     sweeps.push_back(*sweep);
   }

@@ -34,13 +34,14 @@ json pipeline_json(const PipelineTiming& timing, double copy_ms) {
   for (const auto& n : timing.nodes) {
     nodes.push_back({{"id", n.id},
                      {"type", n.type},
+                     {"wall_ms", spread_json(n.wall_ms)},
                      {"gpu_ms", spread_json(n.gpu_ms)},
-                     {"cpu_ms", spread_json(n.cpu_ms)},
+                     {"copy_passes", ratio(n.wall_ms.median, copy_ms)},
                      {"runs", n.runs}});
   }
   return {{"retain_outputs", timing.retain_outputs},
           {"frame_ms", spread_json(timing.frame_ms)},
-          {"node_gpu_sum_ms", spread_json(timing.node_gpu_sum_ms)},
+          {"node_wall_sum_ms", spread_json(timing.node_wall_sum_ms)},
           {"copy_passes_per_frame", ratio(timing.frame_ms.median, copy_ms)},
           {"nodes", nodes}};
 }
@@ -80,7 +81,7 @@ json report_json(const BenchReport& r) {
                         {"params", p.params},
                         {"precision", p.precision},
                         {"time_ms", spread_json(p.time_ms)},
-                        {"cpu_ms", spread_json(p.cpu_ms)},
+                        {"gpu_ms", spread_json(p.gpu_ms)},
                         {"max_abs", number(p.error.max_abs)},
                         {"mean_abs", number(p.error.mean_abs)},
                         {"psnr", number(p.error.psnr)},
@@ -131,10 +132,13 @@ void print_report(const BenchReport& r, std::FILE* out) {
                "GL timestamps say %.3f)\n\n",
                r.precision == "float" ? "RGBA32F" : "RGBA16F", copy_ms, r.copy_pass.wall_ms.min,
                r.copy_pass.wall_ms.max, r.copy_pass.timestamp_ms.median);
-  std::fprintf(out, "%-14s %-12s %27s %27s %10s\n", "node", "type", "every node runs: gpu ms",
-               "cached static: gpu ms", "cpu ms");
-  std::fprintf(out, "%-14s %-12s %9s %17s %9s %17s %10s\n", "", "", "median", "[min .. max]",
-               "median", "[min .. max]", "(all run)");
+  std::fprintf(out,
+               "node time: process() between two glFinish calls (wall); copies = median / "
+               "copy pass\n");
+  std::fprintf(out, "%-14s %-12s %36s %27s %10s\n", "node", "type", "every node runs: ms",
+               "static cached: ms", "GL tstamp");
+  std::fprintf(out, "%-14s %-12s %9s %17s %8s %9s %17s %10s\n", "", "", "median", "[min .. max]",
+               "copies", "median", "[min .. max]", "ms");
   for (size_t i = 0; i < r.every_node_runs.nodes.size(); ++i) {
     const NodeStats& n = r.every_node_runs.nodes[i];
     const NodeStats* c = nullptr;
@@ -143,12 +147,12 @@ void print_report(const BenchReport& r, std::FILE* out) {
     }
     char cached[64] = "-";
     if (c != nullptr) {
-      std::snprintf(cached, sizeof(cached), "%9.3f [%6.3f .. %6.3f]", c->gpu_ms.median,
-                    c->gpu_ms.min, c->gpu_ms.max);
+      std::snprintf(cached, sizeof(cached), "%9.3f [%6.3f .. %6.3f]", c->wall_ms.median,
+                    c->wall_ms.min, c->wall_ms.max);
     }
-    std::fprintf(out, "%-14s %-12s %9.3f [%6.3f .. %6.3f] %27s %10.3f\n", n.id.c_str(),
-                 n.type.c_str(), n.gpu_ms.median, n.gpu_ms.min, n.gpu_ms.max, cached,
-                 n.cpu_ms.median);
+    std::fprintf(out, "%-14s %-12s %9.3f [%6.3f .. %6.3f] %8.1f %27s %10.3f\n", n.id.c_str(),
+                 n.type.c_str(), n.wall_ms.median, n.wall_ms.min, n.wall_ms.max,
+                 ratio(n.wall_ms.median, copy_ms), cached, n.gpu_ms.median);
   }
   std::fprintf(out,
                "\nframe (wall, timers off): every node runs %.3f ms = %.1f copy passes; "
@@ -164,7 +168,7 @@ void print_report(const BenchReport& r, std::FILE* out) {
     if (!sweep.note.empty()) std::fprintf(out, "  note: %s\n", sweep.note.c_str());
     const auto front = pareto_points(sweep);
     std::fprintf(out, "  %-26s %-6s %12s %11s %11s %8s\n", "setting", "prec.",
-                 (sweep.time_measure == "frame wall" ? "frame ms" : "gpu ms"), "max abs",
+                 (sweep.time_measure == "frame wall" ? "frame ms" : "wall ms"), "max abs",
                  "mean abs", "PSNR");
     for (size_t i = 0; i < sweep.points.size(); ++i) {
       const auto& p = sweep.points[i];
@@ -183,21 +187,21 @@ Status write_report_csv(const BenchReport& r, const std::string& path) {
     std::ofstream out(temporary);
     if (!out) return make_error("cannot write '" + path + "': is the folder there and writable?");
     out << "section,series,node,type,setting,precision,time_ms_median,time_ms_min,time_ms_q1,"
-           "time_ms_q3,time_ms_max,cpu_ms_median_or_timestamp_ms,runs,max_abs,mean_abs,psnr,is_"
+           "time_ms_q3,time_ms_max,timestamp_ms_median,runs,max_abs,mean_abs,psnr,is_"
            "reference,"
            "pareto,reference\n";
     auto row = [&](const std::string& section, const std::string& series, const std::string& node,
                    const std::string& type, const std::string& setting,
-                   const std::string& precision, const Spread& time, double cpu_ms,
+                   const std::string& precision, const Spread& time, double timestamp_ms,
                    const std::string& runs, const std::string& max_abs, const std::string& mean_abs,
                    const std::string& psnr, const std::string& is_reference,
                    const std::string& pareto, const std::string& reference) {
       out << csv_field(section) << ',' << csv_field(series) << ',' << csv_field(node) << ','
           << csv_field(type) << ',' << csv_field(setting) << ',' << precision << ','
           << csv_number(time.median) << ',' << csv_number(time.min) << ',' << csv_number(time.q1)
-          << ',' << csv_number(time.q3) << ',' << csv_number(time.max) << ',' << csv_number(cpu_ms)
-          << ',' << runs << ',' << max_abs << ',' << mean_abs << ',' << psnr << ',' << is_reference
-          << ',' << pareto << ',' << csv_field(reference) << '\n';
+          << ',' << csv_number(time.q3) << ',' << csv_number(time.max) << ','
+          << csv_number(timestamp_ms) << ',' << runs << ',' << max_abs << ',' << mean_abs << ','
+          << psnr << ',' << is_reference << ',' << pareto << ',' << csv_field(reference) << '\n';
     };
     row("copy_pass", "", "", "", "", r.precision, r.copy_pass.wall_ms,
         r.copy_pass.timestamp_ms.median, std::to_string(r.copy_pass.wall_ms.count), "", "", "", "",
@@ -205,7 +209,7 @@ Status write_report_csv(const BenchReport& r, const std::string& path) {
     for (const auto* timing : {&r.every_node_runs, &r.cached}) {
       const std::string mode = timing->retain_outputs ? "cached_static_nodes" : "every_node_runs";
       for (const auto& n : timing->nodes) {
-        row("node", mode, n.id, n.type, "", r.precision, n.gpu_ms, n.cpu_ms.median,
+        row("node", mode, n.id, n.type, "", r.precision, n.wall_ms, n.gpu_ms.median,
             std::to_string(n.runs), "", "", "", "", "", "");
       }
       row("frame", mode, "", "", "", r.precision, timing->frame_ms, 0.0, "", "", "", "", "", "",
@@ -217,7 +221,7 @@ Status write_report_csv(const BenchReport& r, const std::string& path) {
         const auto& p = sweep.points[i];
         const bool pareto = std::find(front.begin(), front.end(), i) != front.end();
         row("sweep", sweep.series, "", sweep.node_type, p.setting, p.precision, p.time_ms,
-            p.cpu_ms.median, "", csv_number(p.error.max_abs), csv_number(p.error.mean_abs),
+            p.gpu_ms.median, "", csv_number(p.error.max_abs), csv_number(p.error.mean_abs),
             csv_number(p.error.psnr), p.is_reference ? "1" : "0", pareto ? "1" : "0",
             sweep.kind + ": " + sweep.reference);
       }

@@ -30,8 +30,8 @@ struct SweepPoint {
   std::string setting;                               // e.g. "grid=64" or "quality=draft"
   nlohmann::json params = nlohmann::json::object();  // the parameter values of this point
   std::string precision;
-  Spread time_ms;  // the node's GPU time, or the frame time for pipeline sweeps
-  Spread cpu_ms;   // the node's CPU wall time (node sweeps)
+  Spread time_ms;  // the node's synced wall time, or the frame time for pipeline sweeps
+  Spread gpu_ms;   // the node's GL_TIMESTAMP time (node sweeps; llvmpipe underestimates it)
   ErrorStats error;
   bool is_reference = false;  // this point re-renders the reference configuration
 };
@@ -41,7 +41,7 @@ struct Sweep {
   std::string node_type;     // "pipeline" for preset sweeps
   std::string kind;          // cpu_reference | highest_quality | pipeline_reference
   std::string reference;     // what the reference is, in words
-  std::string time_measure;  // "node gpu" or "frame wall"
+  std::string time_measure;  // "node wall" or "frame wall"
   std::string note;          // anything the reader must know (e.g. the reference's own error)
   double reference_ms = 0;   // time the reference took to compute (CPU references)
   std::vector<SweepPoint> points;

@@ -58,8 +58,8 @@ lines.append(f"Measured by `scripts/update-accuracy.sh {command}`: graph `{repor
              f"{w}x{h}, {report['precision']} precision, {report['frames']} timed frames after "
              f"{report['warmup']} warm-up; {report['gl']}.")
 lines.append("")
-copy = report["copy_pass"]["gpu_ms"]
-lines.append(f"- copy pass (the yardstick): **{ms(copy['median'])} ms** GPU median "
+copy = report["copy_pass"]["wall_ms"]
+lines.append(f"- copy pass (the yardstick): **{ms(copy['median'])} ms** median "
              f"(min {ms(copy['min'])}, max {ms(copy['max'])})")
 modes = report["modes"]
 lines.append(f"- frame, every node running: {ms(modes['every_node_runs']['frame_ms']['median'])} ms"
@@ -67,16 +67,16 @@ lines.append(f"- frame, every node running: {ms(modes['every_node_runs']['frame_
 lines.append(f"- frame, static nodes cached: {ms(modes['cached_static_nodes']['frame_ms']['median'])}"
              f" ms = **{report['copy_passes_per_frame']:.1f} copy passes per frame**")
 lines.append("")
-lines.append("| node | type | GPU ms median [min .. max], every node runs | GPU ms median, cached | "
-             "CPU ms median | runs (cached) |")
-lines.append("| --- | --- | --- | --- | --- | --- |")
+lines.append("| node | type | ms median [min .. max], every node runs | copy passes | "
+             "ms median, static cached | runs (cached) | GL timestamp ms |")
+lines.append("| --- | --- | --- | --- | --- | --- | --- |")
 cached = {n["id"]: n for n in modes["cached_static_nodes"]["nodes"]}
 for n in modes["every_node_runs"]["nodes"]:
     c = cached.get(n["id"])
-    g = n["gpu_ms"]
+    g = n["wall_ms"]
     lines.append(f"| {n['id']} | {n['type']} | {ms(g['median'])} [{ms(g['min'])} .. {ms(g['max'])}] "
-                 f"| {ms(c['gpu_ms']['median']) if c else '-'} | {ms(n['cpu_ms']['median'])} "
-                 f"| {c['runs'] if c else '-'} of {report['frames']} |")
+                 f"| {n['copy_passes']:.1f} | {ms(c['wall_ms']['median']) if c else '-'} "
+                 f"| {c['runs'] if c else '-'} of {report['frames']} | {ms(n['gpu_ms']['median'])} |")
 lines.append("")
 if not report["cpu_references"]:
     lines.append("No CPU references in this build (configure with AQUARELLE_BUILD_TESTS=ON).")
@@ -86,7 +86,7 @@ for sweep in report["sweeps"]:
     lines.append("")
     lines.append(f"Reference: {sweep['reference']}." + (f" {sweep['note']}." if sweep["note"] else ""))
     lines.append("")
-    unit = "frame ms" if sweep["time_measure"] == "frame wall" else "GPU ms"
+    unit = "frame ms" if sweep["time_measure"] == "frame wall" else "node ms"
     lines.append(f"| setting | precision | {unit} | max abs | mean abs | PSNR dB | Pareto |")
     lines.append("| --- | --- | --- | --- | --- | --- | --- |")
     for p in sweep["points"]:

@@ -515,6 +515,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
 
       for (auto& image : state.images) image.reset();
       for (auto& scene : state.scenes) scene = nullptr;
+      if (options.finish_each_node) glFinish();  // earlier nodes' work is not this node's
       if (options.measure_gpu_time) {
         if (!state.timer_start) {
           state.timer_start = gl::make_query();
@@ -537,6 +538,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
         }
         status = type->desc->process(state.instance, &ctx);
       }
+      if (options.finish_each_node) glFinish();
       auto end = std::chrono::steady_clock::now();
       if (options.measure_gpu_time) glQueryCounter(state.timer_end.get(), GL_TIMESTAMP);
       impl_->reset_gl_state();

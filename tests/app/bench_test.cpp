@@ -73,10 +73,10 @@ TEST_F(BenchOnBlurGraph, TimesEveryNodeOfTheGraph) {
   std::set<std::string> ids;
   for (const auto& node : nodes) {
     ids.insert(node["id"].get<std::string>());
-    EXPECT_GT(node["cpu_ms"]["median"].get<double>(), 0.0) << node["id"];
+    EXPECT_GT(node["wall_ms"]["median"].get<double>(), 0.0) << node["id"];
     EXPECT_GE(node["gpu_ms"]["median"].get<double>(), 0.0) << node["id"];
-    EXPECT_LE(node["gpu_ms"]["min"].get<double>(), node["gpu_ms"]["median"].get<double>());
-    EXPECT_LE(node["gpu_ms"]["median"].get<double>(), node["gpu_ms"]["max"].get<double>());
+    EXPECT_LE(node["wall_ms"]["min"].get<double>(), node["wall_ms"]["median"].get<double>());
+    EXPECT_LE(node["wall_ms"]["median"].get<double>(), node["wall_ms"]["max"].get<double>());
     EXPECT_EQ(node["runs"].get<int>(), 3) << "every node runs on each of the 3 frames";
   }
   EXPECT_EQ(ids, (std::set<std::string>{"scene", "gbuf", "blur"}));

@@ -38,6 +38,10 @@ struct EvalOptions {
   // animation with static parts). Off: outputs return to the pool after their last reader.
   bool retain_outputs = true;
   bool measure_gpu_time = true;
+  // Wait for the GPU (glFinish) before and after each node's process(), so cpu_ms covers the
+  // node's GPU work as well: `aquarelle bench` uses it because llvmpipe's GL_TIMESTAMP pairs
+  // around draws that no flush separates read far too low. Slower; off by default.
+  bool finish_each_node = false;
   // Images for `image_input` nodes, by their `name` parameter (tests, embedding).
   const std::map<std::string, ImageF>* images = nullptr;
 };
