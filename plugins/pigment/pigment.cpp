@@ -1,0 +1,163 @@
+// pigment: pigment density variation (Bousseau et al. 2006, seed §3.6). Darkens and lightens
+// the colour by three density textures in turn — turbulence, grain (pigment dispersion) and
+// paper — each an optional input image or procedural. Anchoring: `screen` puts the textures on
+// a dynamic canvas that follows the camera of the optional `scene` input; `object` evaluates
+// the procedural turbulence and grain at the world position of the optional `position` input.
+//
+//   image ───────────────────────────────┐
+//   [turbulence] [grain] [paper] ────────┤
+//   [position] (object) ─────────────────┼──► pigment.frag ──► image
+//   [scene] camera ─► pan, zoom (screen) ┘
+#include <aquarelle/plugin.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "pigment_shaders.h"
+
+namespace {
+
+constexpr aq_port_desc kInputs[] = {
+    aq::image_port("image", "colour to modulate"),
+    aq::optional_image_port("turbulence",
+                            "low-frequency density in red (0.5 = none); "
+                            "unconnected: fBm (Perlin)"),
+    aq::optional_image_port("grain",
+                            "high-frequency pigment dispersion in red (0.5 = none); "
+                            "unconnected: Gaussian noise"),
+    aq::optional_image_port("paper",
+                            "paper grain height in red (0.5 = none); unconnected: "
+                            "Worley cells"),
+    aq::optional_image_port("position",
+                            "world position (gbuffer), w = 0 on the background; "
+                            "used by object anchoring"),
+    aq_port_desc{"scene", AQ_PORT_SCENE, AQ_PORT_OPTIONAL,
+                 "its camera drives the dynamic canvas of screen anchoring"}};
+constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "colour with pigment density")};
+enum Input : uint32_t { kImage, kTurbulence, kGrain, kPaper, kPosition, kScene };
+enum Param : uint32_t {
+  kAnchoring,
+  kTurbulenceWeight,
+  kTurbulenceFrequency,
+  kGrainWeight,
+  kGrainFrequency,
+  kPaperWeight,
+  kPaperFrequency,
+  kWorldScale,
+  kSeed
+};
+constexpr aq_param_desc kParams[] = {
+    aq::enum_param("anchoring", "screen|object", 0,
+                   "screen: a dynamic canvas following the camera; object: turbulence and grain "
+                   "fixed on the geometry (needs `position`)"),
+    aq::float_param("turbulence_weight", 0.3, 0.0, 4.0,
+                    "d = 1 + weight · n for the low-frequency turbulence; 0 disables it"),
+    aq::float_param("turbulence_frequency", 3.0, 0.01, 1000.0,
+                    "procedural turbulence cells per image height (object: per world_scale)"),
+    aq::float_param("grain_weight", 0.2, 0.0, 4.0, "weight of the pigment dispersion"),
+    aq::float_param("grain_frequency", 360.0, 0.01, 10000.0,
+                    "procedural dispersion cells per image height (object: per world_scale)"),
+    aq::float_param("paper_weight", 0.2, 0.0, 4.0, "weight of the paper grain"),
+    aq::float_param("paper_frequency", 100.0, 0.01, 10000.0,
+                    "procedural paper cells per image height (always on the canvas)"),
+    aq::float_param("world_scale", 1.0, 0.001, 1e6, "object anchoring: world units per unit", 0.0,
+                    "log"),
+    aq::int_param("seed", 0, 0, 1 << 20, "independent procedural textures per seed")};
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The dynamic canvas follows the camera: turning by an angle moves the canvas with the scene
+// content at the image centre (1 / (2 tan(fov/2)) image heights per radian), and moving towards
+// the target zooms it by the change of log2 distance.
+struct Canvas {
+  double pan_x = 0.0;
+  double pan_y = 0.0;
+  double zoom = 0.0;
+};
+
+Canvas canvas_for(const aq_scene* scene) {
+  Canvas canvas;
+  if (scene == nullptr) return canvas;
+  const aq_camera& camera = scene->camera;
+  double f[3];
+  double length = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    f[k] = static_cast<double>(camera.target[k]) - camera.position[k];
+    length += f[k] * f[k];
+  }
+  length = std::sqrt(length);
+  if (!(length > 0.0) || !std::isfinite(length)) return canvas;
+  for (double& component : f) component /= length;
+  const double yaw = std::atan2(f[0], -f[2]);  // 0 looking down −z, positive turning right
+  const double pitch = std::asin(std::clamp(f[1], -1.0, 1.0));
+  const double fov = std::clamp(static_cast<double>(camera.fov_y_degrees), 1.0, 179.0) * kPi / 180;
+  const double heights_per_radian = 1.0 / (2.0 * std::tan(fov / 2.0));
+  canvas.pan_x = yaw * heights_per_radian;
+  canvas.pan_y = pitch * heights_per_radian;
+  canvas.zoom = -std::log2(length);
+  return canvas;
+}
+
+struct Pigment {
+  int process(aq::Context& ctx) {
+    const aq_image in = ctx.input_image(kImage);
+    const std::array<float, 3> weights = {static_cast<float>(ctx.param_float(kTurbulenceWeight)),
+                                          static_cast<float>(ctx.param_float(kGrainWeight)),
+                                          static_cast<float>(ctx.param_float(kPaperWeight))};
+    if (weights[0] == 0.0f && weights[1] == 0.0f && weights[2] == 0.0f) {
+      return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
+    }
+    const bool object = ctx.param_enum(kAnchoring) == 1;
+    if (object && !ctx.connected(kPosition)) {
+      return ctx.fail(
+          "anchoring 'object' needs the world position: connect the gbuffer's "
+          "`position` output to the `position` input, or use anchoring 'screen'");
+    }
+    aq_image out;
+    if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+    const GLuint program = ctx.program(shaders::pigment_frag);
+    if (program == 0) return AQ_ERROR;
+    glUseProgram(program);
+
+    // Unit 0: image; 1-3: the density textures (the image stands in for unconnected ones so
+    // every sampler names a complete texture); 4: position.
+    aq::bind_texture(program, "u_image", 0, in);
+    std::array<GLint, 3> units{};
+    std::array<GLint, 3> connected{};
+    for (uint32_t i = 0; i < 3; ++i) {
+      connected[i] = ctx.connected(kTurbulence + i) ? 1 : 0;
+      units[i] = static_cast<GLint>(1 + i);
+      glActiveTexture(GL_TEXTURE1 + i);
+      glBindTexture(GL_TEXTURE_2D,
+                    connected[i] != 0 ? ctx.input_image(kTurbulence + i).texture : in.texture);
+    }
+    glUniform1iv(glGetUniformLocation(program, "u_textures"), 3, units.data());
+    glUniform1iv(glGetUniformLocation(program, "u_connected"), 3, connected.data());
+    aq::bind_texture(program, "u_position", 4, object ? ctx.input_image(kPosition) : in);
+    aq::set_int(program, "u_object_anchoring", object ? 1 : 0);
+    glUniform1fv(glGetUniformLocation(program, "u_weights"), 3, weights.data());
+    const std::array<float, 3> frequencies = {
+        static_cast<float>(ctx.param_float(kTurbulenceFrequency)),
+        static_cast<float>(ctx.param_float(kGrainFrequency)),
+        static_cast<float>(ctx.param_float(kPaperFrequency))};
+    glUniform1fv(glGetUniformLocation(program, "u_frequencies"), 3, frequencies.data());
+    aq::set_float(program, "u_world_scale", ctx.param_float(kWorldScale));
+    aq::set_float(program, "u_seed", static_cast<double>(ctx.param_int(kSeed)));
+    aq::set_float(program, "u_aspect", static_cast<double>(in.width) / in.height);
+    const Canvas canvas = canvas_for(ctx.input_scene(kScene));
+    aq::set_vec2(program, "u_pan", canvas.pan_x, canvas.pan_y);
+    aq::set_float(program, "u_zoom", canvas.zoom);
+    const bool drawn = ctx.draw(out);
+    aq::unbind_textures(5);
+    return drawn ? AQ_OK : AQ_ERROR;
+  }
+};
+
+}  // namespace
+
+AQ_NODE(kPigmentNode, Pigment, "pigment", "Watercolor",
+        "Pigment density variation (Bousseau 2006): turbulence, pigment dispersion and paper "
+        "grain modulate C' = C(1 − (1 − C)(d − 1)); screen (dynamic canvas) or object anchoring.",
+        0, kInputs, kOutputs, kParams);
+AQ_PLUGIN("pigment", "1.0", &kPigmentNode)

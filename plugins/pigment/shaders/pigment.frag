@@ -1,0 +1,114 @@
+// Pigment density variation (Bousseau et al. 2006, seed §3.6). Three densities in turn —
+// turbulence (low-frequency fBm), grain (high-frequency Gaussian pigment dispersion) and paper
+// (Worley cells) — each modify every colour channel by
+//     C' = C (1 − (1 − C)(d − 1)),   d = clamp(1 + weight · n, 0, 2)
+// where n is the density texture centred on 0 (an input image's red − 0.5, or procedural).
+// d in [0, 2] is exactly the condition for C' to stay in [0, 1] for every C in [0, 1].
+//
+// Where the textures live:
+//  - the canvas (screen anchoring, and the paper always): a dynamic canvas (Cunzi et al. 2003)
+//    — two layers of the texture, panned by the camera's yaw and pitch and zoomed by the log
+//    of its distance to the target, blended so that the texture follows the view and keeps its
+//    on-screen frequency. Without a camera it is the plain screen-space texture.
+//  - object anchoring: procedural turbulence and grain evaluated at the world position.
+#include "aquarelle/noise.glsl"
+
+in vec2 v_uv;
+layout(location = 0) out vec4 o_color;
+
+uniform sampler2D u_image;
+uniform sampler2D u_textures[3];   // turbulence, grain, paper (when connected)
+uniform int u_connected[3];        // 1 when the texture comes from an input image
+uniform sampler2D u_position;      // world position, w = 0 on the background
+uniform int u_object_anchoring;    // 1: procedural turbulence and grain at the world position
+uniform float u_weights[3];
+uniform float u_frequencies[3];    // cells per canvas unit (image height) or per world unit
+uniform float u_world_scale;       // world units per unit, object anchoring
+uniform float u_seed;
+uniform float u_aspect;            // image width / height
+uniform vec2 u_pan;                // canvas pan, in image heights
+uniform float u_zoom;              // log2 zoom of the canvas
+
+const int TURBULENCE = 0;
+const int GRAIN = 1;
+const int PAPER = 2;
+
+// Integer offsets (exact in float) that make every source, layer and seed an independent field.
+vec2 field_offset(int source, float layer) {
+  return mod(vec2(float(source) * 1013.0 + layer * 389.0 + u_seed * 113.0,
+                  float(source) * 577.0 + layer * 211.0 + u_seed * 71.0),
+             4096.0);
+}
+
+// Procedural density texture, centred on 0, at 2D point p (cells).
+float procedural2(int source, vec2 p) {
+  if (source == TURBULENCE) return 0.5 * aq_fbm2(p, vec2(0.0), 3);
+  if (source == GRAIN) return aq_gaussian_noise(floor(p), u_seed) / 6.0;
+  return 0.5 - min(aq_worley2(p, vec2(0.0)), 1.0);
+}
+
+// One canvas layer: q is in canvas units (image heights, centred), `layer` its absolute index.
+float canvas_layer(int source, vec2 q, float layer) {
+  if (u_connected[source] == 1) {
+    // Input textures cover the image once at zoom 0 and repeat beyond (they should tile); other
+    // layers are shifted by an irrational fraction of the tile so they do not line up.
+    vec2 uv = fract(q / vec2(u_aspect, 1.0) + 0.5 + layer * vec2(0.6180339887, 0.3819660113));
+    return texture(u_textures[source], uv).r - 0.5;
+  }
+  return procedural2(source, q * u_frequencies[source] + field_offset(source, layer));
+}
+
+float canvas_density(int source, vec2 screen) {
+  float base = floor(u_zoom);
+  float blend = u_zoom - base;
+  // Layer `base + k` is scaled by 2^(k − blend): as the zoom grows by 1 the next layer takes
+  // the place of the current one, so the canvas zooms forever without a jump.
+  float n0 = canvas_layer(source, (screen + u_pan) * exp2(-blend), base);
+  if (blend == 0.0) return n0;
+  float n1 = canvas_layer(source, (screen + u_pan) * exp2(1.0 - blend), base + 1.0);
+  float w0 = 1.0 - blend;
+  float w1 = blend;
+  return (w0 * n0 + w1 * n1) / sqrt(w0 * w0 + w1 * w1);  // keeps the variance of one layer
+}
+
+float object_density(int source, vec3 world) {
+  vec3 p = world / u_world_scale * u_frequencies[source];
+  vec2 offset = field_offset(source, 0.0);
+  if (source == TURBULENCE) {
+    float sum = 0.0;
+    float amplitude = 1.0;
+    float total = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      sum += amplitude * aq_perlin3(p * exp2(float(k)) + vec3(offset, 0.0), vec3(0.0));
+      total += amplitude;
+      amplitude *= 0.5;
+    }
+    return 0.5 * sum / total;
+  }
+  vec3 cell = floor(p);
+  return aq_gaussian_noise(cell.xy + offset, cell.z + u_seed * 4099.0) / 6.0;
+}
+
+vec3 apply_density(vec3 c, float weight, float n) {
+  if (!(abs(n) <= 1e30)) n = 0.0;  // NaN or infinite texture: no change
+  float d = clamp(1.0 + weight * n, 0.0, 2.0);
+  return c * (1.0 - (1.0 - c) * (d - 1.0));
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  vec4 color = texelFetch(u_image, pixel, 0);
+  vec2 screen = (v_uv - 0.5) * vec2(u_aspect, 1.0);
+  // The position under the pixel centre, never interpolated across an object's silhouette.
+  ivec2 position_pixel = ivec2(v_uv * vec2(textureSize(u_position, 0)));
+  vec4 position = u_object_anchoring == 1 ? texelFetch(u_position, position_pixel, 0) : vec4(0.0);
+  bool on_object = u_object_anchoring == 1 && position.w > 0.0;
+  vec3 c = color.rgb;
+  for (int source = 0; source < 3; ++source) {
+    if (u_weights[source] == 0.0) continue;
+    bool from_world = on_object && source != PAPER && u_connected[source] == 0;
+    float n = from_world ? object_density(source, position.xyz) : canvas_density(source, screen);
+    c = apply_density(c, u_weights[source], n);
+  }
+  o_color = vec4(c, color.a);
+}
