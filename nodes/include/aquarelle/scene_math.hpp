@@ -84,14 +84,4 @@ inline glm::mat4 light_view_projection(const aq_scene& scene) {
   return projection * view;
 }
 
-// The world-space size of one shadow-map texel (the larger of its two sides), for biasing.
-inline float light_texel_world_size(const aq_scene& scene, int shadow_size) {
-  glm::mat4 vp = light_view_projection(scene);
-  // Columns of the inverse map NDC steps back to world steps; x and y scale only.
-  glm::mat4 inv = glm::inverse(vp);
-  float sx = glm::length(glm::vec3(inv[0])) * 2.0f / static_cast<float>(std::max(shadow_size, 1));
-  float sy = glm::length(glm::vec3(inv[1])) * 2.0f / static_cast<float>(std::max(shadow_size, 1));
-  return std::max(sx, sy);
-}
-
 }  // namespace aq::scene_math
