@@ -38,6 +38,7 @@ reference render.
   --node TYPE             sweep only this node type (repeatable); a type not in the graph is
                           swept alone on the fixed test input when it has a CPU reference
   --no-sweep              timing only, no sweeps
+  --pipeline-only         of the sweeps, only the quality presets of the whole graph
   --precision half|float  working precision (default: the graph's settings.precision)
   --csv OUT.csv           write every measurement as CSV
   --plot OUT.png          plot time against mean abs error, one curve per sweep
@@ -55,6 +56,7 @@ struct Arguments {
   int warmup = 2;
   std::set<std::string> node_types;
   bool sweep = true;
+  bool pipeline_only = false;
   std::string precision;
   std::string csv;
   std::string plot;
@@ -109,6 +111,8 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments* args) {
       args->node_types.insert(*v);
     } else if (arg == "--no-sweep") {
       args->sweep = false;
+    } else if (arg == "--pipeline-only") {
+      args->pipeline_only = true;
     } else if (arg == "--precision") {
       auto v = value();
       if (!v) return kExitBadInput;
@@ -241,7 +245,7 @@ int run_bench(int argc, char** argv) {
     plan.frames = std::min(args.frames, 3);
     plan.warmup = 1;
     std::set<std::string> types = args.node_types;
-    if (types.empty()) {
+    if (types.empty() && !args.pipeline_only) {
       for (const auto& [id, node] : graph.nodes) types.insert(node.type);
     }
     plan.pipeline = args.node_types.empty();
