@@ -100,7 +100,9 @@ TEST(Noise, TilesSeamlesslyAcrossBothAxes) {
     EXPECT_LT(worst_wrap, 2e-5) << name_of(type);
     // Gaussian noise is constant per cell and jumps at every cell border, the tile's edge
     // included: its seam is checked by the whole-cell test below.
-    if (type != NoiseType::kGaussian) EXPECT_LT(edge_jump, 2.0 * inner_jump) << name_of(type);
+    if (type != NoiseType::kGaussian) {
+      EXPECT_LT(edge_jump, 2.0 * inner_jump) << name_of(type);
+    }
   }
 }
 
