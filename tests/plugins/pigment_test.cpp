@@ -215,6 +215,58 @@ TEST(Pigment, ObjectAnchoringFollowsTheObject) {
   EXPECT_GT(screen_mismatch, 0.01);
 }
 
+// Screen anchoring with a scene: the dynamic canvas turns with the camera. Yawing the camera by
+// δ = 0.125 · 2 tan(fov/2) moves the content at the centre by 1/8 of the image height (8 px at
+// 64 px), and the pigment pattern must move by exactly as much.
+std::string canvas_graph(double yaw) {
+  const double distance = 5.0;
+  nlohmann::json graph = {
+      {"aquarelle", 1},
+      {"settings", {{"width", 64}, {"height", 64}}},
+      {"nodes",
+       {{"grey", {{"type", "image_input"}, {"params", {{"name", "grey"}}}}},
+        {"scene",
+         {{"type", "scene"},
+          {"params",
+           {{"preset", "cube"},
+            {"fov", 50.0},
+            {"camera_position", {0.0, 0.0, distance}},
+            {"camera_target",
+             {distance * std::sin(yaw), 0.0, distance - distance * std::cos(yaw)}}}}}},
+        {"pigment",
+         {{"type", "pigment"},
+          {"params", test_params()},
+          {"inputs", {{"image", "grey.image"}, {"scene", "scene.scene"}}}}}}},
+      {"output", "pigment.image"}};
+  return graph.dump();
+}
+
+TEST(Pigment, DynamicCanvasTurnsWithTheCamera) {
+  constexpr double kPi = 3.14159265358979323846;
+  const ImageF grey = aq::test::constant_image(64, 64, 0.5f, 0.5f, 0.5f, 1.0f);
+  const double yaw = 0.125 * 2.0 * std::tan(25.0 * kPi / 180.0);
+  aq::test::RenderOptions options;
+  auto ahead = aq::test::render_graph(canvas_graph(0.0), options, {{"grey", grey}});
+  auto turned = aq::test::render_graph(canvas_graph(yaw), options, {{"grey", grey}});
+  ASSERT_TRUE(ahead.ok()) << ahead.message();
+  ASSERT_TRUE(turned.ok()) << turned.message();
+  EXPECT_GT(aq::test::max_abs_diff(*ahead, *turned, 3), 0.01);  // the canvas did move
+  int matching = 0;
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 56; ++x) {
+      matching += std::abs(turned->at(x, y, 0) - ahead->at(x + 8, y, 0)) <= 1e-4;
+    }
+  }
+  EXPECT_GE(matching, 56 * 64 * 99 / 100);
+  // And the canvas matches the reference with the pan and zoom of that camera.
+  aq::reference::PigmentParams params = reference_params();
+  params.pan_x = 0.125;
+  params.zoom = -std::log2(5.0);
+  const ImageF expected =
+      aq::reference::pigment(grey, {nullptr, nullptr, nullptr}, nullptr, params);
+  EXPECT_GE(fraction_within(*turned, expected, 1e-4), 0.99);
+}
+
 TEST(Pigment, ObjectAnchoringWithoutPositionIsAnError) {
   const ImageF input = aq::test::random_image(16, 16, 1);
   auto out = aq::test::run_node("pigment", {{"image", input}}, {{"anchoring", "object"}},

@@ -17,9 +17,12 @@ double frac(double x) {
   return x - std::floor(x);
 }
 
+// GLSL mod: x − y·floor(x / y), non-negative for negative x (std::fmod is not).
+double glsl_mod(double x, double y) { return x - y * std::floor(x / y); }
+
 noise::Vec2 field_offset(int source, double layer, int seed) {
-  return {std::fmod(source * 1013.0 + layer * 389.0 + seed * 113.0, 4096.0),
-          std::fmod(source * 577.0 + layer * 211.0 + seed * 71.0, 4096.0)};
+  return {glsl_mod(source * 1013.0 + layer * 389.0 + seed * 113.0, 4096.0),
+          glsl_mod(source * 577.0 + layer * 211.0 + seed * 71.0, 4096.0)};
 }
 
 double procedural2(int source, noise::Vec2 p, int seed) {
