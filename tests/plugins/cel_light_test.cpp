@@ -394,3 +394,33 @@ TEST(CelLight, CausticsTileInWorldUnitsAndFollowTheLight) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(CelLight, WholeChainAtAnySizeFromOnePixel) {
+  const std::string chain = R"({
+    "aquarelle": 1,
+    "nodes": {
+      "scene": { "type": "scene", "params": { "preset": "plane_box", "smoothing": 7,
+                 "camera_position": [2.0, 2.0, 3.0], "camera_target": [0.0, 0.3, 0.0] } },
+      "gbuf": { "type": "gbuffer", "inputs": { "scene": "scene.scene" } },
+      "shadow": { "type": "shadowmap", "params": { "size": 64 }, "inputs": { "scene": "scene.scene" } },
+      "light": { "type": "cel_light", "inputs": { "scene": "scene.scene",
+                 "position": "gbuf.position", "normal": "gbuf.normal", "albedo": "gbuf.albedo",
+                 "id": "gbuf.id", "shadow": "shadow.depth" } }
+    },
+    "output": "light.image"
+  })";
+  for (auto [w, h] : {std::pair{1, 1}, std::pair{2, 300}, std::pair{301, 3}}) {
+    aq::test::RenderOptions options;
+    options.width = w;
+    options.height = h;
+    auto out = aq::test::render_graph(chain, options);
+    ASSERT_TRUE(out.ok()) << out.message();
+    EXPECT_EQ(out->width, w);
+    EXPECT_EQ(out->height, h);
+    EXPECT_TRUE(aq::test::all_finite(*out)) << w << "x" << h;
+  }
+}
+
+}  // namespace
