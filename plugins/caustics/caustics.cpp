@@ -28,7 +28,7 @@ enum Param {
   kNormalizeEnergy
 };
 constexpr aq_param_desc kParams[] = {
-    aq::int_param("resolution", 256, 16, 4096, "texture pixels per tile side (square output)"),
+    aq::int_param("resolution", 256, 1, 4096, "texture pixels per tile side (square output)"),
     aq::int_param("grid", 256, 4, 2048,
                   "refraction grid cells per tile side; error falls as 1/grid (see README)"),
     aq::float_param("depth", 0.5, 0.0, 4.0, "floor depth below the mean water level, in tiles"),

@@ -252,13 +252,15 @@ TEST(Caustics, DraftQualityUsesAQuarterOfTheGrid) {
 }
 
 TEST(Caustics, SmallestSizesWork) {
-  CausticsParams p = small(16, 4);
-  const ImageF got = run(p, true);
-  ASSERT_EQ(got.width, 16);
-  const Stats s = stats_of(got);
-  EXPECT_TRUE(s.finite);
-  EXPECT_GT(s.min, 0.0);
-  EXPECT_NEAR(s.mean, 1.0, 1e-4);
+  for (auto [resolution, grid] : {std::pair{1, 4}, std::pair{2, 4}, std::pair{16, 4}}) {
+    CausticsParams p = small(resolution, grid);
+    const ImageF got = run(p, true);
+    ASSERT_EQ(got.width, resolution);
+    const Stats s = stats_of(got);
+    EXPECT_TRUE(s.finite);
+    EXPECT_GT(s.min, 0.0);
+    EXPECT_NEAR(s.mean, 1.0, 1e-4) << resolution;
+  }
 }
 
 TEST(Caustics, ReferenceAgreesWithIndependentPhotonSplatting) {
