@@ -31,6 +31,11 @@ std::string node_pointer(const std::string& node_id);
 std::string param_pointer(const std::string& node_id, const std::string& param);
 std::string input_pointer(const std::string& node_id, const std::string& port);
 
+// "an integer", "a number", "a string", "a boolean", "an array", "an object" or "null".
+std::string json_kind(const nlohmann::json& value);
+// 'text', as names are quoted in messages.
+std::string quoted(const std::string& text);
+
 // "a, b, c" (or "(none)").
 std::string join_names(const std::vector<std::string>& names);
 // " (did you mean 'blur'?)" when one of `names` is a likely typo of `wanted`, else "".

@@ -25,26 +25,13 @@ namespace aq {
 namespace {
 
 using graph_checks::problem_at;
+using graph_checks::quoted;
 using json_text::JsonLocator;
 using json_text::TextPosition;
 
 // Far deeper than any graph file needs, far shallower than what would exhaust the stack of
 // code that walks JSON recursively.
 constexpr int kMaxNesting = 64;
-
-std::string quoted(const std::string& text) {
-  return "'" + text + "'";
-}
-
-std::string kind_of(const nlohmann::json& value) {
-  if (value.is_number_integer()) return "an integer";
-  if (value.is_number()) return "a number";
-  if (value.is_string()) return "a string";
-  if (value.is_boolean()) return "a boolean";
-  if (value.is_array()) return "an array";
-  if (value.is_object()) return "an object";
-  return "null";
-}
 
 // nlohmann's what() starts with "[json.exception.parse_error.101] parse error at line 2,
 // column 6: "; the place is reported separately, so keep only the explanation.
@@ -135,7 +122,8 @@ class GraphReader {
 
   void read_root() {
     if (!root_.is_object()) {
-      add("", "a graph file holds a JSON object ({\"aquarelle\": 1, ...}), not " + kind_of(root_));
+      add("", "a graph file holds a JSON object ({\"aquarelle\": 1, ...}), not " +
+                  graph_checks::json_kind(root_));
       return;
     }
     for (const auto& [key, value] : root_.items()) {
@@ -158,7 +146,8 @@ class GraphReader {
       if (root_["editor"].is_object()) {
         result_.graph.editor = root_["editor"];
       } else {
-        add("/editor", "\"editor\" must be an object, not " + kind_of(root_["editor"]));
+        add("/editor",
+            "\"editor\" must be an object, not " + graph_checks::json_kind(root_["editor"]));
       }
     }
     auto checks = graph_checks::check_graph(result_.graph, registry_, already_);
@@ -183,7 +172,7 @@ class GraphReader {
   std::optional<int> read_int(const std::string& pointer, const nlohmann::json& value,
                               const std::string& what) {
     if (!value.is_number_integer()) {
-      add(pointer, what + " must be an integer, not " + kind_of(value));
+      add(pointer, what + " must be an integer, not " + graph_checks::json_kind(value));
       return std::nullopt;
     }
     if (value.is_number_unsigned() &&
@@ -201,7 +190,7 @@ class GraphReader {
 
   void read_settings(const nlohmann::json& settings) {
     if (!settings.is_object()) {
-      add("/settings", "\"settings\" must be an object, not " + kind_of(settings));
+      add("/settings", "\"settings\" must be an object, not " + graph_checks::json_kind(settings));
       return;
     }
     Settings& out = result_.graph.settings;
@@ -215,7 +204,7 @@ class GraphReader {
         if (value.is_number()) {
           out.fps = value.get<double>();
         } else {
-          add(pointer, "fps must be a number, not " + kind_of(value));
+          add(pointer, "fps must be a number, not " + graph_checks::json_kind(value));
         }
       } else if (key == "frames") {
         if (!value.is_array() || value.size() != 2) {
@@ -232,7 +221,7 @@ class GraphReader {
         if (value.is_string()) {
           (key == "precision" ? out.precision : out.quality) = value.get<std::string>();
         } else {
-          add(pointer, key + " must be a string, not " + kind_of(value));
+          add(pointer, key + " must be a string, not " + graph_checks::json_kind(value));
         }
       } else {
         add(pointer, "unknown setting " + quoted(key) +
@@ -243,7 +232,8 @@ class GraphReader {
 
   void read_nodes(const nlohmann::json& nodes) {
     if (!nodes.is_object()) {
-      add("/nodes", "\"nodes\" must be an object keyed by node id, not " + kind_of(nodes));
+      add("/nodes",
+          "\"nodes\" must be an object keyed by node id, not " + graph_checks::json_kind(nodes));
       return;
     }
     for (const auto& [id, value] : nodes.items()) read_node(id, value);
@@ -256,7 +246,7 @@ class GraphReader {
       add(pointer,
           "a node must be an object {\"type\": ..., \"params\": ..., \"inputs\": ...}, "
           "not " +
-              kind_of(value));
+              graph_checks::json_kind(value));
       already_.node_types.insert(id);
       return;
     }
@@ -270,7 +260,8 @@ class GraphReader {
       add(pointer, "node " + quoted(id) + " has no \"type\"");
       already_.node_types.insert(id);
     } else if (!value["type"].is_string()) {
-      add(pointer + "/type", "\"type\" must be a string, not " + kind_of(value["type"]));
+      add(pointer + "/type",
+          "\"type\" must be a string, not " + graph_checks::json_kind(value["type"]));
       already_.node_types.insert(id);
     } else {
       node.type = value["type"].get<std::string>();
@@ -280,7 +271,8 @@ class GraphReader {
       if (params.is_object()) {
         for (const auto& [name, param] : params.items()) node.params[name] = param;
       } else {
-        add(pointer + "/params", "\"params\" must be an object, not " + kind_of(params));
+        add(pointer + "/params",
+            "\"params\" must be an object, not " + graph_checks::json_kind(params));
       }
     }
     if (value.contains("inputs")) read_inputs(id, value["inputs"], &node);
@@ -289,7 +281,7 @@ class GraphReader {
   void read_inputs(const std::string& id, const nlohmann::json& inputs, Node* node) {
     if (!inputs.is_object()) {
       add(graph_checks::node_pointer(id) + "/inputs",
-          "\"inputs\" must be an object, not " + kind_of(inputs));
+          "\"inputs\" must be an object, not " + graph_checks::json_kind(inputs));
       return;
     }
     for (const auto& [port, source] : inputs.items()) {
@@ -297,8 +289,8 @@ class GraphReader {
       std::optional<PortRef> ref =
           source.is_string() ? PortRef::parse(source.get<std::string>()) : std::nullopt;
       if (!ref) {
-        const std::string shown =
-            source.is_string() ? quoted(source.get<std::string>()) : kind_of(source);
+        const std::string shown = source.is_string() ? quoted(source.get<std::string>())
+                                                     : graph_checks::json_kind(source);
         add(pointer, "source " + shown + " must be a string \"<node id>.<output port>\"");
         already_.inputs.insert({id, port});
         continue;
@@ -312,7 +304,7 @@ class GraphReader {
         output.is_string() ? PortRef::parse(output.get<std::string>()) : std::nullopt;
     if (!ref) {
       const std::string shown =
-          output.is_string() ? quoted(output.get<std::string>()) : kind_of(output);
+          output.is_string() ? quoted(output.get<std::string>()) : graph_checks::json_kind(output);
       add("/output", "output " + shown + " must be a string \"<node id>.<output port>\"");
       already_.output = true;
       return;

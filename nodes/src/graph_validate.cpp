@@ -26,10 +26,6 @@ std::string number_text(double value) {
   return out.str();
 }
 
-std::string quoted(const std::string& text) {
-  return "'" + text + "'";
-}
-
 // Edits (insert, delete, substitute, swap two neighbours) turning `a` into `b`: the optimal
 // string alignment distance, so "dpeth" is one edit from "depth".
 size_t edit_distance(const std::string& a, const std::string& b) {
@@ -53,16 +49,6 @@ std::vector<std::string> names_of(const std::vector<Info>& items) {
   std::vector<std::string> names;
   for (const Info& item : items) names.push_back(item.name);
   return names;
-}
-
-std::string json_kind(const nlohmann::json& value) {
-  if (value.is_number_integer()) return "an integer";
-  if (value.is_number()) return "a number";
-  if (value.is_string()) return "a string";
-  if (value.is_boolean()) return "a boolean";
-  if (value.is_array()) return "an array";
-  if (value.is_object()) return "an object";
-  return "null";
 }
 
 std::string got(const nlohmann::json& value) {
@@ -387,6 +373,20 @@ std::string param_pointer(const std::string& node_id, const std::string& param) 
 }
 std::string input_pointer(const std::string& node_id, const std::string& port) {
   return node_pointer(node_id) + "/inputs/" + json_text::escape_pointer_segment(port);
+}
+
+std::string json_kind(const nlohmann::json& value) {
+  if (value.is_number_integer()) return "an integer";
+  if (value.is_number()) return "a number";
+  if (value.is_string()) return "a string";
+  if (value.is_boolean()) return "a boolean";
+  if (value.is_array()) return "an array";
+  if (value.is_object()) return "an object";
+  return "null";
+}
+
+std::string quoted(const std::string& text) {
+  return "'" + text + "'";
 }
 
 std::string join_names(const std::vector<std::string>& names) {
