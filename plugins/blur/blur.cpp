@@ -109,21 +109,44 @@ struct Blur {
   // texture of the same size.
   static bool gaussian(aq::Context& ctx, const aq_image& in, const aq_image& horizontal,
                        const aq_image& out, double sigma) {
-    GLuint program = ctx.program(shaders::blur_gaussian_frag);
-    if (program == 0) return false;
-    glUseProgram(program);
-    aq::set_vec2(program, "u_size", in.width, in.height);
-    aq::set_int(program, "u_linear_taps", ctx.param_bool(kLinearTaps) ? 1 : 0);
-    aq::bind_texture(program, "u_image", 0, in);
-    set_pass(program, blur::gaussian_pass(sigma, in.width), 1.0, 0.0);
-    if (!ctx.draw(horizontal)) return false;
-    aq::bind_texture(program, "u_image", 0, horizontal);
-    set_pass(program, blur::gaussian_pass(sigma, in.height), 0.0, 1.0);
-    return ctx.draw(out);
+    const bool linear_taps = ctx.param_bool(kLinearTaps);
+    const blur::GaussianPass passes[2] = {blur::gaussian_pass(sigma, in.width),
+                                          blur::gaussian_pass(sigma, in.height)};
+    const aq_image sources[2] = {in, horizontal};
+    const aq_image targets[2] = {horizontal, out};
+    for (int axis = 0; axis < 2; ++axis) {
+      const std::vector<blur::Tap> taps = blur::gaussian_taps(passes[axis], linear_taps);
+      const bool table = taps.size() <= blur::kMaxTableTaps;
+      GLuint program =
+          ctx.program(table ? shaders::blur_gaussian_frag : shaders::blur_gaussian_wide_frag);
+      if (program == 0) return false;
+      glUseProgram(program);
+      aq::bind_texture(program, "u_image", 0, sources[axis]);
+      if (table) {
+        set_table(program, taps, axis, in);
+      } else {
+        set_pass(program, passes[axis], linear_taps, axis, in);
+      }
+      if (!ctx.draw(targets[axis])) return false;
+    }
+    return true;
   }
 
-  static void set_pass(GLuint program, const blur::GaussianPass& pass, double dx, double dy) {
-    aq::set_vec2(program, "u_step", dx, dy);
+  static void set_table(GLuint program, const std::vector<blur::Tap>& taps, int axis,
+                        const aq_image& in) {
+    aq::set_vec2(program, "u_size", in.width, in.height);
+    aq::set_vec2(program, "u_axis", axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0);
+    aq::set_int(program, "u_tap_count", static_cast<int>(taps.size()));
+    static_assert(sizeof(blur::Tap) == 2 * sizeof(float));
+    glUniform2fv(glGetUniformLocation(program, "u_taps"), static_cast<GLsizei>(taps.size()),
+                 &taps[0].offset);
+  }
+
+  static void set_pass(GLuint program, const blur::GaussianPass& pass, bool linear_taps, int axis,
+                       const aq_image& in) {
+    aq::set_vec2(program, "u_size", in.width, in.height);
+    aq::set_int(program, "u_linear_taps", linear_taps ? 1 : 0);
+    aq::set_vec2(program, "u_step", axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0);
     aq::set_int(program, "u_radius", pass.radius);
     aq::set_float(program, "u_inv_two_sigma2", pass.inv_two_sigma2);
     aq::set_float(program, "u_norm", pass.norm);

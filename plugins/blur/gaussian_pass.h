@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace blur {
 
@@ -39,6 +40,37 @@ inline GaussianPass gaussian_pass(double sigma, int length) {
   }
   pass.tail_offset = std::max(length, 1);
   return pass;
+}
+
+// Entries of blur_gaussian.frag's u_taps table; longer kernels use blur_gaussian_wide.frag.
+constexpr size_t kMaxTableTaps = 256;
+
+struct Tap {
+  float offset;  // pixels; read at ±offset (the centre tap once)
+  float weight;  // per side
+};
+
+// The pass as a table: the centre, then single taps or bilinear pairs, then the tail. Weights
+// are evaluated in double and rounded once.
+inline std::vector<Tap> gaussian_taps(const GaussianPass& pass, bool linear_taps) {
+  auto weight = [&](int i) { return std::exp(-i * (i * pass.inv_two_sigma2)) * pass.norm; };
+  std::vector<Tap> taps{{0.0f, static_cast<float>(pass.norm)}};
+  if (linear_taps) {
+    for (int i = 1; i <= pass.radius; i += 2) {
+      const double wa = weight(i);
+      const double wb = i + 1 <= pass.radius ? weight(i + 1) : 0.0;
+      if (wa + wb <= 0.0) break;  // the rest underflows too
+      taps.push_back({static_cast<float>(i + wb / (wa + wb)), static_cast<float>(wa + wb)});
+    }
+  } else {
+    for (int i = 1; i <= pass.radius; ++i) {
+      taps.push_back({static_cast<float>(i), static_cast<float>(weight(i))});
+    }
+  }
+  if (pass.tail > 0.0) {
+    taps.push_back({static_cast<float>(pass.tail_offset), static_cast<float>(pass.tail)});
+  }
+  return taps;
 }
 
 }  // namespace blur

@@ -135,6 +135,18 @@ TEST(Blur, SigmaLargerThanTheImageStaysCorrect) {
   EXPECT_LE(aq::test::max_abs_diff(run(pixel, to_json(uniform(30.0))), pixel), 1e-6);
 }
 
+TEST(Blur, KernelsLongerThanTheTapTableMatchToo) {
+  // sigma 80 on a 420 px row: 320 single taps per side (beyond the 256-entry table, so the
+  // shader evaluates the weights itself) or 161 bilinear pairs (in the table).
+  const ImageF input = aq::test::random_image(420, 6, 30);
+  const ImageF expected = aq::reference::gaussian_blur(input, 80.0);
+  for (bool linear : {false, true}) {
+    const ImageF got = run(input, to_json(uniform(80.0), linear));
+    ASSERT_FALSE(got.empty());
+    EXPECT_LE(aq::test::max_abs_diff(got, expected), 1e-4) << "linear_taps " << linear;
+  }
+}
+
 TEST(Blur, CheckerboardHasNoArtefactsWithGaussianButDoesWithStrided) {
   // Cells of 5 px (period 10): sigma 10 leaves a flat grey; the strided kernel's taps, 10 px
   // apart, all land on the same colour and keep the full contrast.

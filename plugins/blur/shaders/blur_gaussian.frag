@@ -1,46 +1,27 @@
-// One 1D pass of the exact Gaussian blur along u_step ((1,0) or (0,1)). Weights are the
-// sampled Gaussian exp(-i²/2σ²) normalised on the CPU over the truncated kernel (>= 4σ); the
-// sampler's clamp-to-edge gives the border rule. Taps beyond the image are lumped into
-// u_tail (see gaussian_pass.h). With u_linear_taps two neighbouring taps are read as one
-// bilinear fetch placed between them in proportion to their weights, halving the reads.
-in vec2 v_uv;
+// One 1D pass of the exact Gaussian blur along the pass direction, with the taps computed on
+// the CPU (gaussian_pass.h): u_taps[i] = (offset in pixels, weight), read at ±offset;
+// u_taps[0] is the centre. Weights are the sampled Gaussian exp(-i²/2σ²) normalised over the
+// truncated kernel (>= 4σ); with linear taps two neighbours are merged into one bilinear read;
+// taps beyond the image are lumped into one per side. The sampler's clamp-to-edge gives the
+// border rule. A table instead of exp() per tap: llvmpipe runs this about twice as fast.
 layout(location = 0) out vec4 o_color;
 
 uniform sampler2D u_image;
-uniform vec2 u_size;  // input size in pixels (= output size)
-uniform vec2 u_step;
-uniform int u_radius;
-uniform float u_inv_two_sigma2;
-uniform float u_norm;
-uniform float u_tail;
-uniform float u_tail_offset;
-uniform bool u_linear_taps;
+uniform vec2 u_size;  // image size in pixels
+uniform vec2 u_axis;  // (1, 0) or (0, 1)
+uniform int u_tap_count;
+uniform vec2 u_taps[256];   // gaussian_pass.h: kMaxTableTaps
 
+// Positions in pixels first, divided once: a centre tap lands on the texel centre to the last
+// bit (multiplying by 1/size instead mixes in up to 5e-6 of the neighbour).
 vec4 tap(float offset) {
-  return texture(u_image, (gl_FragCoord.xy + offset * u_step) / u_size);
-}
-
-float weight(int i) {
-  float x = float(i);
-  return exp(-x * x * u_inv_two_sigma2) * u_norm;
+  return texture(u_image, (gl_FragCoord.xy + offset * u_axis) / u_size);
 }
 
 void main() {
-  vec4 sum = u_norm * tap(0.0);
-  if (u_linear_taps) {
-    for (int i = 1; i <= u_radius; i += 2) {
-      float wa = weight(i);
-      float wb = i + 1 <= u_radius ? weight(i + 1) : 0.0;
-      float w = wa + wb;
-      if (w <= 0.0) break;  // the rest underflows too
-      float offset = float(i) + wb / w;
-      sum += w * (tap(offset) + tap(-offset));
-    }
-  } else {
-    for (int i = 1; i <= u_radius; ++i) {
-      sum += weight(i) * (tap(float(i)) + tap(-float(i)));
-    }
+  vec4 sum = u_taps[0].y * tap(0.0);
+  for (int i = 1; i < u_tap_count; ++i) {
+    sum += u_taps[i].y * (tap(u_taps[i].x) + tap(-u_taps[i].x));
   }
-  if (u_tail > 0.0) sum += u_tail * (tap(u_tail_offset) + tap(-u_tail_offset));
   o_color = sum;
 }
