@@ -166,8 +166,11 @@ int run_render(int argc, char** argv) {
       return kExitBadInput;
     }
   }
+  // The range to render; settings.first_frame stays the graph's, since time is measured
+  // from it: a farm rendering 25-48 must see the same time at frame 25 as a 1-48 run.
+  int first = settings.first_frame, last = settings.last_frame;
   if (!frames.empty()) {
-    if (auto s = parse_frames(frames, &settings.first_frame, &settings.last_frame); !s.ok()) {
+    if (auto s = parse_frames(frames, &first, &last); !s.ok()) {
       std::fprintf(stderr, "aquarelle render: %s\n", s.message().c_str());
       return kExitBadInput;
     }
@@ -185,18 +188,16 @@ int run_render(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", format_problems(problems).c_str());
     return kExitBadInput;
   }
-  if (frames.empty() && output.find('#') == std::string::npos &&
-      settings.last_frame > settings.first_frame) {
+  if (frames.empty() && output.find('#') == std::string::npos && last > first) {
     // One output file and no explicit range: a still of the first frame, like a viewer.
     if (!quiet) {
       std::fprintf(stderr,
                    "aquarelle: rendering frame %d only; use --frames %d-%d and `####` in the "
                    "output name for the whole range\n",
-                   settings.first_frame, settings.first_frame, settings.last_frame);
+                   first, first, last);
     }
-    settings.last_frame = settings.first_frame;
+    last = first;
   }
-  const int first = settings.first_frame, last = settings.last_frame;
   if (last > first && output.find('#') == std::string::npos) {
     std::fprintf(stderr,
                  "aquarelle render: rendering frames %d-%d needs `####` in the output name "

@@ -28,7 +28,7 @@ class EglContext final : public BackendContext {
   }
   GlBackend backend() const override { return GlBackend::kEgl; }
   bool make_current() override {
-    if (eglGetCurrentContext() == context_) return true;
+    // Always rebind: an OSMesa context made current in between is invisible to EGL.
     return eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) == EGL_TRUE;
   }
   void* get_proc_address(const char* name) const override {

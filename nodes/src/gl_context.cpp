@@ -43,22 +43,32 @@ std::string GlContext::description() const {
 }
 
 namespace {
-const GlContext*& last_loaded() {
-  static const GlContext* context = nullptr;
-  return context;
+uint64_t& last_loaded() {
+  static uint64_t serial = 0;
+  return serial;
+}
+uint64_t next_serial() {
+  static uint64_t serial = 0;
+  return ++serial;
 }
 }  // namespace
 
+GlContext::GlContext() : serial_(next_serial()) {}
+
+GlContext::~GlContext() {
+  if (last_loaded() == serial_) last_loaded() = 0;
+}
+
 bool GlContext::activate() {
   if (!make_current()) return false;
-  if (last_loaded() == this) return true;
+  if (last_loaded() == serial_) return true;
   return load_functions();
 }
 
 bool GlContext::load_functions() {
   static const GlContext* loading = nullptr;
   loading = this;
-  last_loaded() = this;
+  last_loaded() = serial_;
   int version = gladLoadGLUserPtr(
       [](void* self, const char* name) -> GLADapiproc {
         return reinterpret_cast<GLADapiproc>(

@@ -18,7 +18,6 @@ class OsmesaContext final : public BackendContext {
   }
   GlBackend backend() const override { return GlBackend::kOsmesa; }
   bool make_current() override {
-    if (OSMesaGetCurrentContext() == context_) return true;
     // OSMesa needs a colour buffer even though every pass renders into FBOs; keep it tiny.
     return OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1) != 0;
   }

@@ -18,7 +18,8 @@ Result<GlBackend> parse_backend(const std::string& name);
 
 class GlContext {
  public:
-  virtual ~GlContext() = default;
+  GlContext();
+  virtual ~GlContext();
   virtual GlBackend backend() const = 0;
   virtual bool make_current() = 0;
   // Makes this context current and, when another context's functions were loaded last,
@@ -33,6 +34,7 @@ class GlContext {
 
  protected:
   uint32_t generation_ = 0;
+  uint64_t serial_;  // unique per context ever made: addresses of dead contexts get reused
   // Loads the core's glad from this context; call after making it current.
   bool load_functions();
 };
