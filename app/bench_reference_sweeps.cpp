@@ -2,6 +2,7 @@
 // fixed test input at every quality setting and precision, and its output is compared with the
 // double-precision implementation in tests/reference/ (see bench_sweep.h).
 #include <chrono>
+#include <cmath>
 #include <memory>
 
 #include "bench_graph_build.h"
@@ -222,6 +223,89 @@ Result<Sweep> caustics_sweep(GlContext& context, const Registry& registry, const
   return sweep;
 }
 
+// A periodic texture of side `from` resampled to side `to` by bilinear interpolation with
+// wrap-around, as a shader sampling the tile with GL_REPEAT would see it at pixel centres.
+ImageF resample_periodic(const ImageF& tile, int to) {
+  ImageF out(to, to, tile.channels, 1.0f);
+  const int from = tile.width;
+  auto wrap = [from](int i) { return ((i % from) + from) % from; };
+  for (int y = 0; y < to; ++y) {
+    const double v = (y + 0.5) * from / to - 0.5;
+    const int y0 = static_cast<int>(std::floor(v));
+    const double ty = v - y0;
+    for (int x = 0; x < to; ++x) {
+      const double u = (x + 0.5) * from / to - 0.5;
+      const int x0 = static_cast<int>(std::floor(u));
+      const double tx = u - x0;
+      for (int c = 0; c < tile.channels; ++c) {
+        const double a = tile.at(wrap(x0), wrap(y0), c), b = tile.at(wrap(x0 + 1), wrap(y0), c);
+        const double d = tile.at(wrap(x0), wrap(y0 + 1), c);
+        const double e = tile.at(wrap(x0 + 1), wrap(y0 + 1), c);
+        const double bottom = a + (b - a) * tx, top = d + (e - d) * tx;
+        out.at(x, y, c) = static_cast<float>(bottom + (top - bottom) * ty);
+      }
+    }
+  }
+  return out;
+}
+
+// Caustics: texture resolution (grid = resolution, as the defaults) against a converged grid at
+// the largest resolution; smaller textures are compared after periodic bilinear upsampling.
+Result<Sweep> caustics_resolution_sweep(GlContext& context, const Registry& registry,
+                                        const Graph& graph, const SweepPlan& plan) {
+  constexpr int kReferenceResolution = 256;
+  constexpr int kReferenceGrid = 1024;
+  reference::CausticsParams p;
+  p.resolution = kReferenceResolution;
+  p.depth = number(graph_param(graph, registry, "caustics", "depth"), p.depth);
+  p.amplitude = number(graph_param(graph, registry, "caustics", "amplitude"), p.amplitude);
+  p.wave_scale = static_cast<int>(
+      number(graph_param(graph, registry, "caustics", "wave_scale"), p.wave_scale));
+  p.speed = number(graph_param(graph, registry, "caustics", "speed"), p.speed);
+  p.eta = number(graph_param(graph, registry, "caustics", "eta"), p.eta);
+  p.max_intensity =
+      number(graph_param(graph, registry, "caustics", "max_intensity"), p.max_intensity);
+  Sweep sweep = cpu_sweep("caustics texture", "caustics", "");
+  sweep.reference = "grid refraction on a " + std::to_string(kReferenceGrid) + "x" +
+                    std::to_string(kReferenceGrid) + " grid in double precision at " +
+                    std::to_string(kReferenceResolution) + "x" +
+                    std::to_string(kReferenceResolution) +
+                    "; smaller textures upsampled (periodic bilinear) before comparing";
+  auto converged = timed_reference(&sweep.reference_ms,
+                                   [&] { return reference::caustics_by_grid(p, kReferenceGrid); });
+  const json base = {{"depth", p.depth},
+                     {"amplitude", p.amplitude},
+                     {"wave_scale", p.wave_scale},
+                     {"speed", p.speed},
+                     {"eta", p.eta},
+                     {"max_intensity", p.max_intensity},
+                     {"normalize_energy", false}};
+  Evaluator evaluator(context, registry);
+  for (int resolution : {32, 64, 128, 256}) {
+    json params = base;
+    params["resolution"] = resolution;
+    params["grid"] = resolution;
+    Graph g = single_node_graph(registry, "caustics", params, {}, plan.width, plan.height, "float");
+    auto measured = measure_node(evaluator, g, kNodeUnderTest, nullptr, plan.frames, plan.warmup);
+    if (!measured.ok()) {
+      return make_error("sweep of 'caustics' at resolution " + std::to_string(resolution) + ": " +
+                        measured.message());
+    }
+    auto error =
+        compare_images(resample_periodic(measured->output, kReferenceResolution), *converged);
+    if (!error.ok()) return make_error("sweep of 'caustics': " + error.message());
+    SweepPoint point;
+    point.setting = "resolution=grid=" + std::to_string(resolution);
+    point.params = {{"resolution", resolution}, {"grid", resolution}};
+    point.precision = "float";
+    point.time_ms = measured->wall_ms;
+    point.gpu_ms = measured->gpu_ms;
+    point.error = *error;
+    sweep.points.push_back(point);
+  }
+  return sweep;
+}
+
 // Erode or dilate: window size and footprint against flat morphology by definition.
 Result<Sweep> morphology_sweep(GlContext& context, const Registry& registry, const Graph& graph,
                                const SweepPlan& plan, const std::string& type) {
@@ -301,6 +385,9 @@ Result<std::vector<Sweep>> run_reference_sweeps(GlContext& context, const Regist
     auto caustics = caustics_sweep(context, registry, graph, plan);
     if (!caustics.ok()) return caustics.error();
     sweeps.push_back(*caustics);
+    auto resolution = caustics_resolution_sweep(context, registry, graph, plan);
+    if (!resolution.ok()) return resolution.error();
+    sweeps.push_back(*resolution);
   }
   for (const char* type : {"erode", "dilate"}) {
     if (!wanted(type)) continue;
