@@ -289,6 +289,24 @@ constexpr uint32_t count_of(const T (&)[N]) {
                                     &aq::NodeAdapter<NodeClass>::destroy,                   \
                                     &aq::NodeAdapter<NodeClass>::process}
 
+// Same, for a source node: no inputs (generators such as noise, caustics, scene).
+#define AQ_SOURCE_NODE(NAME, NodeClass, type_name, category, description, flags, outputs, \
+                       params)                                                          \
+  static const aq_node_desc NAME = {sizeof(aq_node_desc),                               \
+                                    type_name,                                          \
+                                    category,                                           \
+                                    description,                                        \
+                                    flags,                                              \
+                                    nullptr,                                            \
+                                    0,                                                  \
+                                    outputs,                                            \
+                                    aq::count_of(outputs),                              \
+                                    params,                                             \
+                                    aq::count_of(params),                               \
+                                    &aq::NodeAdapter<NodeClass>::create,                \
+                                    &aq::NodeAdapter<NodeClass>::destroy,               \
+                                    &aq::NodeAdapter<NodeClass>::process}
+
 // Exports the plugin entry point listing the given node descriptions (pointers).
 #define AQ_PLUGIN(plugin_name, plugin_version, ...)                                           \
   extern "C" AQ_PLUGIN_EXPORT const aq_plugin_desc* aquarelle_plugin_entry(uint32_t) {       \
