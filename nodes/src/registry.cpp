@@ -227,8 +227,8 @@ const PortInfo* NodeType::input(const std::string& port) const {
 const PortInfo* NodeType::output(const std::string& port) const {
   return find_named(outputs, port);
 }
-const ParamInfo* NodeType::param(const std::string& name) const {
-  return find_named(params, name);
+const ParamInfo* NodeType::param(const std::string& param_name) const {
+  return find_named(params, param_name);
 }
 int NodeType::input_index(const std::string& port) const {
   return index_of_named(inputs, port);
@@ -236,8 +236,8 @@ int NodeType::input_index(const std::string& port) const {
 int NodeType::output_index(const std::string& port) const {
   return index_of_named(outputs, port);
 }
-int NodeType::param_index(const std::string& name) const {
-  return index_of_named(params, name);
+int NodeType::param_index(const std::string& param_name) const {
+  return index_of_named(params, param_name);
 }
 
 NodeType node_type_from_desc(const aq_node_desc& desc, const std::string& plugin_file,
