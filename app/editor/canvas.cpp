@@ -103,6 +103,9 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
                              ImGuiButtonFlags_MouseButtonMiddle);
   std::vector<NodeLayout> layouts = layout_graph(graph, registry, view, origin_);
+  // Selected nodes are drawn last, so on top, and are the first hit where nodes overlap.
+  std::stable_partition(layouts.begin(), layouts.end(),
+                        [&](const NodeLayout& l) { return !state.selection.count(l.id); });
 
   // Links.
   for (const auto& [id, node] : graph.nodes) {
@@ -184,6 +187,7 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
   }
 
   handle_mouse(state, layouts, origin_);
+  layouts_ = std::move(layouts);
   draw->PopClipRect();
   if (ImGui::IsWindowFocused(ImGuiFocusedFlags_ChildWindows) && !ImGui::GetIO().WantTextInput) {
     handle_keys(state);
@@ -357,7 +361,7 @@ void Canvas::draw_add_menu(EditorState& state) {
     Vec2 centre =
         state.canvas.to_canvas(origin_, {origin_.x + size_.x * 0.5f, origin_.y + size_.y * 0.5f});
     add_at_ = {centre.x, centre.y};
-    add_filter_.clear();
+    add_filter_ = requested_filter_;
     ImGui::OpenPopup("add_node");
     add_menu_requested_ = false;
   }

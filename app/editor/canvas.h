@@ -36,10 +36,17 @@ class Canvas {
  public:
   // Draws into the current ImGui window's remaining content region.
   void draw(EditorState& state, const NodeFeedback& feedback);
+  // The canvas as last drawn (screen space), for scripted mouse gestures.
+  const std::vector<NodeLayout>& layouts() const { return layouts_; }
+  Vec2 origin() const { return origin_; }
+  Vec2 size() const { return size_; }
   // Fit all nodes into view on the next draw.
   void request_fit() { fit_requested_ = true; }
   // Opens the add-node menu at the canvas centre (menu bar, Tab).
-  void request_add_menu() { add_menu_requested_ = true; }
+  void request_add_menu(const std::string& filter = "") {
+    add_menu_requested_ = true;
+    requested_filter_ = filter;
+  }
 
  private:
   enum class Drag { kNone, kNodes, kLink, kBox, kPan };
@@ -59,8 +66,10 @@ class Canvas {
   std::string add_filter_;
   bool fit_requested_ = true;
   bool add_menu_requested_ = false;
+  std::string requested_filter_;
   Vec2 size_;
   Vec2 origin_;
+  std::vector<NodeLayout> layouts_;
 };
 
 }  // namespace aq::editor

@@ -65,7 +65,12 @@ Status unlink(EditorState& state, const std::string& node, const std::string& in
 
 Status move(EditorState& state, const std::map<std::string, Position>& positions, bool gesture) {
   Status moved = state.doc.move_nodes(positions, gesture ? "move" : "");
-  report(state, moved, "moved " + std::to_string(positions.size()) + " node(s)");
+  const auto& [first_id, first_at] = *positions.begin();
+  report(
+      state, moved,
+      "moved " + first_id + " to (" + std::to_string(static_cast<int>(first_at.x)) + ", " +
+          std::to_string(static_cast<int>(first_at.y)) + ")" +
+          (positions.size() > 1 ? " and " + std::to_string(positions.size() - 1) + " more" : ""));
   return moved;
 }
 

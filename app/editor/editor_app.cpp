@@ -1,6 +1,7 @@
 // The editor window and its frame loop. See editor_app.h.
 #include "editor_app.h"
 
+#include "canvas_gestures.h"
 #include "editor_actions.h"
 #include "script.h"
 
@@ -138,15 +139,20 @@ int EditorApp::run() {
     return 1;
   }
 
-  nlohmann::json script;
   if (!options_.script.empty()) {
     auto read = read_script(options_.script);
     if (!read) {
       std::fprintf(stderr, "aquarelle edit: %s\n", read.message().c_str());
       return 1;
     }
-    script = *read;
+    runner_ = std::make_unique<ScriptRunner>(*read);
   }
+  ScriptHooks hooks;
+  hooks.fit = [this] { canvas_.request_fit(); };
+  hooks.add_menu = [this](const std::string& filter) { canvas_.request_add_menu(filter); };
+  hooks.gesture = [this](const nlohmann::json& action) {
+    return plan_gesture(action, canvas_.layouts(), canvas_.origin(), canvas_.size());
+  };
 
   int exit_status = 0;
   int frame_index = 0;
@@ -170,18 +176,18 @@ int EditorApp::run() {
 
     frame();
 
-    // The script runs once the first frame has laid out the canvas, so "fit" has a size.
-    if (frame_index == 1 && !script.is_null()) {
-      ScriptHooks hooks;
-      hooks.fit = [this] { canvas_.request_fit(); };
-      Status ran = run_script(state_, script, hooks);
-      if (!ran) {
-        std::fprintf(stderr, "aquarelle edit: %s\n", ran.message().c_str());
+    // The script starts once the first frame has laid out the canvas, then advances a step per
+    // frame so its mouse gestures play as input to the following frames.
+    if (frame_index >= 1 && frames_since_script < 0) {
+      Status stepped = runner_ ? runner_->step(state_, hooks, &mouse_frames_) : Status(Ok{});
+      if (!stepped) {
+        std::fprintf(stderr, "aquarelle edit: %s\n", stepped.message().c_str());
         exit_status = 1;
+        mouse_frames_.clear();
+        frames_since_script = 0;
+      } else if (!runner_ || runner_->finished()) {
+        frames_since_script = 0;
       }
-      frames_since_script = 0;
-    } else if (frame_index == 1) {
-      frames_since_script = 0;
     }
     if (frames_since_script >= 0) ++frames_since_script;
     if (frames_since_script == kFramesBeforeScreenshot) {
@@ -251,6 +257,16 @@ void EditorApp::frame() {
 
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  if (!mouse_frames_.empty()) {
+    // A scripted gesture stands in for the real mouse this frame.
+    ImGuiIO& io = ImGui::GetIO();
+    const MouseFrame& input = mouse_frames_.front();
+    io.MousePos = ImVec2(input.x, input.y);
+    io.MouseDown[0] = input.left_down;
+    io.MouseDown[1] = io.MouseDown[2] = false;
+    io.MouseWheel = input.wheel;
+    mouse_frames_.erase(mouse_frames_.begin());
+  }
   ImGui::NewFrame();
   handle_shortcuts();
   draw_menu_bar();

@@ -11,6 +11,7 @@
 #include "editor_state.h"
 #include "file_dialog.h"
 #include "param_panel.h"
+#include "script.h"
 #include "viewer.h"
 
 #include <aquarelle/core/gl_context.h>
@@ -22,6 +23,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 struct GLFWwindow;
 
@@ -76,6 +78,8 @@ class EditorApp {
   ParamPanel params_;
   FileDialog file_dialog_;
   NodeFeedback feedback_;
+  std::unique_ptr<ScriptRunner> runner_;
+  std::vector<MouseFrame> mouse_frames_;  // scripted input still to play, one per frame
 
   Pending pending_ = Pending::kNone;
   bool ask_unsaved_ = false;

@@ -101,6 +101,10 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
     actions::set_frame(state, action["frame"].get<int>());
     return Ok{};
   }
+  if (kind == "add_menu") {
+    if (hooks.add_menu) hooks.add_menu(action.value("filter", std::string()));
+    return Ok{};
+  }
   if (kind == "fit") {
     if (hooks.fit) hooks.fit();
     return Ok{};
@@ -108,7 +112,7 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
   throw std::invalid_argument(
       "unknown action '" + kind +
       "' (add_node, link, unlink, set_param, move, select_output, "
-      "set_output, delete, duplicate, select, undo, redo, save, frame, fit)");
+      "set_output, delete, duplicate, select, undo, redo, save, frame, fit, add_menu)");
 }
 
 }  // namespace
@@ -128,16 +132,67 @@ Result<nlohmann::json> read_script(const std::string& path) {
   return script;
 }
 
-Status run_script(EditorState& state, const nlohmann::json& script, const ScriptHooks& hooks) {
-  int index = 0;
-  for (const auto& action : script) {
-    ++index;
-    std::string where = "script action " + std::to_string(index);
+namespace {
+
+bool is_mouse_action(const nlohmann::json& action) {
+  std::string kind = action.value("do", std::string());
+  return kind == "drag_link" || kind == "drag_node" || kind == "click_output" || kind == "wheel";
+}
+
+std::string describe(size_t index, const nlohmann::json& action) {
+  std::string where = "script action " + std::to_string(index + 1);
+  if (action.is_object()) where += " (" + action.value("do", std::string("?")) + ")";
+  return where;
+}
+
+}  // namespace
+
+Status ScriptRunner::judge(EditorState& state, const Status& outcome) {
+  const nlohmann::json& action = actions_[next_ - 1];
+  std::string where = describe(next_ - 1, action);
+  std::string expect = action.value("expect", std::string("ok"));
+  if (expect == "ok" && !outcome) return make_error(where + " was refused: " + outcome.message());
+  if (expect == "refused" && outcome) return make_error(where + " was expected to be refused");
+  std::fprintf(stderr, "%s: %s\n", where.c_str(),
+               outcome ? (state.status.empty() ? "done" : state.status.c_str())
+                       : ("refused as expected: " + outcome.message()).c_str());
+  return Ok{};
+}
+
+Status ScriptRunner::step(EditorState& state, const ScriptHooks& hooks,
+                          std::vector<MouseFrame>* gesture_frames) {
+  if (waiting_) {
+    if (!gesture_frames->empty()) return Ok{};  // still playing
+    waiting_ = false;
+    // The canvas reports a refused drop on the status line and counts it.
+    Status outcome =
+        state.refused_count > refused_before_ ? Status(make_error(state.status)) : Status(Ok{});
+    if (Status judged = judge(state, outcome); !judged) return judged;
+  }
+  while (next_ < actions_.size()) {
+    const nlohmann::json& action = actions_[next_];
+    std::string where = describe(next_, action);
     if (!action.is_object()) return make_error(where + ": must be an object {\"do\": ...}");
-    where += " (" + action.value("do", std::string("?")) + ")";
     std::string expect = action.value("expect", std::string("ok"));
     if (expect != "ok" && expect != "refused") {
       return make_error(where + ": \"expect\" must be \"ok\" or \"refused\"");
+    }
+    if (is_mouse_action(action)) {
+      // The canvas must have drawn the graph as it is now before its layout can be aimed at.
+      if (!laid_out_) {
+        laid_out_ = true;
+        return Ok{};
+      }
+      if (!hooks.gesture) return make_error(where + ": mouse actions need the editor window");
+      auto frames = hooks.gesture(action);
+      if (!frames) return make_error(where + ": " + frames.message());
+      *gesture_frames = std::move(*frames);
+      refused_before_ = state.refused_count;
+      state.status.clear();
+      waiting_ = true;
+      laid_out_ = false;
+      ++next_;
+      return Ok{};
     }
     Status outcome = Ok{};
     state.status.clear();
@@ -146,11 +201,20 @@ Status run_script(EditorState& state, const nlohmann::json& script, const Script
     } catch (const std::exception& bad) {  // malformed action, not a refused edit
       return make_error(where + ": " + bad.what());
     }
-    if (expect == "ok" && !outcome) return make_error(where + " was refused: " + outcome.message());
-    if (expect == "refused" && outcome) return make_error(where + " was expected to be refused");
-    std::fprintf(stderr, "%s: %s\n", where.c_str(),
-                 outcome ? (state.status.empty() ? "done" : state.status.c_str())
-                         : ("refused as expected: " + outcome.message()).c_str());
+    ++next_;
+    laid_out_ = false;
+    if (Status judged = judge(state, outcome); !judged) return judged;
+  }
+  return Ok{};
+}
+
+Status run_script(EditorState& state, const nlohmann::json& script, const ScriptHooks& hooks) {
+  ScriptRunner runner(script);
+  std::vector<MouseFrame> frames;
+  while (!runner.finished()) {
+    Status stepped = runner.step(state, hooks, &frames);
+    if (!stepped) return stepped;
+    if (!frames.empty()) return make_error("mouse actions need the editor window");
   }
   return Ok{};
 }

@@ -13,9 +13,16 @@
 //     {"do": "save", "path": "out.json"}          // path optional: the graph's own file
 //   ]}
 //
+// Mouse actions, played as real input on the canvas over several frames:
+//   {"do": "drag_link", "from": "tint.image", "to": "soft.image"}   output port to input port
+//   {"do": "drag_node", "node": "soft", "by": [120, 40]}            screen pixels
+//   {"do": "click_output", "output": "gbuf.depth"}                  views that output
+//   {"do": "wheel", "steps": 2}                                     zoom at the canvas centre
+//
 // Also: "delete" / "duplicate" / "select" {"nodes": [...]}, "set_output" {"output"},
-// "frame" {"frame"}, "fit". An action whose outcome differs from "expect" ("ok" by default, or
-// "refused") stops the script with a message naming the action.
+// "frame" {"frame"}, "fit", "add_menu" {"filter"} (opens the add-node menu, for screenshots). An
+// action whose outcome differs from "expect" ("ok" by default, or "refused") stops the script with
+// a message naming the action.
 #pragma once
 
 #include "editor_state.h"
@@ -26,16 +33,52 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace aq::editor {
 
+// A mouse action becomes these frames of synthetic input, fed to ImGui in place of the real
+// mouse, so the canvas's own handlers do the work.
+struct MouseFrame {
+  float x = 0;
+  float y = 0;
+  bool left_down = false;
+  float wheel = 0;
+};
+
 struct ScriptHooks {
-  std::function<void()> fit;  // View > Fit, which needs the canvas
+  std::function<void()> fit;                         // View > Fit, which needs the canvas
+  std::function<void(const std::string&)> add_menu;  // opens the add-node menu (screenshots)
+  // Turns a mouse action into input frames from the canvas's current layout; an error when a
+  // node or port it names is not on the canvas.
+  std::function<Result<std::vector<MouseFrame>>(const nlohmann::json&)> gesture;
 };
 
 // Reads a script file (an object with "actions", or a bare array).
 Result<nlohmann::json> read_script(const std::string& path);
-// Runs every action in order; returns the first unexpected outcome as an error.
+
+// Runs a script across frames: call step() once per frame after the UI was drawn. Ordinary
+// actions run at once; a mouse action hands its frames out through `gesture_frames` and the
+// runner judges its outcome (refused or not) once they were played.
+class ScriptRunner {
+ public:
+  explicit ScriptRunner(nlohmann::json actions) : actions_(std::move(actions)) {}
+  // Returns an error at the first unexpected outcome; finished() tells when all ran.
+  Status step(EditorState& state, const ScriptHooks& hooks,
+              std::vector<MouseFrame>* gesture_frames);
+  bool finished() const { return next_ >= actions_.size() && !waiting_; }
+
+ private:
+  Status judge(EditorState& state, const Status& outcome);
+
+  nlohmann::json actions_;
+  size_t next_ = 0;
+  bool waiting_ = false;    // a gesture is being played
+  int refused_before_ = 0;  // state.refused_count when the gesture began
+  bool laid_out_ = false;   // a frame was drawn since the last ordinary action
+};
+
+// Runs every action in order without mouse actions (tests, or a script with no window).
 Status run_script(EditorState& state, const nlohmann::json& actions, const ScriptHooks& hooks = {});
 
 }  // namespace aq::editor

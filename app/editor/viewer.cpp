@@ -138,7 +138,16 @@ void Viewer::update(const EditorState& state, bool force) {
   options.retain_outputs = true;
   options.measure_gpu_time = true;
   auto start = std::chrono::steady_clock::now();
-  Result<TextureRef> evaluated = evaluator_.evaluate(state.doc.graph(), options, output);
+  Result<TextureRef> evaluated = Error{};
+  if (preview_divisor_ > 1) {
+    // A throwaway copy for this evaluation only; edits still go to the one document graph.
+    Graph preview = state.doc.graph();
+    preview.settings.width = std::max(1, preview.settings.width / preview_divisor_);
+    preview.settings.height = std::max(1, preview.settings.height / preview_divisor_);
+    evaluated = evaluator_.evaluate(preview, options, output);
+  } else {
+    evaluated = evaluator_.evaluate(state.doc.graph(), options, output);
+  }
   last_ms_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   // Leave GL as ImGui's renderer expects it.
@@ -281,6 +290,15 @@ void Viewer::draw(EditorState& state) {
   ImGui::SameLine();
   if (ImGui::SmallButton(">")) actions::cycle_output(state, +1);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("next output (key: C, Shift+C back)");
+  ImGui::SameLine();
+  const char* scales[] = {"full", "1/2", "1/4"};
+  int scale_index = preview_divisor_ == 4 ? 2 : preview_divisor_ == 2 ? 1 : 0;
+  ImGui::SetNextItemWidth(60);
+  if (ImGui::Combo("##preview", &scale_index, scales, 3)) {
+    preview_divisor_ = 1 << scale_index;
+    evaluated_revision_ = 0;  // re-evaluate at the new size
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("evaluation resolution (preview while editing)");
   ImGui::SameLine();
   if (ImGui::RadioButton("fit", fit_)) fit_ = true;
   ImGui::SameLine();

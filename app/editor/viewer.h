@@ -69,6 +69,8 @@ class Viewer {
   bool display_stale_ = true;
 
   // View options.
+  // Evaluates at 1/divisor of the graph's resolution, for live edits of big graphs on slow GPUs.
+  int preview_divisor_ = 1;
   bool fit_ = true;
   bool srgb_ = true;
   int channel_ = 0;  // 0 rgb, 1 r, 2 g, 3 b, 4 a

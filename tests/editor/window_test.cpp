@@ -1,7 +1,8 @@
 // The real editor window under Xvfb, in scripted mode: open a copy of graphs/underwater.json
 // (graphs/tint.json while the flagship graph is not in the tree), run edits through the same
-// actions the mouse uses (add, link, a refused link, parameter changes, move, undo, redo,
-// select an output to view, save), then check the saved graph and the screenshot.
+// actions the mouse uses, and as mouse gestures played on the canvas (add, link by dragging,
+// refused links, parameter changes, drag a node, undo, redo, click an output to view it, zoom,
+// save), then check the saved graph and the screenshot.
 #include <aquarelle/core/color.h>
 #include <aquarelle/core/image_io.h>
 #include <gtest/gtest.h>
@@ -15,7 +16,6 @@
 #include <sstream>
 #include <string>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "support/harness.h"
@@ -58,18 +58,29 @@ class EditorWindowTest : public ::testing::Test {
     if (!dir_.empty() && !HasFailure()) fs::remove_all(dir_);
   }
 
-  // Runs `aquarelle edit` under xvfb-run; returns the exit status, stderr in `log`.
+  // Runs `aquarelle edit` under xvfb-run; returns the editor's exit status, its output in `log`.
+  // The status is written by a shell inside xvfb-run: xvfb-run's own status also reflects its
+  // clean-up, which can fail when several Xvfb servers come and go at once.
   int run_editor(const std::string& args, std::string* log) {
-    fs::path log_path = dir_ / "editor.log";
-    std::string command =
-        "cd '" + dir_.string() + "' && xvfb-run -a -s '-screen 0 1600x1200x24' '" +
-        std::string(AQ_APP_PATH) + "' edit " + args + " > '" + log_path.string() + "' 2>&1";
-    int status = std::system(command.c_str());
+    const fs::path log_path = dir_ / "editor.log";
+    const fs::path status_path = dir_ / "editor.status";
+    fs::remove(status_path);
+    for (int attempt = 0; attempt < 3 && !fs::exists(status_path); ++attempt) {
+      std::string inner = "'" + std::string(AQ_APP_PATH) + "' edit " + args + "; echo \\$? > '" +
+                          status_path.string() + "'";
+      std::string command = "cd '" + dir_.string() +
+                            "' && xvfb-run -a -s '-screen 0 1600x1200x24' sh -c \"" + inner +
+                            "\" > '" + log_path.string() + "' 2>&1";
+      (void)std::system(command.c_str());  // no status file: Xvfb did not start; try again
+    }
     std::ifstream in(log_path);
     std::stringstream text;
     text << in.rdbuf();
     *log = text.str();
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream status_file(status_path);
+    int status = -1;
+    status_file >> status;
+    return status;
   }
 
   fs::path dir_;
@@ -88,18 +99,22 @@ TEST_F(EditorWindowTest, ScriptedEditsSaveAndScreenshot) {
   ASSERT_FALSE(scene.empty()) << "the test graph needs a scene node";
   ASSERT_FALSE(gbuffer.empty()) << "the test graph needs a gbuffer node";
 
+  const std::string output_node = output.substr(0, output.find('.'));
+  // Mouse actions ("drag_link", "drag_node", "click_output", "wheel") play as real input on the
+  // canvas; the others call the same actions the mouse handlers call.
   nlohmann::json script = {
       {"actions",
        {
-           {{"do", "add_node"}, {"type", "blur"}, {"id", "soft"}, {"at", {900, 40}}},
-           {{"do", "link"}, {"from", output}, {"to", "soft.image"}},
-           {{"do", "link"},
+           {{"do", "add_node"}, {"type", "blur"}, {"id", "soft"}, {"at", {950, -300}}},
+           {{"do", "fit"}},
+           {{"do", "drag_link"}, {"from", output}, {"to", "soft.image"}},
+           {{"do", "drag_link"},
             {"from", scene + ".scene"},
             {"to", "soft.image"},
             {"expect", "refused"}},
-           {{"do", "link"},
+           {{"do", "drag_link"},
             {"from", "soft.image"},
-            {"to", output.substr(0, output.find('.')) + ".image"},
+            {"to", output_node + ".image"},
             {"expect", "refused"}},
            {{"do", "set_param"}, {"node", "soft"}, {"param", "sigma"}, {"value", 2.5}},
            {{"do", "set_param"},
@@ -107,7 +122,9 @@ TEST_F(EditorWindowTest, ScriptedEditsSaveAndScreenshot) {
             {"param", "sigma"},
             {"value", -1.0},
             {"expect", "refused"}},
-           {{"do", "move"}, {"node", "soft"}, {"to", {950, 60}}},
+           {{"do", "drag_node"}, {"node", "soft"}, {"by", {60, 30}}},
+           {{"do", "undo"}},
+           {{"do", "move"}, {"node", "soft"}, {"to", {950, -260}}},
            {{"do", "add_node"}, {"type", "vignette"}, {"id", "extra"}},
            {{"do", "undo"}},
            {{"do", "redo"}},
@@ -115,8 +132,8 @@ TEST_F(EditorWindowTest, ScriptedEditsSaveAndScreenshot) {
            {{"do", "link"}, {"from", gbuffer + ".depth"}, {"to", "soft.depth"}},
            {{"do", "set_output"}, {"output", "soft.image"}},
            {{"do", "select"}, {"nodes", {"soft"}}},
-           {{"do", "select_output"}, {"output", gbuffer + ".depth"}},
-           {{"do", "fit"}},
+           {{"do", "click_output"}, {"output", gbuffer + ".depth"}},
+           {{"do", "wheel"}, {"steps", 1}},
            {{"do", "save"}},
        }}};
   std::ofstream(dir_ / "script.json") << script.dump(2);
@@ -129,6 +146,8 @@ TEST_F(EditorWindowTest, ScriptedEditsSaveAndScreenshot) {
   EXPECT_NE(log.find("refused as expected: cannot link " + scene + ".scene"), std::string::npos)
       << log;
   EXPECT_NE(log.find("cycle"), std::string::npos) << log;
+  EXPECT_NE(log.find("(drag_node): moved soft to"), std::string::npos) << log;
+  EXPECT_NE(log.find("(click_output): viewing " + gbuffer + ".depth"), std::string::npos) << log;
 
   // The saved graph: the new node, its links and parameter, its position; the undone node gone;
   // every original id kept.
@@ -140,7 +159,7 @@ TEST_F(EditorWindowTest, ScriptedEditsSaveAndScreenshot) {
   EXPECT_DOUBLE_EQ(saved["nodes"]["soft"]["params"]["sigma"].get<double>(), 2.5);
   EXPECT_FALSE(saved["nodes"].contains("extra"));
   EXPECT_EQ(saved["output"], "soft.image");
-  EXPECT_EQ(saved["editor"]["positions"]["soft"], nlohmann::json::array({950, 60}));
+  EXPECT_EQ(saved["editor"]["positions"]["soft"], nlohmann::json::array({950, -260}));
   for (const auto& [id, node] : original["nodes"].items()) {
     ASSERT_TRUE(saved["nodes"].contains(id)) << id;
     EXPECT_EQ(saved["nodes"][id]["type"], node["type"]) << id;

@@ -1,0 +1,86 @@
+// Planning scripted mouse gestures on the canvas. See canvas_gestures.h.
+#include "canvas_gestures.h"
+
+#include <string>
+
+namespace aq::editor {
+
+namespace {
+
+constexpr int kMoveSteps = 6;
+
+const NodeLayout* find(const std::vector<NodeLayout>& layouts, const std::string& id) {
+  for (const auto& layout : layouts) {
+    if (layout.id == id) return &layout;
+  }
+  return nullptr;
+}
+
+Result<Vec2> spot(const std::vector<NodeLayout>& layouts, const std::string& text, bool input) {
+  auto ref = PortRef::parse(text);
+  if (!ref) return make_error("'" + text + "' is not \"node.port\"");
+  const NodeLayout* layout = find(layouts, ref->node);
+  if (layout == nullptr) return make_error("node '" + ref->node + "' is not on the canvas");
+  for (const auto& port : input ? layout->inputs : layout->outputs) {
+    if (port.port == ref->port) return port.at;
+  }
+  return make_error("node '" + ref->node + "' shows no " + (input ? "input" : "output") + " '" +
+                    ref->port + "'");
+}
+
+// Hover, press, move in steps, release, rest: what a hand does.
+std::vector<MouseFrame> press_drag_release(Vec2 from, Vec2 to) {
+  std::vector<MouseFrame> frames;
+  frames.push_back({from.x, from.y, false, 0});
+  frames.push_back({from.x, from.y, true, 0});
+  for (int i = 1; i <= kMoveSteps; ++i) {
+    float t = static_cast<float>(i) / kMoveSteps;
+    frames.push_back({from.x + (to.x - from.x) * t, from.y + (to.y - from.y) * t, true, 0});
+  }
+  frames.push_back({to.x, to.y, false, 0});
+  frames.push_back({to.x, to.y, false, 0});
+  return frames;
+}
+
+}  // namespace
+
+Result<std::vector<MouseFrame>> plan_gesture(const nlohmann::json& action,
+                                             const std::vector<NodeLayout>& layouts, Vec2 origin,
+                                             Vec2 size) {
+  const std::string kind = action.value("do", std::string());
+  if (kind == "drag_link") {
+    auto from = spot(layouts, action.value("from", std::string()), false);
+    if (!from) return from.error();
+    auto to = spot(layouts, action.value("to", std::string()), true);
+    if (!to) return to.error();
+    return press_drag_release(*from, *to);
+  }
+  if (kind == "click_output") {
+    auto at = spot(layouts, action.value("output", std::string()), false);
+    if (!at) return at.error();
+    return std::vector<MouseFrame>{
+        {at->x, at->y, false, 0}, {at->x, at->y, true, 0}, {at->x, at->y, false, 0}};
+  }
+  if (kind == "drag_node") {
+    const NodeLayout* layout = find(layouts, action.value("node", std::string()));
+    if (layout == nullptr) return make_error("that node is not on the canvas");
+    auto by = action.value("by", nlohmann::json::array());
+    if (!by.is_array() || by.size() != 2 || !by[0].is_number() || !by[1].is_number()) {
+      return make_error("\"by\" must be [dx, dy] in screen pixels");
+    }
+    // Grab the header away from the ports.
+    Vec2 grab{(layout->header.min.x + layout->header.max.x) * 0.5f,
+              (layout->header.min.y + layout->header.max.y) * 0.5f};
+    return press_drag_release(grab, {grab.x + by[0].get<float>(), grab.y + by[1].get<float>()});
+  }
+  if (kind == "wheel") {
+    float steps = action.value("steps", 1.0f);
+    Vec2 centre{origin.x + size.x * 0.5f, origin.y + size.y * 0.5f};
+    return std::vector<MouseFrame>{{centre.x, centre.y, false, 0},
+                                   {centre.x, centre.y, false, steps},
+                                   {centre.x, centre.y, false, 0}};
+  }
+  return make_error("not a mouse action: '" + kind + "'");
+}
+
+}  // namespace aq::editor
