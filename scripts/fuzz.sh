@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Fuzzes the graph reader and validator with libFuzzer for N seconds (default 60):
+#   scripts/fuzz.sh [SECONDS] [extra libFuzzer flags...]
+# Builds tests/fuzz (a separate clang project) in build-fuzz, seeds a working corpus from
+# tests/fuzz/corpus and graphs/*.json, and loads the node types of build/plugins when that
+# exists (AQUARELLE_FUZZ_PLUGIN_DIR overrides). Installs clang and libclang-rt-14-dev if
+# missing. A crash leaves its input as build-fuzz/crash-*: add it as a regression test in
+# tests/core/bad_graph_test.cpp and to tests/fuzz/corpus.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-60}"
+shift || true
+
+missing=()
+for package in clang libclang-rt-14-dev; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "fuzz: installing ${missing[*]}"
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+build=build-fuzz
+generator=()
+if command -v ninja >/dev/null; then generator=(-G Ninja); fi
+cmake -S tests/fuzz -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER=clang++ \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build "$build" -j2
+
+# The checked-in corpus stays small and reviewed; libFuzzer grows a scratch copy.
+work="$build/corpus"
+mkdir -p "$work"
+cp -n tests/fuzz/corpus/* graphs/*.json "$work"/ 2>/dev/null || true
+
+plugin_dir="${AQUARELLE_FUZZ_PLUGIN_DIR:-build/plugins}"
+if [ -d "$plugin_dir" ]; then
+  export AQUARELLE_PLUGIN_PATH="$plugin_dir"
+else
+  echo "fuzz: no $plugin_dir (build first for the plugins' node types); fake types only"
+  unset AQUARELLE_PLUGIN_PATH
+fi
+
+# Plugins are built without ASan; their static constructors allocate nothing the fuzzer
+# checks, but leak detection at exit would blame dlopen's bookkeeping: leaks stay checked
+# per input (-detect_leaks=1), not at exit.
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+cd "$build"
+exec ./graph_reader_fuzzer -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  -max_len=65536 -print_final_stats=1 "$@" corpus
