@@ -16,30 +16,43 @@
 // separable min/max filter. Lookups clamp to the image (texelFetch of clamped coordinates), which
 // for these footprints is the same as restricting the window to the image.
 //
-// Orders (u_mode): 0 = per channel (min/max of each of r, g, b, a separately, the seed's §3.3);
+// The node compiles one variant per pass, footprint and order, with these defines before the
+// plugin's shader text, so that every loop below has a constant trip count and unrolls, and
+// every array and sampler index is a constant (dynamic indexing is slow on llvmpipe):
+//   AQ_MORPH_PASS         0 rows, 1 columns
+//   AQ_MORPH_RADIUS       r = (size − 1) / 2, 1..4
+//   AQ_MORPH_SPAN_COUNT   number of distinct row half-widths, 1..5
+//   AQ_MORPH_HALF_WIDTHS  int[5](...): the distinct half-widths, ascending (unused: −1)
+//   AQ_MORPH_ROW_SPANS    int[9](...): span index of row offset dy at [dy + r]
+//   AQ_MORPH_LUMINANCE    0 per channel, 1 luminance order
+//
+// Orders: 0 = per channel (min/max of each of r, g, b, a separately, the seed's §3.3);
 // 1 = luminance order (a total order on colours: Rec.709 luminance, ties broken by r, g, b, a),
 // so every output pixel is one of the window's input colours and no new colour appears.
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;  // pass 1 result, or span 0 in pass 0
+#if AQ_MORPH_PASS == 0 && AQ_MORPH_SPAN_COUNT > 1
 layout(location = 1) out vec4 o_span1;
+#endif
+#if AQ_MORPH_PASS == 0 && AQ_MORPH_SPAN_COUNT > 2
 layout(location = 2) out vec4 o_span2;
+#endif
+#if AQ_MORPH_PASS == 0 && AQ_MORPH_SPAN_COUNT > 3
 layout(location = 3) out vec4 o_span3;
+#endif
+#if AQ_MORPH_PASS == 0 && AQ_MORPH_SPAN_COUNT > 4
 layout(location = 4) out vec4 o_span4;
+#endif
 
-const int AQ_MORPH_MAX_RADIUS = 4;  // size 9
-const int AQ_MORPH_MAX_SPANS = AQ_MORPH_MAX_RADIUS + 1;
+const int kHalfWidths[5] = AQ_MORPH_HALF_WIDTHS;
+const int kRowSpans[9] = AQ_MORPH_ROW_SPANS;
 
-uniform int u_pass;    // 0 rows, 1 columns
-uniform int u_mode;    // 0 per channel, 1 luminance order
-uniform int u_radius;  // r = (size - 1) / 2
-// Pass 0 inputs.
+#if AQ_MORPH_PASS == 0
 uniform sampler2D u_image;
-uniform int u_span_count;
-uniform int u_span_half_width[AQ_MORPH_MAX_SPANS];  // ascending
-// Pass 1 inputs.
-uniform sampler2D u_spans[AQ_MORPH_MAX_SPANS];
-uniform int u_row_span[2 * AQ_MORPH_MAX_RADIUS + 1];  // span index for dy = i - r
+#else
+uniform sampler2D u_spans[AQ_MORPH_SPAN_COUNT];
+#endif
 
 // True when colour a comes strictly before b in the luminance order.
 bool aq_morph_luminance_less(vec4 a, vec4 b) {
@@ -55,57 +68,63 @@ bool aq_morph_luminance_less(vec4 a, vec4 b) {
 
 // Combines the running extreme with a candidate: min for erosion, max for dilation.
 vec4 aq_morph_combine(vec4 best, vec4 candidate) {
+#if AQ_MORPH_LUMINANCE == 1
 #ifdef AQ_MORPH_DILATE
-  if (u_mode == 1) return aq_morph_luminance_less(best, candidate) ? candidate : best;
+  return aq_morph_luminance_less(best, candidate) ? candidate : best;
+#else
+  return aq_morph_luminance_less(candidate, best) ? candidate : best;
+#endif
+#else
+#ifdef AQ_MORPH_DILATE
   return max(best, candidate);
 #else
-  if (u_mode == 1) return aq_morph_luminance_less(candidate, best) ? candidate : best;
   return min(best, candidate);
+#endif
 #endif
 }
 
-vec4 aq_morph_fetch(sampler2D image, ivec2 p) {
-  ivec2 last = textureSize(image, 0) - 1;
-  return texelFetch(image, clamp(p, ivec2(0), last), 0);
-}
-
-void aq_morph_rows(ivec2 p) {
-  vec4 spans[AQ_MORPH_MAX_SPANS];
-  vec4 best = aq_morph_fetch(u_image, p);
-  int next_span = 0;
+#if AQ_MORPH_PASS == 0
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  int last = textureSize(u_image, 0).x - 1;
+  vec4 spans[5];
+  vec4 best = texelFetch(u_image, p, 0);
   // Grow the span outwards one step at a time and record it when it reaches each half-width.
-  for (int t = 0; t <= u_radius; ++t) {
+  for (int t = 0; t <= AQ_MORPH_RADIUS; ++t) {
     if (t > 0) {
-      best = aq_morph_combine(best, aq_morph_fetch(u_image, p + ivec2(t, 0)));
-      best = aq_morph_combine(best, aq_morph_fetch(u_image, p - ivec2(t, 0)));
+      best = aq_morph_combine(best, texelFetch(u_image, ivec2(min(p.x + t, last), p.y), 0));
+      best = aq_morph_combine(best, texelFetch(u_image, ivec2(max(p.x - t, 0), p.y), 0));
     }
-    while (next_span < u_span_count && u_span_half_width[next_span] == t) {
-      spans[next_span] = best;
-      ++next_span;
+    for (int i = 0; i < AQ_MORPH_SPAN_COUNT; ++i) {
+      if (kHalfWidths[i] == t) spans[i] = best;
     }
   }
   o_color = spans[0];
-  o_span1 = u_span_count > 1 ? spans[1] : spans[0];
-  o_span2 = u_span_count > 2 ? spans[2] : spans[0];
-  o_span3 = u_span_count > 3 ? spans[3] : spans[0];
-  o_span4 = u_span_count > 4 ? spans[4] : spans[0];
+#if AQ_MORPH_SPAN_COUNT > 1
+  o_span1 = spans[1];
+#endif
+#if AQ_MORPH_SPAN_COUNT > 2
+  o_span2 = spans[2];
+#endif
+#if AQ_MORPH_SPAN_COUNT > 3
+  o_span3 = spans[3];
+#endif
+#if AQ_MORPH_SPAN_COUNT > 4
+  o_span4 = spans[4];
+#endif
 }
-
-void aq_morph_columns(ivec2 p) {
-  vec4 best = aq_morph_fetch(u_spans[u_row_span[u_radius]], p);
-  for (int dy = 1; dy <= u_radius; ++dy) {
-    vec4 above = aq_morph_fetch(u_spans[u_row_span[u_radius + dy]], p + ivec2(0, dy));
-    vec4 below = aq_morph_fetch(u_spans[u_row_span[u_radius - dy]], p - ivec2(0, dy));
+#else
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  int last = textureSize(u_spans[0], 0).y - 1;
+  vec4 best = texelFetch(u_spans[kRowSpans[AQ_MORPH_RADIUS]], p, 0);
+  for (int dy = 1; dy <= AQ_MORPH_RADIUS; ++dy) {
+    ivec2 up = ivec2(p.x, min(p.y + dy, last));
+    ivec2 down = ivec2(p.x, max(p.y - dy, 0));
+    vec4 above = texelFetch(u_spans[kRowSpans[AQ_MORPH_RADIUS + dy]], up, 0);
+    vec4 below = texelFetch(u_spans[kRowSpans[AQ_MORPH_RADIUS - dy]], down, 0);
     best = aq_morph_combine(aq_morph_combine(best, above), below);
   }
   o_color = best;
 }
-
-void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
-  if (u_pass == 0) {
-    aq_morph_rows(p);
-  } else {
-    aq_morph_columns(p);
-  }
-}
+#endif

@@ -75,6 +75,26 @@ inline SpanPlan plan_spans(int radius, Footprint footprint) {
   return plan;
 }
 
+// The shader text of one variant: the plan and order as defines before the plugin's text (see
+// morphology.glsl). Variants are cached by the host like any program; they carry no source path,
+// so they are not hot-reloaded.
+inline std::string variant_text(const aq_shader_source& shader, int pass, const SpanPlan& plan,
+                                bool luminance) {
+  auto list = [](const int* values, int count) {
+    std::string text;
+    for (int i = 0; i < count; ++i) text += (i > 0 ? "," : "") + std::to_string(values[i]);
+    return text;
+  };
+  std::array<int, kMaxSpans> widths{};
+  for (int i = 0; i < kMaxSpans; ++i) widths[i] = i < plan.span_count ? plan.half_widths[i] : -1;
+  return "#define AQ_MORPH_PASS " + std::to_string(pass) + "\n#define AQ_MORPH_RADIUS " +
+         std::to_string(plan.radius) + "\n#define AQ_MORPH_SPAN_COUNT " +
+         std::to_string(plan.span_count) + "\n#define AQ_MORPH_HALF_WIDTHS int[5](" +
+         list(widths.data(), kMaxSpans) + ")\n#define AQ_MORPH_ROW_SPANS int[9](" +
+         list(plan.row_span.data(), 2 * kMaxRadius + 1) + ")\n#define AQ_MORPH_LUMINANCE " +
+         (luminance ? "1" : "0") + "\n" + shader.text;
+}
+
 // Runs erosion or dilation, whichever `shader` implements.
 inline int run(aq::Context& ctx, const aq_shader_source& shader) {
   const aq_image in = ctx.input_image(0);
@@ -88,6 +108,7 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader) {
   const int radius = static_cast<int>(size / 2);
   const auto footprint = static_cast<Footprint>(ctx.param_enum(kFootprint));
   const SpanPlan plan = plan_spans(radius, footprint == kDisc ? kDisc : kSquare);
+  const bool luminance = ctx.param_enum(kMode) == kLuminance;
 
   std::array<aq_image, kMaxSpans> spans{};
   for (int i = 0; i < plan.span_count; ++i) {
@@ -95,37 +116,30 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader) {
   }
   aq_image out;
   if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
-  const GLuint program = ctx.program(shader);
-  if (program == 0) return AQ_ERROR;
-
-  glUseProgram(program);
-  aq::set_int(program, "u_mode", ctx.param_enum(kMode) == kLuminance ? 1 : 0);
-  aq::set_int(program, "u_radius", radius);
-  aq::set_int(program, "u_span_count", plan.span_count);
-  glUniform1iv(glGetUniformLocation(program, "u_span_half_width"), kMaxSpans,
-               plan.half_widths.data());
-  glUniform1iv(glGetUniformLocation(program, "u_row_span"), 2 * kMaxRadius + 1,
-               plan.row_span.data());
+  const std::string rows_text = variant_text(shader, 0, plan, luminance);
+  const std::string columns_text = variant_text(shader, 1, plan, luminance);
+  const GLuint rows = ctx.program(aq_shader_source{shader.name, rows_text.c_str(), nullptr});
+  const GLuint columns = ctx.program(aq_shader_source{shader.name, columns_text.c_str(), nullptr});
+  if (rows == 0 || columns == 0) return AQ_ERROR;
 
   // Pass 0: every row span at once, one colour attachment each.
-  aq::set_int(program, "u_pass", 0);
-  aq::bind_texture(program, "u_image", 0, in);
+  glUseProgram(rows);
+  aq::bind_texture(rows, "u_image", 0, in);
   if (!ctx.bind_targets(spans.data(), static_cast<uint32_t>(plan.span_count))) {
     aq::unbind_textures(1);
     return AQ_ERROR;
   }
   ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
 
-  // Pass 1: combine the spans down the columns. Unused sampler slots repeat span 0 so that
-  // every sampler of the array names a complete texture.
-  aq::set_int(program, "u_pass", 1);
+  // Pass 1: combine the spans down the columns.
+  glUseProgram(columns);
   std::array<GLint, kMaxSpans> units{};
-  for (int i = 0; i < kMaxSpans; ++i) {
+  for (int i = 0; i < plan.span_count; ++i) {
     units[i] = i;
     glActiveTexture(GL_TEXTURE0 + i);
-    glBindTexture(GL_TEXTURE_2D, spans[i < plan.span_count ? i : 0].texture);
+    glBindTexture(GL_TEXTURE_2D, spans[i].texture);
   }
-  glUniform1iv(glGetUniformLocation(program, "u_spans"), kMaxSpans, units.data());
+  glUniform1iv(glGetUniformLocation(columns, "u_spans"), plan.span_count, units.data());
   const bool drawn = ctx.draw(out);
   aq::unbind_textures(kMaxSpans);
   return drawn ? AQ_OK : AQ_ERROR;
