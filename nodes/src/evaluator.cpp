@@ -396,7 +396,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
     for (size_t p = 0; p < type->params.size(); ++p) {
       const ParamInfo& info = type->params[p];
       nlohmann::json value = param_value_or_default(node, info);
-      key = hash_string(key, value.dump());
+      // replace, not throw, on invalid UTF-8 from --set or the editor
+      key = hash_string(key, value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
       aq_param_value& out = params[p];
       out = aq_param_value{{0, 0, 0}, 0, nullptr};
       switch (info.type) {

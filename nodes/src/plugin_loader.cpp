@@ -85,11 +85,10 @@ bool PluginSet::load_file(const std::string& path, Registry& registry, std::stri
   int added = 0;
   for (auto& type : types) {
     std::string reason;
-    std::string name = type.name;
     if (registry.add(std::move(type), &reason)) {
       ++added;
     } else {
-      refused << (refused.tellp() > 0 ? "; " : "") << "node type '" << name << "': " << reason;
+      refused << (refused.tellp() > 0 ? "; " : "") << reason;
     }
   }
   libraries_.push_back(std::make_unique<PluginLibrary>(handle));

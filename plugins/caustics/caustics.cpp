@@ -212,23 +212,10 @@ struct Caustics {
   }
 };
 
-// No inputs: AQ_NODE needs an input array, so the description is written out here.
-const aq_node_desc kCausticsNode = {
-    sizeof(aq_node_desc),
-    "caustics",
-    "Light",
-    "Tileable animated caustic texture (Stam's grid refraction): intensity = original / "
-    "refracted triangle area, accumulated additively; mean 1 over the tile.",
-    AQ_NODE_TIME_DEPENDENT,
-    nullptr,
-    0,
-    kOutputs,
-    aq::count_of(kOutputs),
-    kParams,
-    aq::count_of(kParams),
-    &aq::NodeAdapter<Caustics>::create,
-    &aq::NodeAdapter<Caustics>::destroy,
-    &aq::NodeAdapter<Caustics>::process};
+AQ_SOURCE_NODE(kCausticsNode, Caustics, "caustics", "Light",
+               "Tileable animated caustic texture (Stam's grid refraction): intensity = original / "
+               "refracted triangle area, accumulated additively; mean 1 over the tile.",
+               AQ_NODE_TIME_DEPENDENT, kOutputs, kParams);
 
 }  // namespace
 

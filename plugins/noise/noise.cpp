@@ -54,22 +54,10 @@ struct Noise {
   }
 };
 
-// No inputs: AQ_NODE needs an input array, so the description is written out here.
-const aq_node_desc kNoiseNode = {
-    sizeof(aq_node_desc),
-    "noise",
-    "Texture",
-    "Periodic seeded noise texture: Perlin, fBm, Gaussian or Worley; sizes in texture units.",
-    0,
-    nullptr,
-    0,
-    kOutputs,
-    aq::count_of(kOutputs),
-    kParams,
-    aq::count_of(kParams),
-    &aq::NodeAdapter<Noise>::create,
-    &aq::NodeAdapter<Noise>::destroy,
-    &aq::NodeAdapter<Noise>::process};
+AQ_SOURCE_NODE(
+    kNoiseNode, Noise, "noise", "Texture",
+    "Periodic seeded noise texture: Perlin, fBm, Gaussian or Worley; sizes in texture units.", 0,
+    kOutputs, kParams);
 
 }  // namespace
 

@@ -56,22 +56,10 @@ struct Paper {
   }
 };
 
-// No inputs: AQ_NODE needs an input array, so the description is written out here.
-const aq_node_desc kPaperNode = {
-    sizeof(aq_node_desc),
-    "paper",
-    "Texture",
-    "Procedural watercolour paper height: Worley grain layered with fBm; periodic, seeded.",
-    0,
-    nullptr,
-    0,
-    kOutputs,
-    aq::count_of(kOutputs),
-    kParams,
-    aq::count_of(kParams),
-    &aq::NodeAdapter<Paper>::create,
-    &aq::NodeAdapter<Paper>::destroy,
-    &aq::NodeAdapter<Paper>::process};
+AQ_SOURCE_NODE(
+    kPaperNode, Paper, "paper", "Texture",
+    "Procedural watercolour paper height: Worley grain layered with fBm; periodic, seeded.", 0,
+    kOutputs, kParams);
 
 }  // namespace
 

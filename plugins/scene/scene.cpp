@@ -237,22 +237,10 @@ class SceneNode {
   aq_scene scene_{};
 };
 
-// No inputs: AQ_NODE needs an input array, so the description is written out here.
-const aq_node_desc kSceneNode = {sizeof(aq_node_desc),
-                                 "scene",
-                                 "Scene",
-                                 "Procedural underwater scene (seeded), test scenes or a file "
-                                 "(OBJ/glTF), with load-time normal smoothing, camera and light.",
-                                 AQ_NODE_TIME_DEPENDENT,
-                                 nullptr,
-                                 0,
-                                 kOutputs,
-                                 aq::count_of(kOutputs),
-                                 kParams,
-                                 aq::count_of(kParams),
-                                 &aq::NodeAdapter<SceneNode>::create,
-                                 &aq::NodeAdapter<SceneNode>::destroy,
-                                 &aq::NodeAdapter<SceneNode>::process};
+AQ_SOURCE_NODE(kSceneNode, SceneNode, "scene", "Scene",
+               "Procedural underwater scene (seeded), test scenes or a file "
+               "(OBJ/glTF), with load-time normal smoothing, camera and light.",
+               AQ_NODE_TIME_DEPENDENT, kOutputs, kParams);
 
 }  // namespace
 
