@@ -95,6 +95,13 @@ vec3 apply_density(vec3 c, float weight, float n) {
   return c * (1.0 - (1.0 - c) * (d - 1.0));
 }
 
+vec3 modulate(vec3 c, int source, vec2 screen, bool on_object, vec3 world) {
+  if (u_weights[source] == 0.0) return c;
+  bool from_world = on_object && source != PAPER && u_connected[source] == 0;
+  float n = from_world ? object_density(source, world) : canvas_density(source, screen);
+  return apply_density(c, u_weights[source], n);
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 color = texelFetch(u_image, pixel, 0);
@@ -103,12 +110,11 @@ void main() {
   ivec2 position_pixel = ivec2(v_uv * vec2(textureSize(u_position, 0)));
   vec4 position = u_object_anchoring == 1 ? texelFetch(u_position, position_pixel, 0) : vec4(0.0);
   bool on_object = u_object_anchoring == 1 && position.w > 0.0;
+  // One call per density with a constant source index, so that the sampler and uniform array
+  // indices fold to constants (dynamic sampler indexing is slow on llvmpipe).
   vec3 c = color.rgb;
-  for (int source = 0; source < 3; ++source) {
-    if (u_weights[source] == 0.0) continue;
-    bool from_world = on_object && source != PAPER && u_connected[source] == 0;
-    float n = from_world ? object_density(source, position.xyz) : canvas_density(source, screen);
-    c = apply_density(c, u_weights[source], n);
-  }
+  c = modulate(c, TURBULENCE, screen, on_object, position.xyz);
+  c = modulate(c, GRAIN, screen, on_object, position.xyz);
+  c = modulate(c, PAPER, screen, on_object, position.xyz);
   o_color = vec4(c, color.a);
 }
