@@ -33,7 +33,7 @@ in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 uniform sampler2D u_image;
 uniform usampler2D u_ids;
-uniform int u_mapping;   // 0 colour, 1 depth, 2 id
+uniform int u_mapping;   // 0 colour, 1 depth, 2 integer id, 3 id stored as float
 uniform int u_channel;   // 0 rgb, 1 r, 2 g, 3 b, 4 a
 uniform int u_srgb;
 uniform float u_gain;
@@ -58,6 +58,10 @@ void main() {
     return;
   }
   vec4 c = texture(u_image, v_uv);
+  if (u_mapping == 3) {  // ids stored as floats
+    o_color = vec4(id_colour(uint(max(round(c.r), 0.0))), 1.0);
+    return;
+  }
   if (u_mapping == 1) {
     float v = c.r;
     if (isnan(v) || isinf(v)) { o_color = vec4(1.0, 0.0, 1.0, 1.0); return; }
@@ -117,6 +121,21 @@ float linear_to_srgb(float c) {
 Viewer::Viewer(GlContext& context, const Registry& registry) : evaluator_(context, registry) {}
 
 Viewer::~Viewer() = default;
+
+Viewer::Mapping Viewer::current_mapping() const {
+  if (!result_) return Mapping::kColor;
+  const aq_image& image = result_->image;
+  if (image.format == AQ_FORMAT_R32UI) return Mapping::kId;  // only an id mapping can read it
+  if (mapping_choice_ == 1) return Mapping::kColor;
+  if (mapping_choice_ == 2) return Mapping::kDepth;
+  if (mapping_choice_ == 3) return Mapping::kId;
+  // Object ids often travel as floats; their port says what they are.
+  std::string port = evaluated_output_ ? evaluated_output_->port : "";
+  if (port == "id" || port == "ids" || port.ends_with("_id") || port.ends_with("_ids")) {
+    return Mapping::kId;
+  }
+  return is_single_channel_float(image.format) ? Mapping::kDepth : Mapping::kColor;
+}
 
 void Viewer::update(const EditorState& state, bool force) {
   std::optional<PortRef> output = state.shown_output();
@@ -248,9 +267,7 @@ void Viewer::render_display_texture() {
     display_height_ = image.height;
     glNamedFramebufferTexture(framebuffer_.get(), GL_COLOR_ATTACHMENT0, texture, 0);
   }
-  Mapping mapping = image.format == AQ_FORMAT_R32UI         ? Mapping::kId
-                    : is_single_channel_float(image.format) ? Mapping::kDepth
-                                                            : Mapping::kColor;
+  Mapping mapping = current_mapping();
   GLint viewport[4];
   glGetIntegerv(GL_VIEWPORT, viewport);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
@@ -261,12 +278,15 @@ void Viewer::render_display_texture() {
   glUseProgram(program_.get());
   glUniform1i(glGetUniformLocation(program_.get(), "u_image"), 0);
   glUniform1i(glGetUniformLocation(program_.get(), "u_ids"), 1);
-  glUniform1i(glGetUniformLocation(program_.get(), "u_mapping"), static_cast<int>(mapping));
+  int mode = static_cast<int>(mapping);
+  if (mapping == Mapping::kId && image.format != AQ_FORMAT_R32UI) mode = 3;
+  glUniform1i(glGetUniformLocation(program_.get(), "u_mapping"), mode);
   glUniform1i(glGetUniformLocation(program_.get(), "u_channel"), channel_);
   glUniform1i(glGetUniformLocation(program_.get(), "u_srgb"), srgb_ ? 1 : 0);
   glUniform1f(glGetUniformLocation(program_.get(), "u_gain"), std::exp2(exposure_));
   glUniform2f(glGetUniformLocation(program_.get(), "u_range"), range_[0], range_[1]);
-  glBindTextureUnit(mapping == Mapping::kId ? 1 : 0, image.texture);
+  glBindTextureUnit(mapping == Mapping::kId && image.format == AQ_FORMAT_R32UI ? 1 : 0,
+                    image.texture);
   if (image.format == AQ_FORMAT_DEPTH32F) {
     glTextureParameteri(image.texture, GL_TEXTURE_COMPARE_MODE, GL_NONE);
   }
@@ -308,10 +328,19 @@ void Viewer::draw(EditorState& state) {
     ImGui::SameLine();
     ImGui::TextDisabled("%dx%d %s  %.1f ms", image.width, image.height, format_name(image.format),
                         last_ms_);
-    bool single = is_single_channel_float(image.format);
-    if (image.format == AQ_FORMAT_R32UI) {
+    const char* mappings[] = {"auto", "colour", "depth", "id"};
+    ImGui::SetNextItemWidth(80);
+    if (ImGui::Combo("##mapping", &mapping_choice_, mappings, 4)) display_stale_ = true;
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "auto: colour for RGBA, depth for one channel, id for integer textures "
+          "and outputs named *id*");
+    }
+    ImGui::SameLine();
+    Mapping mapping = current_mapping();
+    if (mapping == Mapping::kId) {
       ImGui::TextDisabled("object ids: one colour per id, 0 black");
-    } else if (single) {
+    } else if (mapping == Mapping::kDepth) {
       ImGui::SetNextItemWidth(220);
       if (ImGui::DragFloatRange2("depth range", &range_[0], &range_[1], 0.01f)) {
         range_from_image_ = false;

@@ -1,7 +1,8 @@
 // The viewer: evaluates the graph up to the output being viewed (any node's any output), keeps
 // the result, and shows it in an ImGui panel through a small display pass that maps it to
 // 8-bit colour: colour images through the sRGB curve, depth (R32F, depth textures) as near =
-// bright over the image's own range, object ids (R32UI) as distinct hashed colours. Fit or 1:1
+// bright over the image's own range, object ids (R32UI, or an output named "id") as distinct
+// hashed colours with 0 (background) black. Fit or 1:1
 // zoom; the raw value under the cursor is read straight from the evaluated texture.
 //
 //   EditorState ─► needs_evaluation? ─► Evaluator::evaluate(graph, {frame}, output)
@@ -47,6 +48,7 @@ class Viewer {
 
  private:
   enum class Mapping { kColor = 0, kDepth = 1, kId = 2 };
+  Mapping current_mapping() const;
   void render_display_texture();
   void measure_range();
   bool ensure_program();
@@ -73,7 +75,8 @@ class Viewer {
   int preview_divisor_ = 1;
   bool fit_ = true;
   bool srgb_ = true;
-  int channel_ = 0;  // 0 rgb, 1 r, 2 g, 3 b, 4 a
+  int channel_ = 0;         // 0 rgb, 1 r, 2 g, 3 b, 4 a
+  int mapping_choice_ = 0;  // 0 auto, 1 colour, 2 depth, 3 id
   float exposure_ = 0.0f;
   float range_[2] = {0.0f, 1.0f};  // depth mapping range, from the image unless edited
   bool range_from_image_ = true;
