@@ -1,6 +1,8 @@
 // `read` and `image_input`: see builtin_nodes.h.
 #include "builtin_nodes.h"
 
+#include "hash.h"
+
 #include <aquarelle/core/image_io.h>
 #include <aquarelle/core/plugin_loader.h>
 
@@ -49,15 +51,6 @@ NodeType image_input_type() {
   return type;
 }
 
-uint64_t mix(uint64_t h, const void* data, size_t size) {
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  for (size_t i = 0; i < size; ++i) {
-    h ^= bytes[i];
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
 }  // namespace
 
 void register_builtin_nodes(Registry& registry) {
@@ -99,16 +92,16 @@ uint64_t builtin_key(const NodeType& type, const std::vector<aq_param_value>& pa
       auto it = options.images->find(name);
       if (it != options.images->end()) {
         const ImageF& image = it->second;
-        key = mix(key, &image.width, sizeof(int));
-        key = mix(key, &image.height, sizeof(int));
-        key = mix(key, image.pixels.data(), image.pixels.size() * sizeof(float));
+        key = hash_bytes(key, &image.width, sizeof(int));
+        key = hash_bytes(key, &image.height, sizeof(int));
+        key = hash_bytes(key, image.pixels.data(), image.pixels.size() * sizeof(float));
       }
     }
   } else if (type.name == "read") {
     std::error_code ec;
     auto time = std::filesystem::last_write_time(params[0].s != nullptr ? params[0].s : "", ec);
     auto ticks = time.time_since_epoch().count();
-    key = mix(key, &ticks, sizeof(ticks));
+    key = hash_bytes(key, &ticks, sizeof(ticks));
   }
   return key;
 }

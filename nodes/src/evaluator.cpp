@@ -12,28 +12,12 @@
 #include <set>
 
 #include "builtin_nodes.h"
+#include "hash.h"
 #include "shader_cache.h"
 
 namespace aq {
 
 namespace {
-
-uint64_t hash_bytes(uint64_t h, const void* data, size_t size) {
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  for (size_t i = 0; i < size; ++i) {
-    h ^= bytes[i];
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-uint64_t hash_string(uint64_t h, const std::string& s) {
-  h = hash_bytes(h, s.data(), s.size());
-  return hash_bytes(h, "\0", 1);
-}
-template <typename T>
-uint64_t hash_value(uint64_t h, const T& v) {
-  return hash_bytes(h, &v, sizeof(v));
-}
 
 uint32_t working_format(const std::string& precision) {
   return precision == "float" ? AQ_FORMAT_RGBA32F : AQ_FORMAT_RGBA16F;
@@ -391,7 +375,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
     // Parameters, as the ABI passes them.
     std::vector<aq_param_value> params(type->params.size());
     std::vector<std::string> strings(type->params.size());
-    uint64_t key = 1469598103934665603ull;
+    uint64_t key = kHashSeed;
     key = hash_string(key, type->name);
     for (size_t p = 0; p < type->params.size(); ++p) {
       const ParamInfo& info = type->params[p];
