@@ -81,73 +81,74 @@ gl::Texture make_image_texture(int width, int height, GLenum internal_format) {
 
 }  // namespace
 
-Result<CopyPassTiming> time_copy_pass(int width, int height, uint32_t format, int repetitions,
-                                      int warmup) {
+Result<CopyPass> CopyPass::create(int width, int height, uint32_t format) {
   if (format != AQ_FORMAT_RGBA16F && format != AQ_FORMAT_RGBA32F) {
     return make_error("copy pass: format must be RGBA16F or RGBA32F");
   }
   const GLenum internal_format = format == AQ_FORMAT_RGBA32F ? GL_RGBA32F : GL_RGBA16F;
   auto program = link_copy_program();
   if (!program.ok()) return program.error();
-
-  gl::Texture source = make_image_texture(width, height, internal_format);
-  gl::Texture target = make_image_texture(width, height, internal_format);
+  CopyPass pass;
+  pass.width_ = width;
+  pass.height_ = height;
+  pass.program_ = std::move(*program);
+  pass.source_ = make_image_texture(width, height, internal_format);
+  pass.target_ = make_image_texture(width, height, internal_format);
   // Defined contents, so the copy reads numbers rather than whatever memory held.
   std::vector<float> pixels(static_cast<size_t>(width) * height * 4);
   for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<float>(i % 251) / 250.0f;
-  glBindTexture(GL_TEXTURE_2D, source.get());
+  glBindTexture(GL_TEXTURE_2D, pass.source_.get());
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, pixels.data());
   glBindTexture(GL_TEXTURE_2D, 0);
 
-  gl::Framebuffer framebuffer = gl::make_framebuffer();
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target.get(), 0);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    return make_error("copy pass: the target framebuffer is incomplete");
-  }
-  gl::VertexArray vertex_array = gl::make_vertex_array();
-  gl::Query start = gl::make_query();
-  gl::Query end = gl::make_query();
+  pass.framebuffer_ = gl::make_framebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer_.get());
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, pass.target_.get(),
+                         0);
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (!complete) return make_error("copy pass: the target framebuffer is incomplete");
+  pass.vertex_array_ = gl::make_vertex_array();
+  pass.start_ = gl::make_query();
+  pass.end_ = gl::make_query();
+  return pass;
+}
 
-  glViewport(0, 0, width, height);
-  glDisable(GL_BLEND);
-  glDisable(GL_DEPTH_TEST);
-  glUseProgram(program->get());
-  glBindVertexArray(vertex_array.get());
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, source.get());
-
+CopyPass::Sample CopyPass::run_batch() {
   // Each sample is a batch of copies between two glFinish calls, divided by the batch size:
   // the sync cost is shared, and the copies are rasterised as they would be in a pipeline.
-  std::vector<double> gpu_ms, wall_ms;
-  while (glGetError() != GL_NO_ERROR) {
-  }
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
+  glViewport(0, 0, width_, height_);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_SCISSOR_TEST);
+  glUseProgram(program_.get());
+  glBindVertexArray(vertex_array_.get());
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, source_.get());
   glFinish();
-  for (int i = 0; i < warmup + repetitions; ++i) {
-    auto wall_start = std::chrono::steady_clock::now();
-    glQueryCounter(start.get(), GL_TIMESTAMP);
-    for (int k = 0; k < kCopiesPerSample; ++k) glDrawArrays(GL_TRIANGLES, 0, 3);
-    glQueryCounter(end.get(), GL_TIMESTAMP);
-    glFinish();
-    auto wall_end = std::chrono::steady_clock::now();
-    GLuint64 begin_ns = 0, end_ns = 0;
-    glGetQueryObjectui64v(start.get(), GL_QUERY_RESULT, &begin_ns);
-    glGetQueryObjectui64v(end.get(), GL_QUERY_RESULT, &end_ns);
-    if (i < warmup) continue;
-    gpu_ms.push_back(
-        end_ns > begin_ns ? static_cast<double>(end_ns - begin_ns) * 1e-6 / kCopiesPerSample : 0.0);
-    wall_ms.push_back(std::chrono::duration<double, std::milli>(wall_end - wall_start).count() /
-                      kCopiesPerSample);
-  }
+
+  auto wall_start = std::chrono::steady_clock::now();
+  glQueryCounter(start_.get(), GL_TIMESTAMP);
+  for (int k = 0; k < kCopiesPerSample; ++k) glDrawArrays(GL_TRIANGLES, 0, 3);
+  glQueryCounter(end_.get(), GL_TIMESTAMP);
+  glFinish();
+  auto wall_end = std::chrono::steady_clock::now();
+  GLuint64 begin_ns = 0, end_ns = 0;
+  glGetQueryObjectui64v(start_.get(), GL_QUERY_RESULT, &begin_ns);
+  glGetQueryObjectui64v(end_.get(), GL_QUERY_RESULT, &end_ns);
 
   glBindTexture(GL_TEXTURE_2D, 0);
   glBindVertexArray(0);
   glUseProgram(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (glGetError() != GL_NO_ERROR) return make_error("copy pass: a GL call failed");
-  return CopyPassTiming{summarize(wall_ms), summarize(gpu_ms)};
+  Sample sample;
+  sample.wall_ms =
+      std::chrono::duration<double, std::milli>(wall_end - wall_start).count() / kCopiesPerSample;
+  sample.timestamp_ms =
+      end_ns > begin_ns ? static_cast<double>(end_ns - begin_ns) * 1e-6 / kCopiesPerSample : 0.0;
+  return sample;
 }
 
 }  // namespace aq::app

@@ -4,6 +4,7 @@
 // machines than milliseconds do.
 #pragma once
 
+#include <aquarelle/core/gl_objects.h>
 #include <aquarelle/core/result.h>
 
 #include <cstdint>
@@ -20,10 +21,31 @@ struct CopyPassTiming {
   Spread timestamp_ms;  // GL_TIMESTAMP pairs around the same batch, per copy (for reference)
 };
 
-// Needs a current GL 4.5 context with the core's GL functions loaded. `format` is
-// AQ_FORMAT_RGBA16F or AQ_FORMAT_RGBA32F. Runs `warmup` untimed copies first (shader
-// compilation, first touch of memory), then `repetitions` timed ones.
-Result<CopyPassTiming> time_copy_pass(int width, int height, uint32_t format, int repetitions,
-                                      int warmup = 3);
+// A copy pass ready to run: its program, textures and framebuffer. Needs a current GL 4.5
+// context with the core's GL functions loaded, the same one for its whole life.
+class CopyPass {
+ public:
+  // `format` is AQ_FORMAT_RGBA16F or AQ_FORMAT_RGBA32F.
+  static Result<CopyPass> create(int width, int height, uint32_t format);
+
+  struct Sample {
+    double wall_ms = 0;       // per copy
+    double timestamp_ms = 0;  // per copy
+  };
+  // One batch of copies between two glFinish calls; leaves the GL state as it found it
+  // (nothing bound).
+  Sample run_batch();
+
+ private:
+  int width_ = 0;
+  int height_ = 0;
+  gl::Program program_;
+  gl::Texture source_;
+  gl::Texture target_;
+  gl::Framebuffer framebuffer_;
+  gl::VertexArray vertex_array_;
+  gl::Query start_;
+  gl::Query end_;
+};
 
 }  // namespace aq::app

@@ -16,30 +16,18 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-Result<PipelineTiming> time_pipeline(GlContext& context, const Registry& registry,
-                                     const Graph& graph, const TimingPlan& plan) {
-  PipelineTiming timing;
-  timing.retain_outputs = plan.retain_outputs;
-  Evaluator evaluator(context, registry);
-  const int first = graph.settings.first_frame;
+namespace {
 
-  // Per node, one sample per timed frame (0 when reused), in evaluation order.
+// Per-node samples of one mode, one per timed frame (0 when the node was reused).
+struct NodeSamples {
   std::vector<std::string> order;
   std::map<std::string, NodeStats> stats;
-  std::map<std::string, std::vector<double>> gpu, cpu;
+  std::map<std::string, std::vector<double>> wall, gpu;
   std::vector<double> wall_sums;
-  for (int i = 0; i < plan.warmup + plan.frames; ++i) {
-    EvalOptions options;
-    options.frame = first + i;
-    options.retain_outputs = plan.retain_outputs;
-    options.measure_gpu_time = true;
-    options.finish_each_node = true;
-    auto result = evaluator.evaluate(graph, options);
-    if (!result.ok())
-      return make_error("frame " + std::to_string(options.frame) + ": " + result.message());
-    if (i < plan.warmup) continue;
+
+  void add(const std::vector<NodeTiming>& timings) {
     double wall_sum = 0;
-    for (const auto& t : evaluator.last_timings()) {
+    for (const auto& t : timings) {
       auto [it, inserted] = stats.try_emplace(t.node);
       if (inserted) {
         order.push_back(t.node);
@@ -47,41 +35,85 @@ Result<PipelineTiming> time_pipeline(GlContext& context, const Registry& registr
         it->second.type = t.type;
       }
       if (!t.cached) ++it->second.runs;
+      wall[t.node].push_back(t.cpu_ms);
       gpu[t.node].push_back(t.gpu_ms);
-      cpu[t.node].push_back(t.cpu_ms);
       wall_sum += t.cpu_ms;
     }
     wall_sums.push_back(wall_sum);
   }
-  for (const auto& id : order) {
-    NodeStats node = stats[id];
-    node.gpu_ms = summarize(gpu[id]);
-    node.wall_ms = summarize(cpu[id]);
-    timing.nodes.push_back(node);
-  }
-  timing.node_wall_sum_ms = summarize(wall_sums);
-
-  // The frame cost without the timer queries' waits, in a fresh evaluator so the same frames
-  // are evaluated from the same state.
-  Evaluator untimed(context, registry);
-  std::vector<double> frame_ms;
-  for (int i = 0; i < plan.warmup + plan.frames; ++i) {
-    EvalOptions options;
-    options.frame = first + i;
-    options.retain_outputs = plan.retain_outputs;
-    options.measure_gpu_time = false;
-    glFinish();
-    auto start = std::chrono::steady_clock::now();
-    {
-      auto result = untimed.evaluate(graph, options);
-      if (!result.ok())
-        return make_error("frame " + std::to_string(options.frame) + ": " + result.message());
-      glFinish();
+  void finish(PipelineTiming* timing) {
+    for (const auto& id : order) {
+      NodeStats node = stats[id];
+      node.wall_ms = summarize(wall[id]);
+      node.gpu_ms = summarize(gpu[id]);
+      timing->nodes.push_back(node);
     }
-    if (i >= plan.warmup) frame_ms.push_back(elapsed_ms(start));
+    timing->node_wall_sum_ms = summarize(wall_sums);
   }
-  timing.frame_ms = summarize(frame_ms);
-  return timing;
+};
+
+Status frame_error(int frame, const Result<TextureRef>& result) {
+  return make_error("frame " + std::to_string(frame) + ": " + result.message());
+}
+
+}  // namespace
+
+Result<PipelineTimings> time_pipeline(GlContext& context, const Registry& registry,
+                                      const Graph& graph, const TimingPlan& plan,
+                                      CopyPass& copy_pass) {
+  PipelineTimings timings;
+  timings.every_node_runs.retain_outputs = false;
+  timings.cached.retain_outputs = true;
+  const int first = graph.settings.first_frame;
+
+  // Per-node times: each node's process() between two glFinish calls.
+  {
+    Evaluator every(context, registry), cached(context, registry);
+    NodeSamples every_samples, cached_samples;
+    for (int i = 0; i < plan.warmup + plan.frames; ++i) {
+      for (bool retain : {false, true}) {
+        EvalOptions options;
+        options.frame = first + i;
+        options.retain_outputs = retain;
+        options.measure_gpu_time = true;
+        options.finish_each_node = true;
+        Evaluator& evaluator = retain ? cached : every;
+        auto result = evaluator.evaluate(graph, options);
+        if (!result.ok()) return frame_error(options.frame, result).error();
+        if (i >= plan.warmup)
+          (retain ? cached_samples : every_samples).add(evaluator.last_timings());
+      }
+    }
+    every_samples.finish(&timings.every_node_runs);
+    cached_samples.finish(&timings.cached);
+  }
+
+  // Frame times without the per-node waits and timer queries, which would inflate the frame;
+  // fresh evaluators so the same frames are evaluated from the same state.
+  Evaluator every(context, registry), cached(context, registry);
+  std::vector<double> every_ms, cached_ms;
+  for (int i = 0; i < plan.warmup + plan.frames; ++i) {
+    for (bool retain : {false, true}) {
+      EvalOptions options;
+      options.frame = first + i;
+      options.retain_outputs = retain;
+      options.measure_gpu_time = false;
+      glFinish();
+      auto start = std::chrono::steady_clock::now();
+      {
+        auto result = (retain ? cached : every).evaluate(graph, options);
+        if (!result.ok()) return frame_error(options.frame, result).error();
+        glFinish();
+      }
+      const double ms = elapsed_ms(start);
+      if (i < plan.warmup) continue;
+      (retain ? cached_ms : every_ms).push_back(ms);
+      timings.copy_samples.push_back(copy_pass.run_batch());
+    }
+  }
+  timings.every_node_runs.frame_ms = summarize(every_ms);
+  timings.cached.frame_ms = summarize(cached_ms);
+  return timings;
 }
 
 Result<FrameRun> run_frames(Evaluator& evaluator, const Graph& graph, int frames, int warmup) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_copy_pass.h"
 #include "bench_stats.h"
 
 namespace aq::app {
@@ -28,7 +29,7 @@ struct NodeStats {
 };
 
 struct PipelineTiming {
-  bool retain_outputs = false;
+  bool retain_outputs = false;   // the mode: outputs kept between frames
   std::vector<NodeStats> nodes;  // in evaluation order
   // Wall time of evaluate() + glFinish with node timing switched off (timer queries make the
   // CPU wait for each node, which would inflate the frame).
@@ -39,12 +40,21 @@ struct PipelineTiming {
 struct TimingPlan {
   int frames = 5;  // timed frames
   int warmup = 2;  // untimed frames first: shader compilation, first allocations
-  bool retain_outputs = false;
 };
 
-// Evaluates frames first_frame, first_frame+1, ... (time-dependent nodes see time advance).
-Result<PipelineTiming> time_pipeline(GlContext& context, const Registry& registry,
-                                     const Graph& graph, const TimingPlan& plan);
+struct PipelineTimings {
+  PipelineTiming every_node_runs;  // outputs released after use: every node runs every frame
+  PipelineTiming cached;           // outputs kept: unchanged (static) nodes are reused
+  // Copy-pass batches run between the frames, so the yardstick is sampled over the same
+  // period as the frames (the machine's load changes during a run).
+  std::vector<CopyPass::Sample> copy_samples;
+};
+
+// Evaluates frames first_frame, first_frame+1, ... (time-dependent nodes see time advance) in
+// both modes, frame by frame alternately so that neither mode gets a quieter machine.
+Result<PipelineTimings> time_pipeline(GlContext& context, const Registry& registry,
+                                      const Graph& graph, const TimingPlan& plan,
+                                      CopyPass& copy_pass);
 
 // Wall time of evaluate() + glFinish over `frames` frames after `warmup`, with outputs kept
 // between frames (the animation case); the warm-up frame's output is read back to `first`.
