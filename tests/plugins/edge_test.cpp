@@ -168,4 +168,15 @@ TEST(Edge, NanInSourceDoesNotSpread) {
   EXPECT_TRUE(aq::test::all_finite(*out));
 }
 
+TEST(Edge, OnePixelImageHasNoEdges) {
+  const ImageF input = aq::test::constant_image(1, 1, 0.2f, 0.4f, 0.6f, 1.0f);
+  for (const char* kernel : {"laplacian", "sobel"}) {
+    auto out =
+        aq::test::run_node("edge", {{"image", input}}, {{"kernel", kernel}, {"threshold", 0.0}},
+                           options_for(input, "float"));
+    ASSERT_TRUE(out.ok()) << out.message();
+    EXPECT_EQ(aq::test::max_abs_diff(*out, input), 0.0) << kernel;
+  }
+}
+
 }  // namespace

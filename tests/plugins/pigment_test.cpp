@@ -286,4 +286,14 @@ TEST(Pigment, NonFiniteTextureGivesFiniteOutput) {
   EXPECT_TRUE(aq::test::all_finite(*out));
 }
 
+TEST(Pigment, OnePixelImage) {
+  const ImageF input = aq::test::constant_image(1, 1, 0.2f, 0.4f, 0.6f, 1.0f);
+  auto out =
+      aq::test::run_node("pigment", {{"image", input}}, test_params(), options_for(input, "float"));
+  ASSERT_TRUE(out.ok()) << out.message();
+  const ImageF expected =
+      aq::reference::pigment(input, {nullptr, nullptr, nullptr}, nullptr, reference_params());
+  EXPECT_LE(aq::test::max_abs_diff(*out, expected), 1e-5);
+}
+
 }  // namespace

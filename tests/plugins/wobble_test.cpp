@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 
 namespace {
@@ -199,6 +200,18 @@ TEST(Wobble, NonFinitePaperKeepsTheImageFinite) {
                                 options_for(input, "float"));
   ASSERT_TRUE(out.ok()) << out.message();
   EXPECT_TRUE(aq::test::all_finite(*out));
+}
+
+TEST(Wobble, OnePixelImageAndPaper) {
+  const ImageF input = aq::test::constant_image(1, 1, 0.2f, 0.4f, 0.6f, 1.0f);
+  for (bool with_paper : {false, true}) {
+    std::map<std::string, ImageF> inputs = {{"image", input}};
+    if (with_paper) inputs["paper"] = aq::test::constant_image(1, 1, 0.7f, 0.7f, 0.7f, 1.0f);
+    auto out = aq::test::run_node("wobble", inputs, {{"strength", 64.0}, {"paper_resolution", 8}},
+                                  options_for(input, "float"));
+    ASSERT_TRUE(out.ok()) << out.message();
+    EXPECT_EQ(aq::test::max_abs_diff(*out, input), 0.0) << with_paper;
+  }
 }
 
 }  // namespace
