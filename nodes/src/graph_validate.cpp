@@ -156,9 +156,11 @@ void check_settings(const Settings& settings, std::vector<Problem>* problems) {
   }
 }
 
+// `ids`: every node id of the graph, made once per graph (not per bad link: a graph with
+// thousands of bad links would otherwise copy thousands of ids for each).
 void check_node(const std::string& id, const Node& node, const Graph& graph,
-                const Registry& registry, const AlreadyReported& already,
-                std::vector<Problem>* problems) {
+                const std::vector<std::string>& ids, const Registry& registry,
+                const AlreadyReported& already, std::vector<Problem>* problems) {
   if (!is_valid_node_id(id)) {
     problems->push_back(problem_at(
         node_pointer(id),
@@ -203,8 +205,6 @@ void check_node(const std::string& id, const Node& node, const Graph& graph,
     }
     auto source_node = graph.nodes.find(source.node);
     if (source_node == graph.nodes.end()) {
-      std::vector<std::string> ids;
-      for (const auto& entry : graph.nodes) ids.push_back(entry.first);
       problems->push_back(problem_at(input_pointer(id, port),
                                      "source " + quoted(source.str()) + " names node " +
                                          quoted(source.node) + ", which is not in the graph" +
@@ -403,6 +403,10 @@ std::string did_you_mean(const std::string& wanted, const std::vector<std::strin
   const std::string* best = nullptr;
   size_t best_distance = std::max<size_t>(1, wanted.size() / 3) + 1;
   for (const std::string& name : names) {
+    // The distance is at least the difference in length: skip names that cannot be closer.
+    const size_t length_gap =
+        name.size() > wanted.size() ? name.size() - wanted.size() : wanted.size() - name.size();
+    if (length_gap >= best_distance) continue;
     const size_t distance = edit_distance(wanted, name);
     if (distance < best_distance) {
       best = &name;
@@ -433,8 +437,11 @@ std::vector<Problem> check_graph(const Graph& graph, const Registry& registry,
         "unsupported version " + std::to_string(graph.version) + "; this build reads version 1"));
   }
   check_settings(graph.settings, &problems);
+  std::vector<std::string> ids;
+  ids.reserve(graph.nodes.size());
+  for (const auto& entry : graph.nodes) ids.push_back(entry.first);
   for (const auto& [id, node] : graph.nodes) {
-    check_node(id, node, graph, registry, already_reported, &problems);
+    check_node(id, node, graph, ids, registry, already_reported, &problems);
   }
   check_cycles(graph, &problems);
   check_output(graph, registry, already_reported, &problems);
