@@ -350,6 +350,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
   }
   readers[target->node] += 1;
 
+  std::map<std::string, bool> varies;
   const Settings& settings = graph.settings;
   const uint32_t format = working_format(settings.precision);
   const double time = (options.frame - settings.first_frame) / std::max(settings.fps, 1e-6);
@@ -557,10 +558,16 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       state.valid = true;
     }
 
-    // Inputs read for the last time go back to the pool.
+    // A node varies over time when it or anything upstream is time-dependent.
+    bool node_varies = type->time_dependent();
+    for (const auto& [port, source] : node.inputs) node_varies = node_varies || varies[source.node];
+    varies[id] = node_varies;
+
+    // Inputs read for the last time go back to the pool, except static results that the next
+    // frame will reuse.
     if (!options.retain_outputs) {
       for (const auto& [port, source] : node.inputs) {
-        if (--readers[source.node] == 0) {
+        if (--readers[source.node] == 0 && !(options.retain_static_outputs && !varies[source.node])) {
           NodeState& producer = impl_->states[source.node];
           for (auto& image : producer.images) image.reset();
           producer.valid = false;
@@ -580,7 +587,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
                       "image port, e.g. a gbuffer or cel_light output");
   }
   TextureRef result = last.images[index];
-  if (!options.retain_outputs) {
+  if (!options.retain_outputs && !(options.retain_static_outputs && !varies[target->node])) {
     for (auto& image : last.images) image.reset();
     last.valid = false;
   }

@@ -117,6 +117,7 @@ TEST_F(EvaluatorTest, PoolPeakStaysBoundedOnALongChain) {
   graph.output = PortRef{"n49", "image"};
   EvalOptions options;
   options.retain_outputs = false;
+  options.retain_static_outputs = false;
   auto result = evaluator.evaluate(graph, options);
   ASSERT_TRUE(result.ok()) << result.message();
   EXPECT_EQ(evaluator.run_counts().size(), 50u);
@@ -133,6 +134,27 @@ TEST_F(EvaluatorTest, PoolPeakStaysBoundedOnALongChain) {
   size_t created = evaluator.pool().created_count();
   ASSERT_TRUE(evaluator.evaluate(graph, options).ok());
   EXPECT_EQ(evaluator.pool().created_count(), created);
+}
+
+TEST_F(EvaluatorTest, BatchModeKeepsStaticResultsAndReleasesTheRest) {
+  Evaluator evaluator(*context_, *registry_);
+  Graph graph = small_graph();  // a -> b -> c, all static
+  graph.nodes["t"] = add_node(0.0, "c");
+  graph.nodes["t"].type = "test_time";
+  graph.nodes["u"] = add_node(0.5, "t");
+  graph.output = PortRef{"u", "image"};
+  EvalOptions options;
+  options.retain_outputs = false;
+  for (int frame = 1; frame <= 3; ++frame) {
+    options.frame = frame;
+    auto result = evaluator.evaluate(graph, options);
+    ASSERT_TRUE(result.ok()) << result.message();
+  }
+  EXPECT_EQ(evaluator.run_counts().at("a"), 1) << "static: computed once, kept";
+  EXPECT_EQ(evaluator.run_counts().at("c"), 1);
+  EXPECT_EQ(evaluator.run_counts().at("t"), 3);
+  EXPECT_EQ(evaluator.run_counts().at("u"), 3);
+  EXPECT_EQ(evaluator.pool().live_count(), 3u) << "only a, b and c stay out of the pool";
 }
 
 TEST_F(EvaluatorTest, PluginFailureNamesTheNode) {

@@ -37,6 +37,10 @@ struct EvalOptions {
   // Keep every node's outputs between evaluations so unchanged nodes are not re-run (editor,
   // animation with static parts). Off: outputs return to the pool after their last reader.
   bool retain_outputs = true;
+  // With retain_outputs off: still keep the outputs of static nodes (nothing upstream depends
+  // on time), which the next frame reuses. Memory then stays bounded by the graph's width plus
+  // its static results; turn off to bound it by the width alone.
+  bool retain_static_outputs = true;
   bool measure_gpu_time = true;
   // Wait for the GPU (glFinish) before and after each node's process(), so cpu_ms covers the
   // node's GPU work as well: `aquarelle bench` uses it because llvmpipe's GL_TIMESTAMP pairs
