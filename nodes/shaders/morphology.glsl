@@ -8,9 +8,9 @@
 // extreme over the footprint is the extreme, over dy, of the extreme over the row span of
 // half-width w(dy). So the work is split in two passes whose cost grows with k, not k^2:
 //
-//   pass 0 (rows):    image ──► span_i(x, y) = extreme over |t| <= w_i of image(x + t, y)
+//   pass 0 (rows):    image --> span_i(x, y) = extreme over |t| <= w_i of image(x + t, y)
 //                               for each distinct half-width w_i (one MRT output each, <= 5)
-//   pass 1 (columns): span_* ──► out(x, y) = extreme over dy of span_{row_span[dy]}(x, y + dy)
+//   pass 1 (columns): span_* --> out(x, y) = extreme over dy of span_{row_span[dy]}(x, y + dy)
 //
 // A square has a single span (w_i = r), so pass 0 writes one texture and this is the classic
 // separable min/max filter. Lookups clamp to the image (texelFetch of clamped coordinates), which
@@ -20,15 +20,26 @@
 // plugin's shader text, so that every loop below has a constant trip count and unrolls, and
 // every array and sampler index is a constant (dynamic indexing is slow on llvmpipe):
 //   AQ_MORPH_PASS         0 rows, 1 columns
-//   AQ_MORPH_RADIUS       r = (size − 1) / 2, 1..4
+//   AQ_MORPH_RADIUS       r = (size - 1) / 2, 1..4
 //   AQ_MORPH_SPAN_COUNT   number of distinct row half-widths, 1..5
-//   AQ_MORPH_HALF_WIDTHS  int[5](...): the distinct half-widths, ascending (unused: −1)
+//   AQ_MORPH_HALF_WIDTHS  int[5](...): the distinct half-widths, ascending (unused: -1)
 //   AQ_MORPH_ROW_SPANS    int[9](...): span index of row offset dy at [dy + r]
 //   AQ_MORPH_LUMINANCE    0 per channel, 1 luminance order
 //
-// Orders: 0 = per channel (min/max of each of r, g, b, a separately, the seed's §3.3);
+// Orders: 0 = per channel (min/max of each of r, g, b, a separately, the seed's sec. 3.3);
 // 1 = luminance order (a total order on colours: Rec.709 luminance, ties broken by r, g, b, a),
 // so every output pixel is one of the window's input colours and no new colour appears.
+
+// Without the node's defines (a standalone compile check, an editor preview of the file) the
+// shader is the 3x3 square per-channel row pass.
+#ifndef AQ_MORPH_PASS
+#define AQ_MORPH_PASS 0
+#define AQ_MORPH_RADIUS 1
+#define AQ_MORPH_SPAN_COUNT 1
+#define AQ_MORPH_HALF_WIDTHS int[5](1, -1, -1, -1, -1)
+#define AQ_MORPH_ROW_SPANS int[9](0, 0, 0, 0, 0, 0, 0, 0, 0)
+#define AQ_MORPH_LUMINANCE 0
+#endif
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;  // pass 1 result, or span 0 in pass 0

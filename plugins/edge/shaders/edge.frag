@@ -1,6 +1,6 @@
-// Edge darkening (seed §3.5 and §7.3). Edges are detected on u_source (the effect-free image
-// when the node's `source` input is connected, else the image itself) with the 3×3 Laplacian
-// (−8 centre, the seed's "Sobel" kernel) or the Sobel gradient magnitude; the response is the
+// Edge darkening (seed sec. 3.5 and sec. 7.3). Edges are detected on u_source (the effect-free image
+// when the node's `source` input is connected, else the image itself) with the 3x3 Laplacian
+// (-8 centre, the seed's "Sobel" kernel) or the Sobel gradient magnitude; the response is the
 // largest over r, g, b. The image's HSV value is scaled towards `factor` by a smoothstep of the
 // response. Scaling V with H and S fixed is scaling r, g and b by the same number, so no HSV
 // round trip (and its rounding) is needed.

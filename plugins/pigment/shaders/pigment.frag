@@ -1,13 +1,13 @@
-// Pigment density variation (Bousseau et al. 2006, seed §3.6). Three densities in turn —
+// Pigment density variation (Bousseau et al. 2006, seed sec. 3.6). Three densities in turn -
 // turbulence (low-frequency fBm), grain (high-frequency Gaussian pigment dispersion) and paper
-// (Worley cells) — each modify every colour channel by
-//     C' = C (1 − (1 − C)(d − 1)),   d = clamp(1 + weight · n, 0, 2)
-// where n is the density texture centred on 0 (an input image's red − 0.5, or procedural).
+// (Worley cells) - each modify every colour channel by
+//     C' = C (1 - (1 - C)(d - 1)),   d = clamp(1 + weight * n, 0, 2)
+// where n is the density texture centred on 0 (an input image's red - 0.5, or procedural).
 // d in [0, 2] is exactly the condition for C' to stay in [0, 1] for every C in [0, 1].
 //
 // Where the textures live:
 //  - the canvas (screen anchoring, and the paper always): a dynamic canvas (Cunzi et al. 2003)
-//    — two layers of the texture, panned by the camera's yaw and pitch and zoomed by the log
+//    - two layers of the texture, panned by the camera's yaw and pitch and zoomed by the log
 //    of its distance to the target, blended so that the texture follows the view and keeps its
 //    on-screen frequency. Without a camera it is the plain screen-space texture.
 //  - object anchoring: procedural turbulence and grain evaluated at the world position.
@@ -61,7 +61,7 @@ float canvas_layer(int source, vec2 q, float layer) {
 float canvas_density(int source, vec2 screen) {
   float base = floor(u_zoom);
   float blend = u_zoom - base;
-  // Layer `base + k` is scaled by 2^(k − blend): as the zoom grows by 1 the next layer takes
+  // Layer `base + k` is scaled by 2^(k - blend): as the zoom grows by 1 the next layer takes
   // the place of the current one, so the canvas zooms forever without a jump.
   float n0 = canvas_layer(source, (screen + u_pan) * exp2(-blend), base);
   if (blend == 0.0) return n0;

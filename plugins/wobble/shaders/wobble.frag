@@ -1,4 +1,4 @@
-// Paper wobble (seed §3.4): each lookup moves by the paper height's gradient times `strength`.
+// Paper wobble (seed sec. 3.4): each lookup moves by the paper height's gradient times `strength`.
 // The gradient is a true derivative: central differences one paper pixel either side, divided
 // by the real step (2 paper pixels). The displacement is in paper pixels and converted to uv,
 // so it covers the same part of the image at every output resolution. The sampler clamps to
