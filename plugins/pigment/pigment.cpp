@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 
 #include "pigment_shaders.h"
 
@@ -116,7 +117,20 @@ struct Pigment {
     }
     aq_image out;
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
-    const GLuint program = ctx.program(shaders::pigment_frag);
+    const Canvas canvas = canvas_for(ctx.input_scene(kScene));
+    // The variant holds only what this call uses (llvmpipe runs both sides of every branch).
+    std::string defines;
+    const char* names[3] = {"AQ_PIGMENT_TURBULENCE", "AQ_PIGMENT_GRAIN", "AQ_PIGMENT_PAPER"};
+    for (uint32_t i = 0; i < 3; ++i) {
+      const int mode = weights[i] == 0.0f ? 0 : (ctx.connected(kTurbulence + i) ? 1 : 2);
+      defines += std::string("#define ") + names[i] + " " + std::to_string(mode) + "\n";
+    }
+    defines += std::string("#define AQ_PIGMENT_OBJECT ") + (object ? "1" : "0") + "\n";
+    defines += std::string("#define AQ_PIGMENT_TWO_LAYERS ") +
+               (canvas.zoom != std::floor(canvas.zoom) ? "1" : "0") + "\n";
+    const std::string text = defines + shaders::pigment_frag.text;
+    const GLuint program =
+        ctx.program(aq_shader_source{shaders::pigment_frag.name, text.c_str(), nullptr});
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
 
@@ -124,18 +138,15 @@ struct Pigment {
     // every sampler names a complete texture); 4: position.
     aq::bind_texture(program, "u_image", 0, in);
     std::array<GLint, 3> units{};
-    std::array<GLint, 3> connected{};
     for (uint32_t i = 0; i < 3; ++i) {
-      connected[i] = ctx.connected(kTurbulence + i) ? 1 : 0;
       units[i] = static_cast<GLint>(1 + i);
       glActiveTexture(GL_TEXTURE1 + i);
-      glBindTexture(GL_TEXTURE_2D,
-                    connected[i] != 0 ? ctx.input_image(kTurbulence + i).texture : in.texture);
+      glBindTexture(GL_TEXTURE_2D, ctx.connected(kTurbulence + i)
+                                       ? ctx.input_image(kTurbulence + i).texture
+                                       : in.texture);
     }
     glUniform1iv(glGetUniformLocation(program, "u_textures"), 3, units.data());
-    glUniform1iv(glGetUniformLocation(program, "u_connected"), 3, connected.data());
     aq::bind_texture(program, "u_position", 4, object ? ctx.input_image(kPosition) : in);
-    aq::set_int(program, "u_object_anchoring", object ? 1 : 0);
     glUniform1fv(glGetUniformLocation(program, "u_weights"), 3, weights.data());
     const std::array<float, 3> frequencies = {
         static_cast<float>(ctx.param_float(kTurbulenceFrequency)),
@@ -145,7 +156,6 @@ struct Pigment {
     aq::set_float(program, "u_world_scale", ctx.param_float(kWorldScale));
     aq::set_float(program, "u_seed", static_cast<double>(ctx.param_int(kSeed)));
     aq::set_float(program, "u_aspect", static_cast<double>(in.width) / in.height);
-    const Canvas canvas = canvas_for(ctx.input_scene(kScene));
     aq::set_vec2(program, "u_pan", canvas.pan_x, canvas.pan_y);
     aq::set_float(program, "u_zoom", canvas.zoom);
     const bool drawn = ctx.draw(out);

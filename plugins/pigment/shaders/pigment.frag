@@ -11,6 +11,21 @@
 //    of its distance to the target, blended so that the texture follows the view and keeps its
 //    on-screen frequency. Without a camera it is the plain screen-space texture.
 //  - object anchoring: procedural turbulence and grain evaluated at the world position.
+//
+// llvmpipe runs both sides of a branch, so what a node does not use must not be in its shader:
+// the node compiles a variant with these defines before this text (the defaults below are the
+// all-procedural screen variant):
+//   AQ_PIGMENT_TURBULENCE, AQ_PIGMENT_GRAIN, AQ_PIGMENT_PAPER: 0 off, 1 input image, 2 procedural
+//   AQ_PIGMENT_OBJECT: 1 for object anchoring
+//   AQ_PIGMENT_TWO_LAYERS: 1 when the canvas zoom is fractional (two layers to blend)
+#ifndef AQ_PIGMENT_TURBULENCE
+#define AQ_PIGMENT_TURBULENCE 2
+#define AQ_PIGMENT_GRAIN 2
+#define AQ_PIGMENT_PAPER 2
+#define AQ_PIGMENT_OBJECT 0
+#define AQ_PIGMENT_TWO_LAYERS 0
+#endif
+
 #include "aquarelle/noise.glsl"
 
 in vec2 v_uv;
@@ -18,9 +33,7 @@ layout(location = 0) out vec4 o_color;
 
 uniform sampler2D u_image;
 uniform sampler2D u_textures[3];   // turbulence, grain, paper (when connected)
-uniform int u_connected[3];        // 1 when the texture comes from an input image
 uniform sampler2D u_position;      // world position, w = 0 on the background
-uniform int u_object_anchoring;    // 1: procedural turbulence and grain at the world position
 uniform float u_weights[3];
 uniform float u_frequencies[3];    // cells per canvas unit (image height) or per world unit
 uniform float u_world_scale;       // world units per unit, object anchoring
@@ -32,6 +45,7 @@ uniform float u_zoom;              // log2 zoom of the canvas
 const int TURBULENCE = 0;
 const int GRAIN = 1;
 const int PAPER = 2;
+const int kSourceMode[3] = int[3](AQ_PIGMENT_TURBULENCE, AQ_PIGMENT_GRAIN, AQ_PIGMENT_PAPER);
 
 // Integer offsets (exact in float) that make every source, layer and seed an independent field.
 vec2 field_offset(int source, float layer) {
@@ -49,7 +63,7 @@ float procedural2(int source, vec2 p) {
 
 // One canvas layer: q is in canvas units (image heights, centred), `layer` its absolute index.
 float canvas_layer(int source, vec2 q, float layer) {
-  if (u_connected[source] == 1) {
+  if (kSourceMode[source] == 1) {
     // Input textures cover the image once at zoom 0 and repeat beyond (they should tile); other
     // layers are shifted by an irrational fraction of the tile so they do not line up.
     vec2 uv = fract(q / vec2(u_aspect, 1.0) + 0.5 + layer * vec2(0.6180339887, 0.3819660113));
@@ -64,11 +78,14 @@ float canvas_density(int source, vec2 screen) {
   // Layer `base + k` is scaled by 2^(k - blend): as the zoom grows by 1 the next layer takes
   // the place of the current one, so the canvas zooms forever without a jump.
   float n0 = canvas_layer(source, (screen + u_pan) * exp2(-blend), base);
-  if (blend == 0.0) return n0;
+#if AQ_PIGMENT_TWO_LAYERS == 0
+  return n0;
+#else
   float n1 = canvas_layer(source, (screen + u_pan) * exp2(1.0 - blend), base + 1.0);
   float w0 = 1.0 - blend;
   float w1 = blend;
   return (w0 * n0 + w1 * n1) / sqrt(w0 * w0 + w1 * w1);  // keeps the variance of one layer
+#endif
 }
 
 float object_density(int source, vec3 world) {
@@ -96,9 +113,16 @@ vec3 apply_density(vec3 c, float weight, float n) {
 }
 
 vec3 modulate(vec3 c, int source, vec2 screen, bool on_object, vec3 world) {
-  if (u_weights[source] == 0.0) return c;
-  bool from_world = on_object && source != PAPER && u_connected[source] == 0;
-  float n = from_world ? object_density(source, world) : canvas_density(source, screen);
+  float n;
+#if AQ_PIGMENT_OBJECT == 1
+  if (source != PAPER && kSourceMode[source] == 2 && on_object) {
+    n = object_density(source, world);
+  } else {
+    n = canvas_density(source, screen);
+  }
+#else
+  n = canvas_density(source, screen);
+#endif
   return apply_density(c, u_weights[source], n);
 }
 
@@ -106,15 +130,25 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 color = texelFetch(u_image, pixel, 0);
   vec2 screen = (v_uv - 0.5) * vec2(u_aspect, 1.0);
+#if AQ_PIGMENT_OBJECT == 1
   // The position under the pixel centre, never interpolated across an object's silhouette.
-  ivec2 position_pixel = ivec2(v_uv * vec2(textureSize(u_position, 0)));
-  vec4 position = u_object_anchoring == 1 ? texelFetch(u_position, position_pixel, 0) : vec4(0.0);
-  bool on_object = u_object_anchoring == 1 && position.w > 0.0;
-  // One call per density with a constant source index, so that the sampler and uniform array
-  // indices fold to constants (dynamic sampler indexing is slow on llvmpipe).
+  vec4 position = texelFetch(u_position, ivec2(v_uv * vec2(textureSize(u_position, 0))), 0);
+  bool on_object = position.w > 0.0;
+#else
+  vec4 position = vec4(0.0);
+  bool on_object = false;
+#endif
+  // One call per density with a constant source index, so that every index and mode folds to a
+  // constant and unused code disappears.
   vec3 c = color.rgb;
+#if AQ_PIGMENT_TURBULENCE != 0
   c = modulate(c, TURBULENCE, screen, on_object, position.xyz);
+#endif
+#if AQ_PIGMENT_GRAIN != 0
   c = modulate(c, GRAIN, screen, on_object, position.xyz);
+#endif
+#if AQ_PIGMENT_PAPER != 0
   c = modulate(c, PAPER, screen, on_object, position.xyz);
+#endif
   o_color = vec4(c, color.a);
 }
