@@ -264,6 +264,8 @@ void Evaluator::set_shader_hot_reload(bool enabled) { impl_->shaders.set_hot_rel
 Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format) {
   bool single = format == AQ_FORMAT_R32F || format == AQ_FORMAT_DEPTH32F;
   ImageF out(width, height, single ? 1 : 4);
+  while (glGetError() != GL_NO_ERROR) {
+  }  // only this read's error counts below
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   if (format == AQ_FORMAT_R32UI) {
     std::vector<uint32_t> ids(static_cast<size_t>(width) * height);
@@ -276,7 +278,11 @@ Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t form
   GLenum gl_format = format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : (single ? GL_RED : GL_RGBA);
   glGetTextureImage(texture, 0, gl_format, GL_FLOAT,
                     static_cast<GLsizei>(out.pixels.size() * sizeof(float)), out.pixels.data());
-  if (glGetError() != GL_NO_ERROR) return make_error("reading the texture back failed");
+  if (GLenum error = glGetError(); error != GL_NO_ERROR) {
+    char text[96];
+    std::snprintf(text, sizeof(text), "reading the texture back failed (GL error 0x%04X)", error);
+    return make_error(text);
+  }
   return out;
 }
 

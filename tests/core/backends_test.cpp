@@ -32,6 +32,25 @@ TEST(Backends, EglAndOsmesaAgree) {
   EXPECT_GT(max_abs_diff(*egl, input), 0.05) << "the graph did change the image";
 }
 
+TEST(Backends, InterleavedBackendsKeepWorking) {
+  ImageF input = random_image(24, 16, 3);
+  RenderOptions options;
+  options.width = 24;
+  options.height = 16;
+  std::optional<ImageF> first;
+  for (int round = 0; round < 3; ++round) {
+    for (const char* gl : {"egl", "osmesa", "egl", "egl", "osmesa"}) {
+      options.gl = gl;
+      auto out = run_node("tint", {{"image", input}}, {{"amount", 0.25 + 0.1 * round}}, options);
+      ASSERT_TRUE(out.ok()) << gl << " round " << round << ": " << out.message();
+      auto vignette = run_node("vignette", {{"image", *out}}, nlohmann::json::object(), options);
+      ASSERT_TRUE(vignette.ok()) << gl << " round " << round << ": " << vignette.message();
+      auto blur = run_node("blur", {{"image", *out}}, {{"sigma", 2.0}}, options);
+      ASSERT_TRUE(blur.ok()) << gl << " round " << round << ": " << blur.message();
+    }
+  }
+}
+
 TEST(Backends, SameGraphSameImageRunAfterRun) {
   ImageF input = random_image(32, 32, 7);
   RenderOptions options;
