@@ -10,7 +10,7 @@ constexpr aq_port_desc kInputs[] = {aq::image_port("image", "colour to tint")};
 constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "tinted colour")};
 enum Param { kAmount, kTint };
 constexpr aq_param_desc kParams[] = {
-    aq::float_param("amount", 0.75, 0.0, 1.0, "mix factor: 0 keeps the image, 1 is flat tint"),
+    aq::float_param("amount", 0.2, 0.0, 1.0, "mix factor: 0 keeps the image, 1 is flat tint"),
     aq::color_param("tint", 0.0, 0.07, 0.1, "water colour (linear)")};
 
 struct Tint {
