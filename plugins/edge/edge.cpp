@@ -8,6 +8,7 @@
 #include <aquarelle/plugin.hpp>
 
 #include <algorithm>
+#include <string>
 
 #include "edge_shaders.h"
 
@@ -38,12 +39,15 @@ struct Edge {
     const aq_image source = ctx.connected(kSource) ? ctx.input_image(kSource) : in;
     aq_image out;
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
-    const GLuint program = ctx.program(shaders::edge_frag);
+    const bool sobel = ctx.param_enum(kKernel) == 1;
+    const std::string text =
+        std::string(sobel ? "#define AQ_EDGE_SOBEL 1\n" : "") + shaders::edge_frag.text;
+    const GLuint program = ctx.program(aq_shader_source{shaders::edge_frag.name, text.c_str(),
+                                                        sobel ? nullptr : shaders::edge_frag.path});
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
     aq::bind_texture(program, "u_image", 0, in);
     aq::bind_texture(program, "u_source", 1, source);
-    aq::set_int(program, "u_kernel", static_cast<int>(ctx.param_enum(kKernel)));
     aq::set_float(program, "u_factor", ctx.param_float(kFactor));
     aq::set_float(program, "u_threshold", ctx.param_float(kThreshold));
     aq::set_float(program, "u_softness", std::max(ctx.param_float(kSoftness), 1e-3));

@@ -9,7 +9,8 @@ layout(location = 0) out vec4 o_color;
 
 uniform sampler2D u_image;
 uniform sampler2D u_source;
-uniform int u_kernel;  // 0 Laplacian, 1 Sobel
+// The node defines AQ_EDGE_SOBEL for the Sobel variant (llvmpipe would run both kernels if the
+// choice were a branch on a uniform).
 uniform float u_factor;
 uniform float u_threshold;
 uniform float u_softness;
@@ -24,14 +25,13 @@ float edge_response(ivec2 p) {
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 3; ++i) n[3 * j + i] = source_at(p + ivec2(i - 1, j - 1));
   }
-  vec3 r;
-  if (u_kernel == 0) {
-    r = abs(n[0] + n[1] + n[2] + n[3] + n[5] + n[6] + n[7] + n[8] - 8.0 * n[4]);
-  } else {
-    vec3 gx = (n[2] + 2.0 * n[5] + n[8]) - (n[0] + 2.0 * n[3] + n[6]);
-    vec3 gy = (n[6] + 2.0 * n[7] + n[8]) - (n[0] + 2.0 * n[1] + n[2]);
-    r = sqrt(gx * gx + gy * gy);
-  }
+#ifdef AQ_EDGE_SOBEL
+  vec3 gx = (n[2] + 2.0 * n[5] + n[8]) - (n[0] + 2.0 * n[3] + n[6]);
+  vec3 gy = (n[6] + 2.0 * n[7] + n[8]) - (n[0] + 2.0 * n[1] + n[2]);
+  vec3 r = sqrt(gx * gx + gy * gy);
+#else
+  vec3 r = abs(n[0] + n[1] + n[2] + n[3] + n[5] + n[6] + n[7] + n[8] - 8.0 * n[4]);
+#endif
   float response = max(r.r, max(r.g, r.b));
   // A NaN in the source must not darken (or poison) its neighbours.
   return response >= 0.0 ? response : 0.0;
