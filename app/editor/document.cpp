@@ -126,7 +126,7 @@ std::string why_bad_param_value(const ParamInfo& param, const nlohmann::json& va
 
 std::map<std::string, Position> automatic_positions(const Graph& graph) {
   constexpr float kColumnStep = 230.0f;
-  constexpr float kRowStep = 130.0f;
+  constexpr float kRowStep = 180.0f;  // fits a node with six ports
   // Column = longest path from a source, so the layout flows left to right.
   std::map<std::string, int> depth;
   std::set<std::string> visiting;
@@ -143,10 +143,27 @@ std::map<std::string, Position> automatic_positions(const Graph& graph) {
     return d;
   };
   std::map<int, int> rows;
+  std::map<std::string, int> row_of;
+  for (const auto& [id, node] : graph.nodes) row_of[id] = rows[visit(id)]++;
+  // A long pipeline (the flagship graph is fourteen columns deep) wraps into bands of
+  // kBandColumns columns, one under the other, so a fitted view stays readable.
+  constexpr int kBandColumns = 6;
+  std::map<int, int> band_rows;  // rows used by each band
+  for (const auto& [column, count] : rows) {
+    int& used = band_rows[column / kBandColumns];
+    used = std::max(used, count);
+  }
+  std::map<int, float> band_top;
+  float top = 0;
+  for (const auto& [band, used] : band_rows) {
+    band_top[band] = top;
+    top += used * kRowStep + kRowStep * 0.5f;
+  }
   std::map<std::string, Position> out;
-  for (const auto& [id, node] : graph.nodes) {
-    int d = visit(id);
-    out[id] = Position{d * kColumnStep, rows[d]++ * kRowStep};
+  for (const auto& [id, row] : row_of) {
+    int column = depth[id];
+    out[id] = Position{(column % kBandColumns) * kColumnStep,
+                       band_top[column / kBandColumns] + row * kRowStep};
   }
   return out;
 }
