@@ -51,6 +51,7 @@ Result<NodeMeasurement> measure_node(Evaluator& evaluator, const Graph& graph,
     EvalOptions options;
     options.frame = graph.settings.first_frame;
     options.retain_outputs = false;
+    options.retain_static_outputs = false;  // the node under test may be static: re-run it
     options.measure_gpu_time = true;
     options.finish_each_node = true;
     options.images = images;

@@ -62,8 +62,8 @@ Result<PipelineTimings> time_pipeline(GlContext& context, const Registry& regist
                                       const Graph& graph, const TimingPlan& plan,
                                       CopyPass& copy_pass) {
   PipelineTimings timings;
-  timings.every_node_runs.retain_outputs = false;
-  timings.cached.retain_outputs = true;
+  timings.every_node_runs.static_cached = false;
+  timings.cached.static_cached = true;
   const int first = graph.settings.first_frame;
 
   // Per-node times: each node's process() between two glFinish calls.
@@ -74,7 +74,8 @@ Result<PipelineTimings> time_pipeline(GlContext& context, const Registry& regist
       for (bool retain : {false, true}) {
         EvalOptions options;
         options.frame = first + i;
-        options.retain_outputs = retain;
+        options.retain_outputs = false;
+        options.retain_static_outputs = retain;
         options.measure_gpu_time = true;
         options.finish_each_node = true;
         Evaluator& evaluator = retain ? cached : every;
@@ -96,7 +97,8 @@ Result<PipelineTimings> time_pipeline(GlContext& context, const Registry& regist
     for (bool retain : {false, true}) {
       EvalOptions options;
       options.frame = first + i;
-      options.retain_outputs = retain;
+      options.retain_outputs = false;
+      options.retain_static_outputs = retain;
       options.measure_gpu_time = false;
       glFinish();
       auto start = std::chrono::steady_clock::now();
@@ -123,7 +125,8 @@ Result<FrameRun> run_frames(Evaluator& evaluator, const Graph& graph, int frames
   for (int i = 0; i < std::max(warmup, 1) + frames; ++i) {
     EvalOptions options;
     options.frame = first + i;
-    options.retain_outputs = true;
+    options.retain_outputs = false;  // as `aquarelle render`: static nodes' outputs kept
+    options.retain_static_outputs = true;
     options.measure_gpu_time = false;
     glFinish();
     auto start = std::chrono::steady_clock::now();

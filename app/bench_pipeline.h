@@ -29,7 +29,7 @@ struct NodeStats {
 };
 
 struct PipelineTiming {
-  bool retain_outputs = false;   // the mode: outputs kept between frames
+  bool static_cached = false;    // the mode: static nodes' outputs kept for the next frame
   std::vector<NodeStats> nodes;  // in evaluation order
   // Wall time of evaluate() + glFinish with node timing switched off (timer queries make the
   // CPU wait for each node, which would inflate the frame).
@@ -43,8 +43,11 @@ struct TimingPlan {
 };
 
 struct PipelineTimings {
-  PipelineTiming every_node_runs;  // outputs released after use: every node runs every frame
-  PipelineTiming cached;           // outputs kept: unchanged (static) nodes are reused
+  // Outputs released after their last reader, static ones included: every node runs every frame.
+  PipelineTiming every_node_runs;
+  // Outputs released after their last reader except those of static nodes (nothing upstream
+  // depends on time), reused on the next frame: what `aquarelle render` does.
+  PipelineTiming cached;
   // Copy-pass batches run between the frames, so the yardstick is sampled over the same
   // period as the frames (the machine's load changes during a run).
   std::vector<CopyPass::Sample> copy_samples;
@@ -56,8 +59,9 @@ Result<PipelineTimings> time_pipeline(GlContext& context, const Registry& regist
                                       const Graph& graph, const TimingPlan& plan,
                                       CopyPass& copy_pass);
 
-// Wall time of evaluate() + glFinish over `frames` frames after `warmup`, with outputs kept
-// between frames (the animation case); the warm-up frame's output is read back to `first`.
+// Wall time of evaluate() + glFinish over `frames` frames after `warmup`, static nodes' outputs
+// kept between frames (as `aquarelle render` runs); the warm-up frame's output is read back to
+// `first`.
 struct FrameRun {
   Spread frame_ms;
   ImageF first;  // output at graph.settings.first_frame

@@ -82,11 +82,12 @@ const Glyph* find_glyph(char c) {
   return nullptr;  // drawn as a space
 }
 
-// Distinct colours for the curves (Okabe-Ito, then darker variants).
+// Distinct colours for the curves (Okabe-Ito, then others).
 constexpr Color kPalette[] = {{0.00f, 0.45f, 0.70f}, {0.90f, 0.60f, 0.00f}, {0.00f, 0.62f, 0.45f},
                               {0.80f, 0.40f, 0.00f}, {0.80f, 0.47f, 0.65f}, {0.34f, 0.71f, 0.91f},
                               {0.60f, 0.10f, 0.10f}, {0.30f, 0.30f, 0.30f}, {0.45f, 0.45f, 0.00f},
-                              {0.35f, 0.00f, 0.55f}};
+                              {0.35f, 0.00f, 0.55f}, {0.55f, 0.35f, 0.15f}, {0.00f, 0.35f, 0.35f},
+                              {0.95f, 0.35f, 0.55f}, {0.50f, 0.70f, 0.20f}};
 constexpr Color kBlack{0.0f, 0.0f, 0.0f};
 constexpr Color kGrid{0.85f, 0.85f, 0.85f};
 

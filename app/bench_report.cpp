@@ -39,7 +39,7 @@ json pipeline_json(const PipelineTiming& timing, double copy_ms) {
                      {"copy_passes", ratio(n.wall_ms.median, copy_ms)},
                      {"runs", n.runs}});
   }
-  return {{"retain_outputs", timing.retain_outputs},
+  return {{"static_nodes_cached", timing.static_cached},
           {"frame_ms", spread_json(timing.frame_ms)},
           {"node_wall_sum_ms", spread_json(timing.node_wall_sum_ms)},
           {"copy_passes_per_frame", ratio(timing.frame_ms.median, copy_ms)},
@@ -207,7 +207,7 @@ Status write_report_csv(const BenchReport& r, const std::string& path) {
         r.copy_pass.timestamp_ms.median, std::to_string(r.copy_pass.wall_ms.count), "", "", "", "",
         "", "");
     for (const auto* timing : {&r.every_node_runs, &r.cached}) {
-      const std::string mode = timing->retain_outputs ? "cached_static_nodes" : "every_node_runs";
+      const std::string mode = timing->static_cached ? "cached_static_nodes" : "every_node_runs";
       for (const auto& n : timing->nodes) {
         row("node", mode, n.id, n.type, "", r.precision, n.wall_ms, n.gpu_ms.median,
             std::to_string(n.runs), "", "", "", "", "", "");
