@@ -4,8 +4,8 @@
 //
 // The test executables link only the test support library: the editor files under test are
 // compiled in here (they need the core library alone).
-#include "../../app/editor/canvas_view.cpp"  // NOLINT(bugprone-suspicious-include)
-#include "../../app/editor/document.cpp"     // NOLINT(bugprone-suspicious-include)
+#include "editor/canvas_view.h"
+#include "editor/document.h"
 
 #include <gtest/gtest.h>
 

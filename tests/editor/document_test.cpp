@@ -3,7 +3,7 @@
 // and recovery.
 // The test executables link only the test support library, not the editor's: the model under
 // test is compiled in here (it needs the core library alone, no GL and no window).
-#include "../../app/editor/document.cpp"  // NOLINT(bugprone-suspicious-include)
+#include "editor/document.h"
 
 #include <aquarelle/core/graph_io.h>
 #include <aquarelle/core/registry.h>
