@@ -14,10 +14,14 @@ nlohmann::json param_json(const ParamInfo& p) {
                       {"description", p.description}};
   switch (p.type) {
     case AQ_PARAM_FLOAT:
-    case AQ_PARAM_INT:
       j["default"] = p.default_value[0];
       j["min"] = p.min_value;
       j["max"] = p.max_value;
+      break;
+    case AQ_PARAM_INT:
+      j["default"] = static_cast<int64_t>(p.default_value[0]);
+      j["min"] = static_cast<int64_t>(p.min_value);
+      j["max"] = static_cast<int64_t>(p.max_value);
       break;
     case AQ_PARAM_BOOL: j["default"] = p.default_value[0] != 0; break;
     case AQ_PARAM_ENUM:
