@@ -40,7 +40,8 @@ cp -n tests/fuzz/corpus/* graphs/*.json "$work"/ 2>/dev/null || true
 
 plugin_dir="${AQUARELLE_FUZZ_PLUGIN_DIR:-build/plugins}"
 if [ -d "$plugin_dir" ]; then
-  export AQUARELLE_PLUGIN_PATH="$plugin_dir"
+  # Absolute: the fuzzer runs from inside the build folder.
+  export AQUARELLE_PLUGIN_PATH="$(cd "$plugin_dir" && pwd)"
 else
   echo "fuzz: no $plugin_dir (build first for the plugins' node types); fake types only"
   unset AQUARELLE_PLUGIN_PATH
