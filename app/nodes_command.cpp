@@ -1,6 +1,8 @@
 // `aquarelle nodes [TYPE] [--json]`: the installed node types with ports and parameters, read
 // from the plugins' descriptions (the same data the validator and the editor use).
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
 #include "commands.h"
 #include "session.h"
@@ -93,21 +95,69 @@ void print_type(const NodeType& t) {
   }
 }
 
+// The measured cost and error of each quality preset, from the last `scripts/update-performance.sh`
+// run (docs/performance/bench.json, installed as share/aquarelle/performance.json).
+int print_presets() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  std::vector<fs::path> candidates = {
+      exe.parent_path().parent_path() / "share/aquarelle/performance.json",
+      fs::path(AQ_SOURCE_DIR) / "docs/performance/bench.json"};
+  std::printf("quality presets (settings.quality, or render --quality):\n"
+              "  draft    fastest, coarsest internal resolutions\n"
+              "  preview  in between\n"
+              "  final    the default: full quality\n\n");
+  std::printf("Each node receives the preset (aq_process_ctx.quality) and chooses its own settings;\n"
+              "its README says which (today: the caustic grid).\n\n");
+  for (const auto& path : candidates) {
+    std::ifstream file(path);
+    if (!file) continue;
+    auto report = nlohmann::json::parse(file, nullptr, false);
+    if (report.is_discarded() || !report.contains("sweeps")) continue;
+    double copy_ms = report.value("copy_pass_ms", 0.0);
+    std::printf("measured on %s at %s (%s):\n", report.value("graph", std::string("?")).c_str(),
+                report["size"].dump().c_str(), path.string().c_str());
+    std::printf("  %-8s %-6s %10s %12s %12s %8s\n", "preset", "prec.", "ms/frame", "copy passes",
+                "mean abs err", "PSNR");
+    for (const auto& sweep : report["sweeps"]) {
+      if (sweep.value("node", std::string()) != "pipeline") continue;
+      for (const auto& point : sweep["points"]) {
+        if (point.value("is_reference", false)) continue;
+        double ms = point["time_ms"].value("median", 0.0);
+        std::printf("  %-8s %-6s %10.1f %12.1f %12.5f %8.1f\n",
+                    point["params"].value("quality", std::string("?")).c_str(),
+                    point.value("precision", std::string("?")).c_str(), ms,
+                    copy_ms > 0 ? ms / copy_ms : 0.0, point.value("mean_abs", 0.0),
+                    point.value("psnr", 0.0));
+      }
+    }
+    std::printf("\nerrors are against a float render at the final preset; regenerate with "
+                "scripts/update-performance.sh\n");
+    return kExitOk;
+  }
+  std::printf("no measurements found: run scripts/update-performance.sh (aquarelle bench)\n");
+  return kExitOk;
+}
+
 }  // namespace
 
 int run_nodes(int argc, char** argv) {
-  bool json = false;
+  bool json = false, presets = false;
   std::string only;
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
     if (arg == "--help" || arg == "-h") {
-      std::printf("usage: aquarelle nodes [TYPE] [--json]\n\n"
+      std::printf("usage: aquarelle nodes [TYPE] [--json] [--presets]\n\n"
                   "Lists the installed node types (plugins on the plugin path and the host's\n"
-                  "built-in ones) with their ports and parameters. --json prints them as JSON.\n");
+                  "built-in ones) with their ports and parameters. --json prints them as JSON;\n"
+                  "--presets prints the quality presets with their measured cost and error.\n");
       return kExitOk;
     }
     if (arg == "--json") {
       json = true;
+    } else if (arg == "--presets") {
+      presets = true;
     } else if (!arg.empty() && arg[0] == '-') {
       std::fprintf(stderr, "aquarelle nodes: unknown option '%s'\n", arg.c_str());
       return kExitBadInput;
@@ -121,6 +171,7 @@ int run_nodes(int argc, char** argv) {
     return kExitEnvironment;
   }
   const Registry& registry = (*plugins)->registry;
+  if (presets) return print_presets();
   if (!only.empty() && registry.find(only) == nullptr) {
     std::string names;
     for (const auto& n : registry.names()) names += (names.empty() ? "" : ", ") + n;
