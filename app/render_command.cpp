@@ -259,6 +259,7 @@ int run_render(int argc, char** argv) {
     EvalOptions options;
     options.frame = frame;
     options.measure_gpu_time = stats;
+    options.finish_each_node = stats;  // timestamps without a flush under-read on llvmpipe
     options.retain_outputs = false;  // textures return to the pool after their last reader
     auto result = evaluator.evaluate(graph, options);
     if (!result.ok()) {

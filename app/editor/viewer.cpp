@@ -156,6 +156,7 @@ void Viewer::update(const EditorState& state, bool force) {
   options.frame = state.frame;
   options.retain_outputs = true;
   options.measure_gpu_time = true;
+  options.finish_each_node = true;  // per-node times on the canvas must be each node's own
   auto start = std::chrono::steady_clock::now();
   Result<TextureRef> evaluated = Error{};
   if (preview_divisor_ > 1) {
