@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Soak: renders 1000 frames (or FRAMES) of graphs/underwater.json (scene_light.json until it
-# exists; AQ_SOAK_GRAPH picks another) at 64x36 with one evaluator and checks that process
-# memory (RSS) and the texture pool stay flat after the warm-up:
+# exists; AQ_SOAK_GRAPH picks another) at 64x36 with one evaluator and checks that the
+# texture pool, the heap in use and process memory (RSS) stay flat after the warm-up:
 #   scripts/soak.sh [FRAMES] [BUILD_DIR]
 # The check is tests/app/soak_test.cpp; ctest runs it short (150 frames), this runs it long.
 set -euo pipefail
