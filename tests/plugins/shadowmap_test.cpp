@@ -156,9 +156,13 @@ TEST(ShadowMap, LightParallelToThePlaneLeavesItBlackAndFinite) {
   ImageF id = render(graph({1.0, 0.0, 0.0}, 512, 1), "gbuf.id");
   ASSERT_FALSE(lit.empty());
   EXPECT_TRUE(aq::test::all_finite(lit));
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x)
-      if (id.at(x, y, 0) == 1.0f) ASSERT_EQ(lit.at(x, y, 0), 0.0f) << x << "," << y;
+  for (int y = 0; y < kSize; ++y) {
+    for (int x = 0; x < kSize; ++x) {
+      if (id.at(x, y, 0) == 1.0f) {
+        ASSERT_EQ(lit.at(x, y, 0), 0.0f) << x << "," << y;
+      }
+    }
+  }
 }
 
 TEST(ShadowMap, StraightDownLightIsStable) {
