@@ -221,12 +221,22 @@ Status Document::open(const std::string& path) {
   // rearrange itself while links are edited. Not an edit: the file is not marked changed.
   place_unplaced_nodes(graph_);
   path_ = path;
+  std::error_code ignored;
+  disk_time_ = fs::last_write_time(path, ignored);
+  overwrite_confirmed_ = false;
   reset_history();
   return Ok{};
 }
 
 Status Document::save() {
   if (path_.empty()) return make_error("the graph has no file yet: use Save As and name one");
+  std::error_code error;
+  auto on_disk = fs::last_write_time(path_, error);
+  if (!error && on_disk != disk_time_ && !overwrite_confirmed_) {
+    overwrite_confirmed_ = true;
+    return make_error("'" + path_ + "' was changed on disk since it was opened: Save again to "
+                      "overwrite it, or Save As to keep both");
+  }
   return save_as(path_);
 }
 
@@ -238,6 +248,9 @@ Status Document::save_as(const std::string& path) {
   std::string old_autosave = autosave_path();
   path_ = path;
   graph_.source_path = path;
+  std::error_code time_error;
+  disk_time_ = fs::last_write_time(path, time_error);
+  overwrite_confirmed_ = false;
   saved_serial_ = undo_.empty() ? 0 : undo_.back().serial;
   saved_unknown_ = false;
   gesture_open_ = false;  // an edit after saving must not merge into the saved state

@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -150,6 +151,10 @@ class Document {
   const Registry& registry_;
   Graph graph_;
   std::string path_;
+  // The file's modification time when opened or last saved: save() refuses once to overwrite
+  // a file someone else changed since, and a second save() is the user's confirmation.
+  std::filesystem::file_time_type disk_time_{};
+  bool overwrite_confirmed_ = false;
   std::vector<Change> undo_;
   std::vector<Change> redo_;
   bool gesture_open_ = false;

@@ -9,6 +9,7 @@
 #include <aquarelle/core/registry.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -362,6 +363,32 @@ TEST_F(DocumentTest, IdsLinksAndPositionsSurviveSaveAndLoad) {
   }
   // Editing the loaded graph hands out ids that do not collide with the saved ones.
   EXPECT_EQ(loaded.add_node("blur", {0, 0}).value(), "blur3");
+}
+
+TEST_F(DocumentTest, SaveAsksBeforeOverwritingAFileChangedOnDisk) {
+  build_chain();
+  const std::string path = (dir_ / "shared.json").string();
+  ASSERT_TRUE(doc.save_as(path));
+  ASSERT_TRUE(doc.set_param("blur", "sigma", 2.0));
+  ASSERT_TRUE(doc.save()) << "unchanged on disk: saves without asking";
+
+  // Someone else rewrites the file (a later modification time).
+  std::string theirs = "{\"aquarelle\": 1, \"nodes\": {}}\n";
+  std::ofstream(path) << theirs;
+  fs::last_write_time(path, fs::last_write_time(path) + std::chrono::seconds(5));
+  ASSERT_TRUE(doc.set_param("blur", "sigma", 3.0));
+  Status refused = doc.save();
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.message().find("changed on disk"), std::string::npos) << refused.message();
+  std::ifstream kept(path);
+  std::stringstream text;
+  text << kept.rdbuf();
+  EXPECT_EQ(text.str(), theirs) << "their file is untouched until the user confirms";
+
+  EXPECT_TRUE(doc.save()) << "saving again is the confirmation";
+  std::ifstream ours(path);
+  nlohmann::json file = nlohmann::json::parse(ours);
+  EXPECT_EQ(file["nodes"]["blur"]["params"]["sigma"], 3.0);
 }
 
 TEST_F(DocumentTest, OpenRefusesTextThatIsNotJson) {
