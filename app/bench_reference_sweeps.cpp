@@ -170,13 +170,11 @@ Result<std::vector<Sweep>> blur_sweeps(GlContext& context, const Registry& regis
   return sweeps;
 }
 
-// Caustics: grid resolution at a fixed texture resolution against a converged grid in double.
-Result<Sweep> caustics_sweep(GlContext& context, const Registry& registry, const Graph& graph,
-                             const SweepPlan& plan) {
-  constexpr int kResolution = 128;
-  constexpr int kReferenceGrid = 1024;
+// The graph's caustics parameters, for the CPU reference at `resolution`.
+reference::CausticsParams caustics_params_of(const Graph& graph, const Registry& registry,
+                                             int resolution) {
   reference::CausticsParams p;
-  p.resolution = kResolution;
+  p.resolution = resolution;
   p.depth = number(graph_param(graph, registry, "caustics", "depth"), p.depth);
   p.amplitude = number(graph_param(graph, registry, "caustics", "amplitude"), p.amplitude);
   p.wave_scale = static_cast<int>(
@@ -185,6 +183,15 @@ Result<Sweep> caustics_sweep(GlContext& context, const Registry& registry, const
   p.eta = number(graph_param(graph, registry, "caustics", "eta"), p.eta);
   p.max_intensity =
       number(graph_param(graph, registry, "caustics", "max_intensity"), p.max_intensity);
+  return p;
+}
+
+// Caustics: grid resolution at a fixed texture resolution against a converged grid in double.
+Result<Sweep> caustics_sweep(GlContext& context, const Registry& registry, const Graph& graph,
+                             const SweepPlan& plan) {
+  constexpr int kResolution = 128;
+  constexpr int kReferenceGrid = 1024;
+  reference::CausticsParams p = caustics_params_of(graph, registry, kResolution);
   p.time = 0.0;  // the graph's first frame
 
   Sweep sweep = cpu_sweep("caustics", "caustics", "");
@@ -255,16 +262,7 @@ Result<Sweep> caustics_resolution_sweep(GlContext& context, const Registry& regi
                                         const Graph& graph, const SweepPlan& plan) {
   constexpr int kReferenceResolution = 256;
   constexpr int kReferenceGrid = 1024;
-  reference::CausticsParams p;
-  p.resolution = kReferenceResolution;
-  p.depth = number(graph_param(graph, registry, "caustics", "depth"), p.depth);
-  p.amplitude = number(graph_param(graph, registry, "caustics", "amplitude"), p.amplitude);
-  p.wave_scale = static_cast<int>(
-      number(graph_param(graph, registry, "caustics", "wave_scale"), p.wave_scale));
-  p.speed = number(graph_param(graph, registry, "caustics", "speed"), p.speed);
-  p.eta = number(graph_param(graph, registry, "caustics", "eta"), p.eta);
-  p.max_intensity =
-      number(graph_param(graph, registry, "caustics", "max_intensity"), p.max_intensity);
+  reference::CausticsParams p = caustics_params_of(graph, registry, kReferenceResolution);
   Sweep sweep = cpu_sweep("caustics texture", "caustics", "");
   sweep.reference = "grid refraction on a " + std::to_string(kReferenceGrid) + "x" +
                     std::to_string(kReferenceGrid) + " grid in double precision at " +
