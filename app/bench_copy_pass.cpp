@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace aq::app {
@@ -102,13 +103,17 @@ Result<CopyPass> CopyPass::create(int width, int height, uint32_t format) {
   glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, pixels.data());
   glBindTexture(GL_TEXTURE_2D, 0);
 
-  pass.framebuffer_ = gl::make_framebuffer();
-  glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer_.get());
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, pass.target_.get(),
-                         0);
-  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  pass.into_target_ = gl::make_framebuffer();
+  pass.into_source_ = gl::make_framebuffer();
+  bool complete = true;
+  for (auto [framebuffer, texture] : {std::pair{pass.into_target_.get(), pass.target_.get()},
+                                      std::pair{pass.into_source_.get(), pass.source_.get()}}) {
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+    complete = complete && glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (!complete) return make_error("copy pass: the target framebuffer is incomplete");
+  if (!complete) return make_error("copy pass: a target framebuffer is incomplete");
   pass.vertex_array_ = gl::make_vertex_array();
   pass.start_ = gl::make_query();
   pass.end_ = gl::make_query();
@@ -118,7 +123,10 @@ Result<CopyPass> CopyPass::create(int width, int height, uint32_t format) {
 CopyPass::Sample CopyPass::run_batch() {
   // Each sample is a batch of copies between two glFinish calls, divided by the batch size:
   // the sync cost is shared, and the copies are rasterised as they would be in a pipeline.
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
+  // The copies ping-pong between two textures so that each reads the one before: repeated
+  // opaque full-screen draws into one target would let llvmpipe drop all but the last (it
+  // discards a tile's earlier commands when an opaque triangle covers the whole tile), which
+  // made the yardstick read four times too fast.
   glViewport(0, 0, width_, height_);
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
@@ -126,12 +134,16 @@ CopyPass::Sample CopyPass::run_batch() {
   glUseProgram(program_.get());
   glBindVertexArray(vertex_array_.get());
   glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, source_.get());
   glFinish();
 
   auto wall_start = std::chrono::steady_clock::now();
   glQueryCounter(start_.get(), GL_TIMESTAMP);
-  for (int k = 0; k < kCopiesPerSample; ++k) glDrawArrays(GL_TRIANGLES, 0, 3);
+  for (int k = 0; k < kCopiesPerSample; ++k) {
+    const bool even = k % 2 == 0;
+    glBindFramebuffer(GL_FRAMEBUFFER, even ? into_target_.get() : into_source_.get());
+    glBindTexture(GL_TEXTURE_2D, even ? source_.get() : target_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
   glQueryCounter(end_.get(), GL_TIMESTAMP);
   glFinish();
   auto wall_end = std::chrono::steady_clock::now();

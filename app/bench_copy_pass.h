@@ -42,7 +42,8 @@ class CopyPass {
   gl::Program program_;
   gl::Texture source_;
   gl::Texture target_;
-  gl::Framebuffer framebuffer_;
+  gl::Framebuffer into_target_;  // reads source_
+  gl::Framebuffer into_source_;  // reads target_
   gl::VertexArray vertex_array_;
   gl::Query start_;
   gl::Query end_;
