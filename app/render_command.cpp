@@ -36,7 +36,9 @@ Renders the graph's output for each frame and writes it to OUT.
   --set NODE.PARAM=VALUE  override a parameter (VALUE as JSON, e.g. 0.5, [1,0,0], "text")
   --gl auto|egl|osmesa    GL backend (default auto: EGL, then OSMesa)
   --precision half|float  working precision (default: settings.precision)
-  --quality draft|preview|final   quality preset (default: settings.quality)
+  --quality draft|preview|final   quality preset (default: settings.quality); draft renders
+                          at 1/4 of the size, preview at 1/2, final at full size, and the
+                          output is resampled to the graph's size
   --view VIEW             OCIO view for display formats (default: the config's default)
   --bits 8|16             bit depth of PNG/TIFF (default 8)
   --float                 write EXR as 32-bit float instead of half

@@ -8,6 +8,6 @@ app=build/app/aquarelle
 [ -x "$app" ] || scripts/build.sh
 for frame in 1 24; do
   "$app" render graphs/underwater.json --gl egl --frames "$frame" --size 160x90 \
-    --precision float --float -q -o "tests/golden/underwater_${frame}.exr"
+    --precision float --quality final --float -q -o "tests/golden/underwater_${frame}.exr"
 done
 echo "updated tests/golden/underwater_{1,24}.exr: commit them with the reason for the change"

@@ -4,6 +4,7 @@
 #include <aquarelle/core/evaluator.h>
 
 #include <aquarelle/core/graph_io.h>
+#include <aquarelle/core/quality.h>
 
 #include <chrono>
 #include <cstring>
@@ -13,6 +14,7 @@
 
 #include "builtin_nodes.h"
 #include "hash.h"
+#include "output_resample.h"
 #include "shader_cache.h"
 
 namespace aq {
@@ -21,11 +23,6 @@ namespace {
 
 uint32_t working_format(const std::string& precision) {
   return precision == "float" ? AQ_FORMAT_RGBA32F : AQ_FORMAT_RGBA16F;
-}
-uint32_t quality_index(const std::string& quality) {
-  if (quality == "draft") return 0;
-  if (quality == "preview") return 1;
-  return 2;
 }
 
 }  // namespace
@@ -55,6 +52,7 @@ struct Evaluator::Impl {
   GlContext& context;
   TexturePool& pool;
   ShaderCache shaders;
+  OutputResampler resampler;
   std::map<std::string, NodeState> states;
   gl::VertexArray empty_vao;
   gl::Framebuffer framebuffer;
@@ -259,7 +257,9 @@ void Evaluator::clear() {
   impl_->destroy_all();
 }
 
-void Evaluator::set_shader_hot_reload(bool enabled) { impl_->shaders.set_hot_reload(enabled); }
+void Evaluator::set_shader_hot_reload(bool enabled) {
+  impl_->shaders.set_hot_reload(enabled);
+}
 
 Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format) {
   bool single = format == AQ_FORMAT_R32F || format == AQ_FORMAT_DEPTH32F;
@@ -275,7 +275,8 @@ Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t form
     for (size_t i = 0; i < ids.size(); ++i) out.pixels[i] = static_cast<float>(ids[i]);
     return out;
   }
-  GLenum gl_format = format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : (single ? GL_RED : GL_RGBA);
+  GLenum gl_format =
+      format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : (single ? GL_RED : GL_RGBA);
   glGetTextureImage(texture, 0, gl_format, GL_FLOAT,
                     static_cast<GLsizei>(out.pixels.size() * sizeof(float)), out.pixels.data());
   if (GLenum error = glGetError(); error != GL_NO_ERROR) {
@@ -299,8 +300,10 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
   if (!context_.activate()) return make_error("the OpenGL context cannot be made current");
   Impl::current_impl = impl_.get();
   std::optional<PortRef> target = requested ? requested : graph.output;
-  if (!target) return make_error("the graph has no `output`: name the port to render, e.g. "
-                                 "\"output\": \"tint.image\"");
+  if (!target)
+    return make_error(
+        "the graph has no `output`: name the port to render, e.g. "
+        "\"output\": \"tint.image\"");
   if (graph.nodes.find(target->node) == graph.nodes.end()) {
     return make_error("output '" + target->str() + "' names node '" + target->node +
                       "', which is not in the graph");
@@ -336,8 +339,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
     if (node == graph.nodes.end()) return make_error("node '" + id + "' is not in the graph");
     for (const auto& [port, source] : node->second.inputs) {
       if (graph.nodes.find(source.node) == graph.nodes.end()) {
-        return make_error("node '" + id + "', input '" + port + "': source node '" +
-                          source.node + "' is not in the graph");
+        return make_error("node '" + id + "', input '" + port + "': source node '" + source.node +
+                          "' is not in the graph");
       }
       if (auto s = visit(source.node, path); !s.ok()) return s;
     }
@@ -360,9 +363,10 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
   const Settings& settings = graph.settings;
   const uint32_t format = working_format(settings.precision);
   const double time = (options.frame - settings.first_frame) / std::max(settings.fps, 1e-6);
-  std::filesystem::path graph_dir =
-      graph.source_path.empty() ? std::filesystem::path()
-                                : std::filesystem::path(graph.source_path).parent_path();
+  const PixelSize working = working_size(settings);
+  std::filesystem::path graph_dir = graph.source_path.empty()
+                                        ? std::filesystem::path()
+                                        : std::filesystem::path(graph.source_path).parent_path();
 
   for (const auto& id : order) {
     const Node& node = graph.nodes.at(id);
@@ -396,7 +400,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
           out.f[0] = value.is_number() ? value.get<double>() : info.default_value[0];
           break;
         case AQ_PARAM_INT:
-          out.i = value.is_number() ? value.get<int64_t>() : static_cast<int64_t>(info.default_value[0]);
+          out.i = value.is_number() ? value.get<int64_t>()
+                                    : static_cast<int64_t>(info.default_value[0]);
           out.f[0] = static_cast<double>(out.i);
           break;
         case AQ_PARAM_BOOL:
@@ -444,8 +449,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       auto link = node.inputs.find(port.name);
       if (link == node.inputs.end()) {
         if (!port.optional) {
-          return make_error("node '" + id + "' (" + type->name + "): required input '" +
-                            port.name + "' is not connected");
+          return make_error("node '" + id + "' (" + type->name + "): required input '" + port.name +
+                            "' is not connected");
         }
         key = hash_string(key, "-");
         continue;
@@ -453,13 +458,13 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       NodeState& source = impl_->states[link->second.node];
       int index = source.type != nullptr ? source.type->output_index(link->second.port) : -1;
       if (index < 0) {
-        return make_error("node '" + id + "', input '" + port.name + "': '" +
-                          link->second.str() + "' is not an output port");
+        return make_error("node '" + id + "', input '" + port.name + "': '" + link->second.str() +
+                          "' is not an output port");
       }
       if (source.type->outputs[index].type != port.type) {
         return make_error("node '" + id + "', input '" + port.name + "': expects " +
-                          port_type_name(port.type) + " but '" + link->second.str() +
-                          "' gives " + port_type_name(source.type->outputs[index].type));
+                          port_type_name(port.type) + " but '" + link->second.str() + "' gives " +
+                          port_type_name(source.type->outputs[index].type));
       }
       key = hash_value(key, source.key);
       key = hash_string(key, link->second.port);
@@ -495,8 +500,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       ctx.input_count = static_cast<uint32_t>(inputs.size());
       ctx.params = params.data();
       ctx.param_count = static_cast<uint32_t>(params.size());
-      ctx.width = settings.width;
-      ctx.height = settings.height;
+      ctx.width = working.width;
+      ctx.height = working.height;
       ctx.precision = settings.precision == "float" ? AQ_PRECISION_FLOAT : AQ_PRECISION_HALF;
       ctx.working_format = format;
       ctx.time = time;
@@ -504,6 +509,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       ctx.fps = settings.fps;
       ctx.gl_generation = context_.generation();
       ctx.quality = quality_index(settings.quality);
+      ctx.render_scale = render_scale(settings.quality);
 
       for (auto& image : state.images) image.reset();
       for (auto& scene : state.scenes) scene = nullptr;
@@ -548,12 +554,12 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       if (status != AQ_OK || !call.error.empty()) {
         state.valid = false;
         for (auto& image : state.images) image.reset();
-        return make_error("node '" + id + "' (" + type->name + "): " +
-                          (call.error.empty() ? "failed without a message" : call.error));
+        return make_error("node '" + id + "' (" + type->name +
+                          "): " + (call.error.empty() ? "failed without a message" : call.error));
       }
       for (size_t o = 0; o < type->outputs.size(); ++o) {
-        bool missing = type->outputs[o].type == AQ_PORT_IMAGE ? !state.images[o]
-                                                              : state.scenes[o] == nullptr;
+        bool missing =
+            type->outputs[o].type == AQ_PORT_IMAGE ? !state.images[o] : state.scenes[o] == nullptr;
         if (missing) {
           state.valid = false;
           return make_error("node '" + id + "' (" + type->name + "): produced no output '" +
@@ -573,7 +579,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
     // frame will reuse.
     if (!options.retain_outputs) {
       for (const auto& [port, source] : node.inputs) {
-        if (--readers[source.node] == 0 && !(options.retain_static_outputs && !varies[source.node])) {
+        if (--readers[source.node] == 0 &&
+            !(options.retain_static_outputs && !varies[source.node])) {
           NodeState& producer = impl_->states[source.node];
           for (auto& image : producer.images) image.reset();
           producer.valid = false;
@@ -589,13 +596,23 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
                       last.type->name + ") has no output port '" + target->port + "'");
   }
   if (last.type->outputs[index].type != AQ_PORT_IMAGE) {
-    return make_error("output '" + target->str() + "' is a scene, not an image: render an "
+    return make_error("output '" + target->str() +
+                      "' is a scene, not an image: render an "
                       "image port, e.g. a gbuffer or cel_light output");
   }
   TextureRef result = last.images[index];
   if (!options.retain_outputs && !(options.retain_static_outputs && !varies[target->node])) {
     for (auto& image : last.images) image.reset();
     last.valid = false;
+  }
+  // A proxy render's output (working size) goes back to the graph's size.
+  if (result && result->image.width == working.width && result->image.height == working.height) {
+    auto resampled = impl_->resampler.resample(impl_->shaders, impl_->pool, result, settings.width,
+                                               settings.height);
+    impl_->reset_gl_state();
+    if (!resampled.ok())
+      return make_error("resampling the output to the graph's size: " + resampled.message());
+    return *resampled;
   }
   return result;
 }

@@ -78,7 +78,7 @@ struct Blur {
 
   int process(aq::Context& ctx) {
     const aq_image in = ctx.input_image(0);
-    const double sigma = ctx.param_float(kSigma);
+    const double sigma = ctx.param_float(kSigma) * ctx.render_scale();  // output pixels
     const double depth_weight = ctx.param_float(kDepthWeight);
     const double radial_weight = ctx.param_float(kRadialWeight);
     const bool has_depth = ctx.connected(1);

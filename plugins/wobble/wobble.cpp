@@ -49,7 +49,11 @@ struct Wobble {
     aq::bind_texture(program, "u_image", 0, in);
     aq::bind_texture(program, "u_paper", 1, paper);
     aq::set_vec2(program, "u_paper_size", paper.width, paper.height);
-    aq::set_float(program, "u_strength", strength);
+    // The displacement is strength·h'/P² in uv for a paper of P pixels across (see the
+    // shader), so a proxy render whose paper shrank with the working size (P·scale) needs
+    // strength·scale² to move the image as far as the full-size render does.
+    const double paper_scale = paper.width == ctx.width() ? ctx.render_scale() : 1.0;
+    aq::set_float(program, "u_strength", strength * paper_scale * paper_scale);
     const bool drawn = ctx.draw(out);
     aq::unbind_textures(2);
     return drawn ? AQ_OK : AQ_ERROR;

@@ -14,7 +14,9 @@
 
 #include <aquarelle/plugin.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 
 namespace aq::morphology {
@@ -105,7 +107,10 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader) {
                     "on the pixel");
   }
   if (size == 1) return ctx.pass_through(0, 0) ? AQ_OK : AQ_ERROR;
-  const int radius = static_cast<int>(size / 2);
+  // `size` is in output pixels; a proxy render keeps at least a radius of 1 so the effect
+  // does not vanish.
+  const int radius = std::max(
+      1, static_cast<int>(std::lround(static_cast<double>(size / 2) * ctx.render_scale())));
   const auto footprint = static_cast<Footprint>(ctx.param_enum(kFootprint));
   const SpanPlan plan = plan_spans(radius, footprint == kDisc ? kDisc : kSquare);
   const bool luminance = ctx.param_enum(kMode) == kLuminance;

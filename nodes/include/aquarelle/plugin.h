@@ -221,7 +221,7 @@ typedef struct aq_process_ctx {
   uint32_t input_count;
   const aq_param_value* params; /* in description order */
   uint32_t param_count;
-  int32_t width; /* the graph's output resolution */
+  int32_t width; /* the resolution to render at: the graph's size times render_scale */
   int32_t height;
   uint32_t precision;      /* aq_precision */
   uint32_t working_format; /* AQ_FORMAT_RGBA16F or AQ_FORMAT_RGBA32F, from precision */
@@ -230,6 +230,11 @@ typedef struct aq_process_ctx {
   double fps;
   uint32_t gl_generation; /* changes when the GL context (and its functions) changed */
   uint32_t quality;       /* 0 draft, 1 preview, 2 final */
+  /* Working pixels per output pixel (1 at quality final, less in proxy presets); width and
+   * height are already scaled. A parameter measured in pixels (a blur radius, a displacement)
+   * means output pixels: multiply it by render_scale. Appended in ABI 1: read it only when
+   * struct_size covers it (plugin.hpp's Context::render_scale does). */
+  double render_scale;
 } aq_process_ctx;
 
 typedef struct aq_host {

@@ -27,8 +27,7 @@ namespace aq {
 
 // ---- Description helpers (constexpr, so tables stay static data) ----------------------
 
-constexpr aq_port_desc image_port(const char* name, const char* description,
-                                  uint32_t flags = 0) {
+constexpr aq_port_desc image_port(const char* name, const char* description, uint32_t flags = 0) {
   return aq_port_desc{name, AQ_PORT_IMAGE, flags, description};
 }
 constexpr aq_port_desc optional_image_port(const char* name, const char* description) {
@@ -41,8 +40,8 @@ constexpr aq_port_desc scene_port(const char* name, const char* description) {
 constexpr aq_param_desc float_param(const char* name, double def, double min, double max,
                                     const char* description, double step = 0.0,
                                     const char* ui_hint = "slider") {
-  return aq_param_desc{name, AQ_PARAM_FLOAT, {def, 0, 0}, min, max, step, nullptr, nullptr,
-                       ui_hint, description};
+  return aq_param_desc{name, AQ_PARAM_FLOAT, {def, 0, 0}, min,     max,
+                       step, nullptr,        nullptr,     ui_hint, description};
 }
 constexpr aq_param_desc int_param(const char* name, int64_t def, int64_t min, int64_t max,
                                   const char* description) {
@@ -58,33 +57,33 @@ constexpr aq_param_desc int_param(const char* name, int64_t def, int64_t min, in
                        description};
 }
 constexpr aq_param_desc bool_param(const char* name, bool def, const char* description) {
-  return aq_param_desc{name,    AQ_PARAM_BOOL, {def ? 1.0 : 0.0, 0, 0}, 0, 1, 1, nullptr,
-                       nullptr, "checkbox",    description};
+  return aq_param_desc{
+      name,       AQ_PARAM_BOOL, {def ? 1.0 : 0.0, 0, 0}, 0, 1, 1, nullptr, nullptr,
+      "checkbox", description};
 }
 // `values` is "a|b|c"; `def` is the index of the default.
 constexpr aq_param_desc enum_param(const char* name, const char* values, int def,
                                    const char* description) {
-  return aq_param_desc{name, AQ_PARAM_ENUM, {static_cast<double>(def), 0, 0}, 0, 0, 0, nullptr,
-                       values, "combo", description};
+  return aq_param_desc{
+      name,    AQ_PARAM_ENUM, {static_cast<double>(def), 0, 0}, 0, 0, 0, nullptr, values,
+      "combo", description};
 }
 constexpr aq_param_desc color_param(const char* name, double r, double g, double b,
                                     const char* description) {
-  return aq_param_desc{name,    AQ_PARAM_COLOR, {r, g, b}, 0.0, 1.0, 0, nullptr,
-                       nullptr, "color",        description};
+  return aq_param_desc{name, AQ_PARAM_COLOR, {r, g, b}, 0.0,     1.0,
+                       0,    nullptr,        nullptr,   "color", description};
 }
 constexpr aq_param_desc vec3_param(const char* name, double x, double y, double z, double min,
                                    double max, const char* description) {
-  return aq_param_desc{name, AQ_PARAM_VEC3, {x, y, z}, min, max, 0, nullptr, nullptr, "drag",
-                       description};
+  return aq_param_desc{name, AQ_PARAM_VEC3, {x, y, z}, min,    max,
+                       0,    nullptr,       nullptr,   "drag", description};
 }
-constexpr aq_param_desc string_param(const char* name, const char* def,
-                                     const char* description) {
-  return aq_param_desc{name, AQ_PARAM_STRING, {0, 0, 0}, 0, 0, 0, def, nullptr, "text",
-                       description};
+constexpr aq_param_desc string_param(const char* name, const char* def, const char* description) {
+  return aq_param_desc{name, AQ_PARAM_STRING, {0, 0, 0}, 0,          0, 0,
+                       def,  nullptr,         "text",    description};
 }
 constexpr aq_param_desc path_param(const char* name, const char* description) {
-  return aq_param_desc{name, AQ_PARAM_PATH, {0, 0, 0}, 0, 0, 0, "", nullptr, "file",
-                       description};
+  return aq_param_desc{name, AQ_PARAM_PATH, {0, 0, 0}, 0, 0, 0, "", nullptr, "file", description};
 }
 
 // ---- GL loading ----------------------------------------------------------------------
@@ -122,6 +121,12 @@ class Context {
   uint32_t working_format() const { return raw_->working_format; }
   bool precise() const { return raw_->precision == AQ_PRECISION_FLOAT; }
   uint32_t quality() const { return raw_->quality; }
+  // Working pixels per output pixel; multiply parameters given in (output) pixels by it.
+  double render_scale() const {
+    const bool present =
+        raw_->struct_size >= offsetof(aq_process_ctx, render_scale) + sizeof(double);
+    return present && raw_->render_scale > 0.0 ? raw_->render_scale : 1.0;
+  }
 
   bool connected(uint32_t input) const {
     return input < raw_->input_count && raw_->inputs[input].connected != 0;
@@ -254,21 +259,20 @@ constexpr uint32_t count_of(const T (&)[N]) {
 }  // namespace aq
 
 // Defines `const aq_node_desc NAME` for NodeClass. Inputs, outputs and params are arrays.
-#define AQ_NODE(NAME, NodeClass, type_name, category, description, flags, inputs, outputs, \
-                params)                                                                  \
-  static const aq_node_desc NAME = {sizeof(aq_node_desc),                                \
-                                    type_name,                                           \
-                                    category,                                            \
-                                    description,                                         \
-                                    flags,                                               \
-                                    inputs,                                              \
-                                    aq::count_of(inputs),                                \
-                                    outputs,                                             \
-                                    aq::count_of(outputs),                               \
-                                    params,                                              \
-                                    aq::count_of(params),                                \
-                                    &aq::NodeAdapter<NodeClass>::create,                 \
-                                    &aq::NodeAdapter<NodeClass>::destroy,                \
+#define AQ_NODE(NAME, NodeClass, type_name, category, description, flags, inputs, outputs, params) \
+  static const aq_node_desc NAME = {sizeof(aq_node_desc),                                          \
+                                    type_name,                                                     \
+                                    category,                                                      \
+                                    description,                                                   \
+                                    flags,                                                         \
+                                    inputs,                                                        \
+                                    aq::count_of(inputs),                                          \
+                                    outputs,                                                       \
+                                    aq::count_of(outputs),                                         \
+                                    params,                                                        \
+                                    aq::count_of(params),                                          \
+                                    &aq::NodeAdapter<NodeClass>::create,                           \
+                                    &aq::NodeAdapter<NodeClass>::destroy,                          \
                                     &aq::NodeAdapter<NodeClass>::process}
 
 // Same, for a node without parameters.
@@ -290,28 +294,28 @@ constexpr uint32_t count_of(const T (&)[N]) {
                                     &aq::NodeAdapter<NodeClass>::process}
 
 // Same, for a source node: no inputs (generators such as noise, caustics, scene).
-#define AQ_SOURCE_NODE(NAME, NodeClass, type_name, category, description, flags, outputs, \
-                       params)                                                          \
-  static const aq_node_desc NAME = {sizeof(aq_node_desc),                               \
-                                    type_name,                                          \
-                                    category,                                           \
-                                    description,                                        \
-                                    flags,                                              \
-                                    nullptr,                                            \
-                                    0,                                                  \
-                                    outputs,                                            \
-                                    aq::count_of(outputs),                              \
-                                    params,                                             \
-                                    aq::count_of(params),                               \
-                                    &aq::NodeAdapter<NodeClass>::create,                \
-                                    &aq::NodeAdapter<NodeClass>::destroy,               \
+#define AQ_SOURCE_NODE(NAME, NodeClass, type_name, category, description, flags, outputs, params) \
+  static const aq_node_desc NAME = {sizeof(aq_node_desc),                                         \
+                                    type_name,                                                    \
+                                    category,                                                     \
+                                    description,                                                  \
+                                    flags,                                                        \
+                                    nullptr,                                                      \
+                                    0,                                                            \
+                                    outputs,                                                      \
+                                    aq::count_of(outputs),                                        \
+                                    params,                                                       \
+                                    aq::count_of(params),                                         \
+                                    &aq::NodeAdapter<NodeClass>::create,                          \
+                                    &aq::NodeAdapter<NodeClass>::destroy,                         \
                                     &aq::NodeAdapter<NodeClass>::process}
 
 // Exports the plugin entry point listing the given node descriptions (pointers).
-#define AQ_PLUGIN(plugin_name, plugin_version, ...)                                           \
-  extern "C" AQ_PLUGIN_EXPORT const aq_plugin_desc* aquarelle_plugin_entry(uint32_t) {       \
-    static const aq_node_desc* const nodes[] = {__VA_ARGS__};                                \
-    static const aq_plugin_desc desc = {AQ_ABI_VERSION, sizeof(aq_plugin_desc), plugin_name, \
-                                        plugin_version, nodes, aq::count_of(nodes)};         \
-    return &desc;                                                                            \
+#define AQ_PLUGIN(plugin_name, plugin_version, ...)                                    \
+  extern "C" AQ_PLUGIN_EXPORT const aq_plugin_desc* aquarelle_plugin_entry(uint32_t) { \
+    static const aq_node_desc* const nodes[] = {__VA_ARGS__};                          \
+    static const aq_plugin_desc desc = {AQ_ABI_VERSION, sizeof(aq_plugin_desc),        \
+                                        plugin_name,    plugin_version,                \
+                                        nodes,          aq::count_of(nodes)};          \
+    return &desc;                                                                      \
   }
