@@ -28,7 +28,9 @@ Result<TextureRef> OutputResampler::resample(ShaderCache& shaders, TexturePool& 
   auto program = shaders.program(nullptr, &kResampleSource);
   if (!program.ok()) return program.error();
   if (!framebuffer_) {
-    framebuffer_ = gl::make_framebuffer();
+    GLuint name = 0;
+    glCreateFramebuffers(1, &name);  // created, not just named: the DSA calls below need that
+    framebuffer_ = gl::Framebuffer(name);
     vertex_array_ = gl::make_vertex_array();
   }
   TextureRef out = pool.acquire(width, height, in.format);

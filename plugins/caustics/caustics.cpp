@@ -63,7 +63,10 @@ struct Caustics {
   uint32_t vertex_array_generation = 0;
 
   int process(aq::Context& ctx) {
-    const int resolution = static_cast<int>(ctx.param_int(kResolution));
+    // `resolution` is for a full-size render; a proxy render shows the tile on fewer pixels.
+    const int resolution =
+        std::max(1, static_cast<int>(std::lround(static_cast<double>(ctx.param_int(kResolution)) *
+                                                 ctx.render_scale())));
     // The quality preset trades the grid (cost ~ grid^2, error ~ 1/grid): draft a quarter,
     // preview half, final the grid asked for.
     const int quality_divisor = ctx.quality() == 0 ? 4 : ctx.quality() == 1 ? 2 : 1;

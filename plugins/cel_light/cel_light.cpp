@@ -6,7 +6,8 @@
 //   scene ──► light direction, colour, ambient, light matrix (scene_math.hpp, as shadowmap)
 //   position, normal, albedo, id ──┐
 //   shadow (optional) ─────────────┼──► cel_light.frag ──► image (working format)
-//   caustics (optional) ───────────┘
+//   caustics (optional) ───────────┘                    └─► plain (the same without caustics)
+#include <aquarelle/gl_raii.hpp>
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/scene_math.hpp>
 
@@ -27,7 +28,9 @@ constexpr aq_port_desc kInputs[] = {
     aq::image_port("id", "object id, 0 = background (gbuffer.id)"),
     aq::optional_image_port("shadow", "light-space depth (shadowmap.depth); unlit test if absent"),
     aq::optional_image_port("caustics", "tileable caustic texture, mean 1 (caustics.image)")};
-constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "lit, cel-shaded colour (HDR)")};
+constexpr aq_port_desc kOutputs[] = {
+    aq::image_port("image", "lit, cel-shaded colour (HDR)"),
+    aq::image_port("plain", "the same light without caustics (e.g. the source of `edge`)")};
 
 enum Param { kLevels, kQuantize, kPcfRadius, kCausticTile, kCausticStrength, kBackground };
 constexpr aq_param_desc kParams[] = {
@@ -41,7 +44,25 @@ constexpr aq_param_desc kParams[] = {
                     "0: no caustics, 1: as computed, >1: more contrast"),
     aq::color_param("background", 0.1, 0.3, 0.4, "colour where id = 0 (open water)")};
 
+// The shader variant for this node's connections and parameters (see cel_light.frag).
+std::string variant_source(bool has_shadow, bool has_caustics, bool quantize, int pcf_radius,
+                           bool same_size) {
+  return "#define AQ_HAS_SHADOW " + std::to_string(has_shadow ? 1 : 0) +
+         "\n#define AQ_HAS_CAUSTICS " + std::to_string(has_caustics ? 1 : 0) +
+         "\n#define AQ_QUANTIZE " + std::to_string(quantize ? 1 : 0) + "\n#define AQ_PCF_RADIUS " +
+         std::to_string(pcf_radius) + "\n#define AQ_SAME_SIZE " +
+         std::to_string(same_size ? 1 : 0) + "\n" + shaders::cel_light_frag.text;
+}
+
+bool same_size(const aq_image& a, const aq_image& b) {
+  return a.width == b.width && a.height == b.height;
+}
+
 struct CelLight {
+  std::string source;  // outlives the program call that reads it
+  aq::gl::Sampler repeating;
+  uint32_t sampler_generation = 0;
+
   int process(aq::Context& ctx) {
     const aq_scene* scene = ctx.input_scene(kScene);
     if (scene == nullptr) {
@@ -49,25 +70,43 @@ struct CelLight {
                       "': input `scene` is not connected; connect the scene node that feeds "
                       "the gbuffer");
     }
-    aq_image position = ctx.input_image(kPosition);
-    aq_image out;
-    if (!ctx.output_like(0, position, &out)) return AQ_ERROR;
-    GLuint program = ctx.program(shaders::cel_light_frag);
+    const aq_image position = ctx.input_image(kPosition);
+    aq_image targets[2];
+    if (!ctx.output_like(0, position, &targets[0]) || !ctx.output_like(1, position, &targets[1])) {
+      return AQ_ERROR;
+    }
+    const bool has_shadow = ctx.connected(kShadow);
+    const bool has_caustics = ctx.connected(kCaustics);
+    const bool gbuffer_same_size = same_size(position, ctx.input_image(kNormal)) &&
+                                   same_size(position, ctx.input_image(kAlbedo)) &&
+                                   same_size(position, ctx.input_image(kId));
+    source = variant_source(has_shadow, has_caustics, ctx.param_bool(kQuantize),
+                            static_cast<int>(ctx.param_int(kPcfRadius)), gbuffer_same_size);
+    // No source path: hot reload would read the file without the variant's defines.
+    const aq_shader_source fragment{shaders::cel_light_frag.name, source.c_str(), nullptr};
+    GLuint program = ctx.program(fragment);
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
     aq::bind_texture(program, "u_position", 0, position);
     aq::bind_texture(program, "u_normal", 1, ctx.input_image(kNormal));
     aq::bind_texture(program, "u_albedo", 2, ctx.input_image(kAlbedo));
     aq::bind_texture(program, "u_id", 3, ctx.input_image(kId));
-    const bool has_shadow = ctx.connected(kShadow);
-    const bool has_caustics = ctx.connected(kCaustics);
-    // Unconnected optional inputs still bind a valid texture name (the position) so the
-    // sampler is complete; the shader does not read them.
-    aq::bind_texture(program, "u_shadow", 4, has_shadow ? ctx.input_image(kShadow) : position);
-    aq::bind_texture(program, "u_caustics", 5,
-                     has_caustics ? ctx.input_image(kCaustics) : position);
-    aq::set_int(program, "u_has_shadow", has_shadow ? 1 : 0);
-    aq::set_int(program, "u_has_caustics", has_caustics ? 1 : 0);
+    if (has_shadow) aq::bind_texture(program, "u_shadow", 4, ctx.input_image(kShadow));
+    if (has_caustics) {
+      // One period of the caustics: the hardware's repeat wrap gives the periodic bilinear
+      // lookup in one read (pool textures clamp at the edge).
+      if (!repeating || sampler_generation != ctx.raw()->gl_generation) {
+        repeating.forget();  // a name from an old context means nothing here
+        const GLuint sampler = repeating.create();
+        glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        sampler_generation = ctx.raw()->gl_generation;
+      }
+      aq::bind_texture(program, "u_caustics", 5, ctx.input_image(kCaustics));
+      glBindSampler(5, repeating.get());
+    }
 
     glm::mat4 light = aq::scene_math::light_view_projection(*scene);
     glm::vec3 direction = aq::scene_math::light_direction(*scene);
@@ -75,16 +114,16 @@ struct CelLight {
     aq::set_vec3(program, "u_light_direction", glm::value_ptr(direction));
     aq::set_vec3(program, "u_light_color", scene->light.color);
     aq::set_vec3(program, "u_ambient", scene->light.ambient);
-    aq::set_int(program, "u_pcf_radius", static_cast<int>(ctx.param_int(kPcfRadius)));
     aq::set_float(program, "u_water_height", scene->water_height);
     aq::set_float(program, "u_caustic_tile", ctx.param_float(kCausticTile));
     aq::set_float(program, "u_caustic_strength", ctx.param_float(kCausticStrength));
-    aq::set_int(program, "u_quantize", ctx.param_bool(kQuantize) ? 1 : 0);
     aq::set_int(program, "u_levels", static_cast<int>(ctx.param_int(kLevels)));
     aq::set_vec3(program, "u_background", ctx.param_vec3(kBackground));
-    bool drawn = ctx.draw(out);
+    const bool bound = ctx.bind_targets(targets, 2);
+    if (bound) ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+    glBindSampler(5, 0);
     aq::unbind_textures(6);
-    return drawn ? AQ_OK : AQ_ERROR;
+    return bound ? AQ_OK : AQ_ERROR;
   }
 };
 

@@ -41,7 +41,11 @@ class ShadowMap {
       return ctx.fail(std::string("shadowmap '") + ctx.node_id() +
                       "': input `scene` is not connected; connect a scene node's `scene` port");
     }
-    const int size = static_cast<int>(ctx.param_int(kSize));
+    // `size` is for a full-size render: a proxy render needs the texels per screen pixel of
+    // the full one, so the map shrinks with the render scale.
+    const int size =
+        std::max(16, static_cast<int>(std::lround(static_cast<double>(ctx.param_int(kSize)) *
+                                                  ctx.render_scale())));
     aq_image depth, depth_buffer;
     if (!ctx.output(0, size, size, AQ_FORMAT_R32F, &depth)) return AQ_ERROR;
     if (!ctx.scratch(size, size, AQ_FORMAT_DEPTH32F, &depth_buffer)) return AQ_ERROR;

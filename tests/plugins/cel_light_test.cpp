@@ -424,3 +424,30 @@ TEST(CelLight, WholeChainAtAnySizeFromOnePixel) {
 }
 
 }  // namespace
+
+namespace {
+
+// One pass writes both outputs: `plain` is the light of the same pass without the caustics.
+TEST(CelLight, PlainOutputIsTheLightWithoutCaustics) {
+  GBufferImages g = random_gbuffer(31);
+  LightSetup s;
+  auto images = as_inputs(g);
+  images["caustics"] = aq::test::random_image(16, 16, 5, 0.0f, 3.0f);
+  aq::test::RenderOptions options;
+  options.width = kW;
+  options.height = kH;
+  options.output = "light.plain";
+  auto plain = aq::test::render_graph(graph(s, false, true), options, images);
+  ASSERT_TRUE(plain.ok()) << plain.message();
+  options.output = "light.image";
+  auto lit = aq::test::render_graph(graph(s, false, true), options, images);
+  ASSERT_TRUE(lit.ok()) << lit.message();
+  LightSetup no_caustics = s;
+  no_caustics.caustic_strength = 0.0;
+  auto without = aq::test::render_graph(graph(no_caustics, false, true), options, images);
+  ASSERT_TRUE(without.ok()) << without.message();
+  EXPECT_LE(aq::test::max_abs_diff(*plain, *without), 1e-6);
+  EXPECT_GT(aq::test::max_abs_diff(*plain, *lit), 0.05) << "the caustics do change `image`";
+}
+
+}  // namespace

@@ -1,6 +1,6 @@
 // Tiny RAII owners for the GL objects a plugin keeps in its instance state between frames
-// (vertex buffers, vertex arrays). Plugins may not use the core's gl_objects.h (they see only
-// plugin.h and glad), so this header depends on nothing else.
+// (vertex buffers, vertex arrays, samplers). Plugins may not use the core's gl_objects.h (they see
+// only plugin.h and glad), so this header depends on nothing else.
 //
 // A GL name belongs to the context that created it. When the host switches contexts
 // (ctx.gl_generation changes) the old names are meaningless in the new one: `forget()` drops
@@ -13,7 +13,7 @@
 
 namespace aq::gl {
 
-enum class Kind { kBuffer, kVertexArray, kTexture, kFramebuffer };
+enum class Kind { kBuffer, kVertexArray, kTexture, kFramebuffer, kSampler };
 
 template <Kind K>
 class Object {
@@ -38,6 +38,7 @@ class Object {
     if constexpr (K == Kind::kVertexArray) glCreateVertexArrays(1, &name_);
     if constexpr (K == Kind::kTexture) glCreateTextures(GL_TEXTURE_2D, 1, &name_);
     if constexpr (K == Kind::kFramebuffer) glCreateFramebuffers(1, &name_);
+    if constexpr (K == Kind::kSampler) glCreateSamplers(1, &name_);
     return name_;
   }
   void reset() {
@@ -46,6 +47,7 @@ class Object {
     if constexpr (K == Kind::kVertexArray) glDeleteVertexArrays(1, &name_);
     if constexpr (K == Kind::kTexture) glDeleteTextures(1, &name_);
     if constexpr (K == Kind::kFramebuffer) glDeleteFramebuffers(1, &name_);
+    if constexpr (K == Kind::kSampler) glDeleteSamplers(1, &name_);
     name_ = 0;
   }
   // The context that owned the name is gone: drop it without a GL call.
@@ -61,5 +63,6 @@ using Buffer = Object<Kind::kBuffer>;
 using VertexArray = Object<Kind::kVertexArray>;
 using Texture = Object<Kind::kTexture>;
 using Framebuffer = Object<Kind::kFramebuffer>;
+using Sampler = Object<Kind::kSampler>;
 
 }  // namespace aq::gl

@@ -5,96 +5,115 @@
 //   out  = lit * v' / v                         (hue and saturation kept exactly)
 // Scaling rgb by v'/v is the HSV round trip with a new value, without the hue arithmetic, so
 // grey, black and values above 1 need no special case. Output stays linear HDR.
+//
+// Two outputs from one pass: o_color with caustics, o_plain the same light without them (the
+// source `edge` looks at, so caustic patterns draw no outlines).
+//
+// cel_light.cpp prepends the variant (llvmpipe runs both sides of a branch on a uniform):
+//   AQ_HAS_SHADOW, AQ_HAS_CAUSTICS, AQ_QUANTIZE  0 or 1
+//   AQ_PCF_RADIUS                                0..4
+//   AQ_SAME_SIZE   1 when every g-buffer input has the output's size (read at gl_FragCoord)
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
+layout(location = 1) out vec4 o_plain;
 
 uniform sampler2D u_position;
 uniform sampler2D u_normal;
 uniform sampler2D u_albedo;
 uniform sampler2D u_id;
 uniform sampler2D u_shadow;
-uniform sampler2D u_caustics;
-uniform bool u_has_shadow;
-uniform bool u_has_caustics;
+uniform sampler2D u_caustics;  // bound with a repeating sampler: the texture is one period
 
 uniform mat4 u_light_view_projection;
 uniform vec3 u_light_direction;  // direction light travels, unit
 uniform vec3 u_light_color;
 uniform vec3 u_ambient;
-uniform int u_pcf_radius;
 
 uniform float u_water_height;
 uniform float u_caustic_tile;  // world units per caustic texture period
 uniform float u_caustic_strength;
 
-uniform bool u_quantize;
 uniform int u_levels;
 uniform vec3 u_background;
 
-// Fraction of shadow-map taps that see P lit: (2r+1)^2 taps, depth compared per texel (never
-// interpolated: an average of depths is not a depth).
+#if AQ_HAS_SHADOW
+// Fraction of shadow-map taps that see P lit: (2r+1)^2 texels around P's texel, depth compared
+// per texel (never interpolated: an average of depths is not a depth). Texels beyond the edge
+// repeat the edge texel (the sampler clamps), as clamping the index would.
 float visibility(vec3 p) {
   vec4 clip = u_light_view_projection * vec4(p, 1.0);
   vec3 w = clip.xyz / clip.w * 0.5 + 0.5;
   if (any(lessThan(w.xy, vec2(0.0))) || any(greaterThan(w.xy, vec2(1.0))) || w.z > 1.0) {
     return 1.0;
   }
-  ivec2 size = textureSize(u_shadow, 0);
-  ivec2 texel = clamp(ivec2(floor(w.xy * vec2(size))), ivec2(0), size - 1);
+  vec2 size = vec2(textureSize(u_shadow, 0));
+  vec2 texel = clamp(floor(w.xy * size), vec2(0.0), size - 1.0);
+#if AQ_PCF_RADIUS == 1
+  // The 3x3 texels from four gathers (2x2 texels each, around the corners of the centre
+  // texel); components x = (i0, j1), y = (i1, j1), z = (i1, j0), w = (i0, j0).
+  vec2 inv = 1.0 / size;
+  vec4 g00 = step(vec4(w.z), textureGather(u_shadow, (texel + vec2(0.0, 0.0)) * inv));
+  vec4 g10 = step(vec4(w.z), textureGather(u_shadow, (texel + vec2(1.0, 0.0)) * inv));
+  vec4 g01 = step(vec4(w.z), textureGather(u_shadow, (texel + vec2(0.0, 1.0)) * inv));
+  vec4 g11 = step(vec4(w.z), textureGather(u_shadow, (texel + vec2(1.0, 1.0)) * inv));
+  float lit = dot(g00, vec4(1.0)) + g10.z + g10.y + g01.x + g01.y + g11.y;
+  return lit / 9.0;
+#else
+  ivec2 t0 = ivec2(texel);
+  ivec2 last = ivec2(size) - 1;
   float lit = 0.0;
-  float taps = 0.0;
-  for (int dy = -u_pcf_radius; dy <= u_pcf_radius; ++dy) {
-    for (int dx = -u_pcf_radius; dx <= u_pcf_radius; ++dx) {
-      ivec2 t = clamp(texel + ivec2(dx, dy), ivec2(0), size - 1);
+  for (int dy = -AQ_PCF_RADIUS; dy <= AQ_PCF_RADIUS; ++dy) {
+    for (int dx = -AQ_PCF_RADIUS; dx <= AQ_PCF_RADIUS; ++dx) {
+      ivec2 t = clamp(t0 + ivec2(dx, dy), ivec2(0), last);
       lit += w.z <= texelFetch(u_shadow, t, 0).r ? 1.0 : 0.0;
-      taps += 1.0;
     }
   }
+  const float taps = float((2 * AQ_PCF_RADIUS + 1) * (2 * AQ_PCF_RADIUS + 1));
   return lit / taps;
+#endif
 }
+#endif
 
-// Bilinear lookup that wraps across the texture's period (pool textures clamp at the edge).
-vec3 sample_periodic(sampler2D s, vec2 uv) {
-  ivec2 size = textureSize(s, 0);
-  vec2 x = uv * vec2(size) - 0.5;
-  vec2 f = x - floor(x);
-  ivec2 i0 = ivec2(floor(x));
-  ivec2 i00 = ((i0 % size) + size) % size;
-  ivec2 i11 = (i00 + 1) % size;
-  vec3 a = texelFetch(s, i00, 0).rgb;
-  vec3 b = texelFetch(s, ivec2(i11.x, i00.y), 0).rgb;
-  vec3 c = texelFetch(s, ivec2(i00.x, i11.y), 0).rgb;
-  vec3 d = texelFetch(s, i11, 0).rgb;
-  return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
-}
-
+#if AQ_HAS_CAUSTICS
 // Caustic brightness reaching P: follow the light back up to the water plane and read the
 // tileable caustic texture there (mean 1 over a tile, so strength only changes contrast).
 vec3 caustic(vec3 p) {
-  if (!u_has_caustics || u_light_direction.y >= 0.0 || p.y >= u_water_height) return vec3(1.0);
+  if (u_light_direction.y >= 0.0 || p.y >= u_water_height) return vec3(1.0);
   float t = (u_water_height - p.y) / -u_light_direction.y;
   vec3 q = p - t * u_light_direction;
-  vec3 c = sample_periodic(u_caustics, q.xz / u_caustic_tile);
+  vec3 c = texture(u_caustics, q.xz / u_caustic_tile).rgb;
   return max(vec3(0.0), vec3(1.0) + u_caustic_strength * (c - vec3(1.0)));
 }
+#endif
 
-float quantize_value(float v) {
-  if (u_levels <= 1) return v > 0.0 ? 1.0 : 0.0;
-  float steps = float(u_levels - 1);
-  return floor(v * steps + 0.5) / steps;
+vec3 cel(vec3 lit) {
+#if AQ_QUANTIZE
+  float v = max(lit.r, max(lit.g, lit.b));
+  float quantized = u_levels <= 1 ? (v > 0.0 ? 1.0 : 0.0)
+                                  : floor(v * float(u_levels - 1) + 0.5) / float(u_levels - 1);
+  lit = v > 0.0 ? lit * (quantized / v) : vec3(0.0);
+#endif
+  // NaN or Inf in an input stays local: the pixel goes black instead of spreading.
+  if (any(isnan(lit)) || any(isinf(lit))) lit = vec3(0.0);
+  return lit;
 }
 
 // G-buffer texels are read exactly (no filtering across an object's edge); inputs of another
 // size than the output are addressed proportionally.
 vec4 fetch(sampler2D s) {
+#if AQ_SAME_SIZE
+  return texelFetch(s, ivec2(gl_FragCoord.xy), 0);
+#else
   ivec2 size = textureSize(s, 0);
   ivec2 texel = ivec2(floor(v_uv * vec2(size)));
   return texelFetch(s, clamp(texel, ivec2(0), size - 1), 0);
+#endif
 }
 
 void main() {
   if (!(fetch(u_id).r >= 0.5)) {  // id 0 (or NaN): background
     o_color = vec4(u_background, 1.0);
+    o_plain = o_color;
     return;
   }
   vec3 p = fetch(u_position).xyz;
@@ -105,17 +124,17 @@ void main() {
 
   float ndl = max(dot(n, -u_light_direction), 0.0);
   vec3 direct = vec3(0.0);
+  vec3 caustic_factor = vec3(1.0);
   if (ndl > 0.0) {
-    float vis = u_has_shadow ? visibility(p) : 1.0;
-    direct = u_light_color * ndl * vis * caustic(p);
+#if AQ_HAS_SHADOW
+    direct = u_light_color * (ndl * visibility(p));
+#else
+    direct = u_light_color * ndl;
+#endif
+#if AQ_HAS_CAUSTICS
+    caustic_factor = caustic(p);
+#endif
   }
-  vec3 lit = albedo * (u_ambient + direct);
-
-  if (u_quantize) {
-    float v = max(lit.r, max(lit.g, lit.b));
-    lit = v > 0.0 ? lit * (quantize_value(v) / v) : vec3(0.0);
-  }
-  // NaN or Inf in an input stays local: the pixel goes black instead of spreading.
-  if (any(isnan(lit)) || any(isinf(lit))) lit = vec3(0.0);
-  o_color = vec4(lit, 1.0);
+  o_color = vec4(cel(albedo * (u_ambient + direct * caustic_factor)), 1.0);
+  o_plain = vec4(cel(albedo * (u_ambient + direct)), 1.0);
 }
