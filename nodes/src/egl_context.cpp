@@ -3,6 +3,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <map>
 #include <string>
 
 #include "context_backends.h"
@@ -17,16 +18,29 @@ std::string egl_error_text(EGLint code) {
   return buffer;
 }
 
+// Live contexts per display (see ~EglContext).
+std::map<EGLDisplay, int>& display_users() {
+  static std::map<EGLDisplay, int> users;
+  return users;
+}
+
 class EglContext final : public BackendContext {
  public:
   ~EglContext() override {
     if (display_ != EGL_NO_DISPLAY) {
       eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
       if (context_ != EGL_NO_CONTEXT) eglDestroyContext(display_, context_);
-      eglTerminate(display_);
+      // The display is one per platform and process, shared by every context on it, and
+      // eglTerminate is not reference counted: terminating it under another live context
+      // would leave that one unable to be made current.
+      if (--display_users()[display_] == 0) {
+        display_users().erase(display_);
+        eglTerminate(display_);
+      }
     }
   }
   GlBackend backend() const override { return GlBackend::kEgl; }
+
   bool make_current() override {
     // Always rebind: an OSMesa context made current in between is invisible to EGL.
     return eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) == EGL_TRUE;
@@ -48,6 +62,7 @@ class EglContext final : public BackendContext {
       return make_error("no surfaceless EGL display (EGL_MESA_platform_surfaceless): " +
                         egl_error_text(eglGetError()));
     }
+    ++display_users()[display_];
     if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) {
       return make_error("EGL cannot bind the desktop OpenGL API");
     }

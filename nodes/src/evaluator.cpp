@@ -14,7 +14,7 @@
 
 #include "builtin_nodes.h"
 #include "hash.h"
-#include "output_resample.h"
+#include "pointwise_fusion.h"
 #include "shader_cache.h"
 
 namespace aq {
@@ -48,11 +48,28 @@ struct CallState {
   const std::vector<TextureRef>* input_refs = nullptr;
 };
 
+// The deferred stages of a fused chain of pointwise nodes, kept until the node that ends the
+// chain runs them in one pass (pointwise_fusion.h). Each stage keeps the parameters and context
+// its node's process() would have seen.
+struct FusedChain {
+  struct Stage {
+    const NodeType* type = nullptr;
+    void* instance = nullptr;
+    std::vector<aq_param_value> params;
+    std::vector<std::string> strings;  // params[i].s points into these
+    std::vector<aq_input_value> inputs;
+    CallState call;
+    aq_process_ctx ctx{};
+  };
+  TextureRef input;  // the image the first stage reads
+  std::vector<std::unique_ptr<Stage>> stages;
+};
+
 struct Evaluator::Impl {
   GlContext& context;
   TexturePool& pool;
   ShaderCache shaders;
-  OutputResampler resampler;
+  PointwiseFuser fuser;
   std::map<std::string, NodeState> states;
   gl::VertexArray empty_vao;
   gl::Framebuffer framebuffer;
@@ -360,6 +377,53 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
   readers[target->node] += 1;
 
   std::map<std::string, bool> varies;
+
+  // Pointwise nodes whose function runs inside their reader's pass instead of a pass of their
+  // own: they give a fusable function, are not the output, and their only reader is another
+  // such node reading them on its image input.
+  std::set<std::string> deferred;
+  if (options.fuse_pointwise) {
+    auto fusable = [&](const std::string& id) {
+      const NodeType* type = registry_.find(graph.nodes.at(id).type);
+      return type != nullptr && type->fusable != nullptr;
+    };
+    for (const auto& reader_id : order) {
+      if (!fusable(reader_id)) continue;
+      const NodeType* reader_type = registry_.find(graph.nodes.at(reader_id).type);
+      const Node& reader = graph.nodes.at(reader_id);
+      auto link = reader.inputs.find(reader_type->inputs[0].name);
+      if (link == reader.inputs.end()) continue;
+      const std::string& source = link->second.node;
+      if (source != target->node && readers[source] == 1 && fusable(source)) {
+        deferred.insert(source);
+      }
+    }
+  }
+  auto fill_process_ctx = [&](aq_process_ctx& ctx, CallState& call,
+                              std::vector<aq_input_value>& inputs,
+                              std::vector<aq_param_value>& params, const Settings& settings,
+                              uint32_t format, double time, int frame, const PixelSize& size) {
+    ctx.struct_size = sizeof(aq_process_ctx);
+    ctx.host = &impl_->host;
+    ctx.host_data = &call;
+    ctx.node_id = call.node_id.c_str();
+    ctx.inputs = inputs.data();
+    ctx.input_count = static_cast<uint32_t>(inputs.size());
+    ctx.params = params.data();
+    ctx.param_count = static_cast<uint32_t>(params.size());
+    ctx.width = size.width;
+    ctx.height = size.height;
+    ctx.precision = settings.precision == "float" ? AQ_PRECISION_FLOAT : AQ_PRECISION_HALF;
+    ctx.working_format = format;
+    ctx.time = time;
+    ctx.frame = frame;
+    ctx.fps = settings.fps;
+    ctx.gl_generation = context_.generation();
+    ctx.quality = quality_index(settings.quality);
+    ctx.render_scale = render_scale(settings.quality);
+  };
+  // The stages of each fused chain so far, by the id of its last deferred node.
+  std::map<std::string, std::shared_ptr<FusedChain>> chains;
   const Settings& settings = graph.settings;
   const uint32_t format = working_format(settings.precision);
   const double time = (options.frame - settings.first_frame) / std::max(settings.fps, 1e-6);
@@ -483,8 +547,97 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
     if (type->time_dependent()) key = hash_value(key, options.frame);
     key = builtin_key(*type, params, options, key);
 
-    if (state.valid && state.key == key) {
+    // Fusion: a deferred node only records its stage; the node reading it runs the chain.
+    std::shared_ptr<FusedChain> chain;
+    if (type->fusable != nullptr && node.inputs.count(type->inputs[0].name) != 0) {
+      const std::string& source = node.inputs.at(type->inputs[0].name).node;
+      if (auto found = chains.find(source); found != chains.end()) {
+        chain = found->second;
+        chains.erase(found);
+      }
+    }
+    const bool is_deferred = deferred.count(id) != 0;
+    // The output's pointwise tail runs in the pass that resamples a proxy render's output.
+    const TextureRef& chain_input = chain ? chain->input : input_refs[0];
+    const bool tail_into_resample =
+        !is_deferred && options.fuse_pointwise && type->fusable != nullptr &&
+        id == target->node &&
+        (working.width != settings.width || working.height != settings.height) && chain_input &&
+        chain_input->image.width == working.width && chain_input->image.height == working.height;
+    if (is_deferred || ((chain || tail_into_resample) && !(state.valid && state.key == key))) {
+      if (!chain) {
+        chain = std::make_shared<FusedChain>();
+        chain->input = input_refs[0];
+        if (!chain->input) {
+          return make_error("node '" + id + "' (" + type->name + "): input '" +
+                            type->inputs[0].name + "' has no image");
+        }
+      }
+      if (state.instance == nullptr) {
+        state.instance = type->desc->create(&impl_->host);
+        if (state.instance == nullptr) {
+          return make_error("node '" + id + "' (" + type->name +
+                            "): the plugin could not create the node (out of memory?)");
+        }
+      }
+      auto stage = std::make_unique<FusedChain::Stage>();
+      stage->type = type;
+      stage->instance = state.instance;
+      stage->params = std::move(params);
+      stage->strings = std::move(strings);
+      stage->inputs = std::move(inputs);
+      stage->call.impl = impl_.get();
+      stage->call.state = &state;
+      stage->call.node_id = id;
+      fill_process_ctx(stage->ctx, stage->call, stage->inputs, stage->params, settings, format,
+                       time, options.frame, working);
+      chain->stages.push_back(std::move(stage));
+    }
+    if (is_deferred) {
+      for (auto& image : state.images) image.reset();
+      state.valid = false;
+      state.key = key;
+      chains[id] = chain;
+      NodeTiming timing{id, type->name, 0, 0, false};
+      timing.fused = true;
+      timings_.push_back(timing);
+    } else if (state.valid && state.key == key) {
       timings_.push_back(NodeTiming{id, type->name, 0, 0, true});
+    } else if (chain) {
+      const int width = tail_into_resample ? settings.width : chain->input->image.width;
+      const int height = tail_into_resample ? settings.height : chain->input->image.height;
+      if (options.finish_each_node) glFinish();
+      auto start = std::chrono::steady_clock::now();
+      std::vector<FusedStage> stages;
+      for (auto& stage : chain->stages) {
+        stages.push_back(FusedStage{stage->type->fusable, stage->instance, &stage->ctx});
+      }
+      auto fused = impl_->fuser.run(impl_->shaders, impl_->pool, stages, chain->input, width,
+                                    height, format);
+      if (options.finish_each_node) glFinish();
+      auto end = std::chrono::steady_clock::now();
+      impl_->reset_gl_state();
+      ++run_counts_[id];
+      std::string errors;
+      for (auto& stage : chain->stages) {
+        if (!stage->call.error.empty()) {
+          errors += "node '" + stage->call.node_id + "' (" + stage->type->name +
+                    "): " + stage->call.error + "\n";
+        }
+      }
+      if (!fused.ok() || !errors.empty()) {
+        state.valid = false;
+        return make_error(errors.empty() ? "node '" + id + "' (" + type->name +
+                                               "), fused pass: " + fused.message()
+                                         : errors.substr(0, errors.size() - 1));
+      }
+      for (auto& image : state.images) image.reset();
+      state.images[0] = *fused;
+      state.key = key;
+      state.valid = true;
+      timings_.push_back(NodeTiming{id, type->name, 0,
+                                    std::chrono::duration<double, std::milli>(end - start).count(),
+                                    false});
     } else {
       CallState call;
       call.impl = impl_.get();
@@ -492,24 +645,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       call.node_id = id;
       call.input_refs = &input_refs;
       aq_process_ctx ctx{};
-      ctx.struct_size = sizeof(aq_process_ctx);
-      ctx.host = &impl_->host;
-      ctx.host_data = &call;
-      ctx.node_id = call.node_id.c_str();
-      ctx.inputs = inputs.data();
-      ctx.input_count = static_cast<uint32_t>(inputs.size());
-      ctx.params = params.data();
-      ctx.param_count = static_cast<uint32_t>(params.size());
-      ctx.width = working.width;
-      ctx.height = working.height;
-      ctx.precision = settings.precision == "float" ? AQ_PRECISION_FLOAT : AQ_PRECISION_HALF;
-      ctx.working_format = format;
-      ctx.time = time;
-      ctx.frame = options.frame;
-      ctx.fps = settings.fps;
-      ctx.gl_generation = context_.generation();
-      ctx.quality = quality_index(settings.quality);
-      ctx.render_scale = render_scale(settings.quality);
+      fill_process_ctx(ctx, call, inputs, params, settings, format, time, options.frame, working);
 
       for (auto& image : state.images) image.reset();
       for (auto& scene : state.scenes) scene = nullptr;
@@ -607,8 +743,14 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
   }
   // A proxy render's output (working size) goes back to the graph's size.
   if (result && result->image.width == working.width && result->image.height == working.height) {
-    auto resampled = impl_->resampler.resample(impl_->shaders, impl_->pool, result, settings.width,
-                                               settings.height);
+    const uint32_t out_format = result->image.format;
+    const bool filterable = out_format == AQ_FORMAT_RGBA16F || out_format == AQ_FORMAT_RGBA32F ||
+                            out_format == AQ_FORMAT_R32F;
+    if (!filterable || (working.width == settings.width && working.height == settings.height)) {
+      return result;  // ids and depth stay at the working size: they cannot be filtered
+    }
+    auto resampled = impl_->fuser.run(impl_->shaders, impl_->pool, {}, result, settings.width,
+                                      settings.height, out_format);
     impl_->reset_gl_state();
     if (!resampled.ok())
       return make_error("resampling the output to the graph's size: " + resampled.message());

@@ -3,6 +3,8 @@
 // loading (validator, editor panels, `aquarelle nodes`) can trust the model without re-checking.
 #include <aquarelle/core/registry.h>
 
+#include <cstddef>
+
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -250,10 +252,11 @@ NodeType node_type_from_desc(const aq_node_desc& desc, const std::string& plugin
     return NodeType{};
   };
 
-  if (desc.struct_size < sizeof(aq_node_desc)) {
+  // ABI 1 grows at the end: a description from before `pointwise` was appended still loads.
+  constexpr size_t kFirstSize = offsetof(aq_node_desc, pointwise);
+  if (desc.struct_size < kFirstSize) {
     return refuse("struct_size " + std::to_string(desc.struct_size) + " is smaller than " +
-                  std::to_string(sizeof(aq_node_desc)) +
-                  " (the plugin was built against another plugin.h)");
+                  std::to_string(kFirstSize) + " (the plugin was built against another plugin.h)");
   }
   if (desc.type_name == nullptr) return refuse("type_name is NULL");
   NodeType type;
@@ -279,6 +282,22 @@ NodeType node_type_from_desc(const aq_node_desc& desc, const std::string& plugin
   if (std::string reason = read_params(desc.params, desc.param_count, &type.params);
       !reason.empty()) {
     return refuse(reason);
+  }
+  if (desc.struct_size >= sizeof(aq_node_desc) && desc.pointwise != nullptr) {
+    const aq_pointwise_desc& pointwise = *desc.pointwise;
+    const bool one_image_in_one_out = type.inputs.size() == 1 && type.outputs.size() == 1 &&
+                                      type.inputs[0].type == AQ_PORT_IMAGE &&
+                                      type.outputs[0].type == AQ_PORT_IMAGE;
+    if ((desc.flags & AQ_NODE_POINTWISE) == 0 || !one_image_in_one_out) {
+      return refuse(
+          "a fusable function (pointwise) needs the AQ_NODE_POINTWISE flag and exactly "
+          "one image input and one image output");
+    }
+    if (pointwise.struct_size < sizeof(aq_pointwise_desc) || pointwise.glsl == nullptr ||
+        pointwise.set_uniforms == nullptr) {
+      return refuse("its pointwise description needs struct_size, glsl and set_uniforms");
+    }
+    type.fusable = &pointwise;
   }
   type.category = text_or_empty(desc.category);
   type.description = text_or_empty(desc.description);

@@ -2,6 +2,8 @@
 // (Paré-Vogt & Chaid §5): out = mix(colour, tint, amount). A template for pointwise nodes.
 #include <aquarelle/plugin.hpp>
 
+#include <string>
+
 #include "tint_shaders.h"
 
 namespace {
@@ -14,26 +16,34 @@ constexpr aq_param_desc kParams[] = {
     aq::color_param("tint", 0.0, 0.07, 0.1, "water colour (linear)")};
 
 struct Tint {
+  std::string fragment = aq::pointwise_fragment(shaders::tint_glsl.text);
+
   int process(aq::Context& ctx) {
     aq_image in = ctx.input_image(0);
     if (ctx.param_float(kAmount) <= 0.0) return ctx.pass_through(0, 0) ? AQ_OK : AQ_ERROR;
     aq_image out;
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
-    GLuint program = ctx.program(shaders::tint_frag);
+    GLuint program = ctx.program(aq_shader_source{"tint.glsl", fragment.c_str(), nullptr});
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
     aq::bind_texture(program, "u_image", 0, in);
-    aq::set_vec3(program, "u_tint", ctx.param_vec3(kTint));
-    aq::set_float(program, "u_amount", ctx.param_float(kAmount));
+    set_uniforms(ctx, program, "u_");
     bool drawn = ctx.draw(out);
     aq::unbind_textures(1);
     return drawn ? AQ_OK : AQ_ERROR;
+  }
+
+  // The uniforms of tint.glsl, named prefix + name (the host fuses this node's function).
+  int set_uniforms(aq::Context& ctx, GLuint program, const std::string& prefix) {
+    aq::set_vec3(program, (prefix + "tint").c_str(), ctx.param_vec3(kTint));
+    aq::set_float(program, (prefix + "amount").c_str(), ctx.param_float(kAmount));
+    return AQ_OK;
   }
 };
 
 }  // namespace
 
-AQ_NODE(kTintNode, Tint, "tint", "Color",
-        "Mixes the image towards a water colour: mix(colour, tint, amount).", AQ_NODE_POINTWISE,
-        kInputs, kOutputs, kParams);
+AQ_POINTWISE_NODE(kTintNode, Tint, "tint", "Color",
+                  "Mixes the image towards a water colour: mix(colour, tint, amount).", kInputs,
+                  kOutputs, kParams, shaders::tint_glsl);
 AQ_PLUGIN("tint", "1.0", &kTintNode)

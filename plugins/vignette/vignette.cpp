@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "vignette_shaders.h"
 
@@ -29,6 +30,8 @@ double corner_distance(int width, int height) {
 }
 
 struct Vignette {
+  std::string fragment = aq::pointwise_fragment(shaders::vignette_glsl.text);
+
   int process(aq::Context& ctx) {
     aq_image in = ctx.input_image(0);
     const double radius = ctx.param_float(kRadius);
@@ -38,23 +41,38 @@ struct Vignette {
     if (strength <= 0.0 || radius >= corner) return ctx.pass_through(0, 0) ? AQ_OK : AQ_ERROR;
     aq_image out;
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
-    GLuint program = ctx.program(shaders::vignette_frag);
+    GLuint program = ctx.program(aq_shader_source{"vignette.glsl", fragment.c_str(), nullptr});
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
     aq::bind_texture(program, "u_image", 0, in);
-    aq::set_vec2(program, "u_size", in.width, in.height);
-    aq::set_float(program, "u_radius", radius);
-    aq::set_float(program, "u_ramp", ctx.param_float(kSoftness) * (corner - radius));
-    aq::set_float(program, "u_strength", strength);
+    set_uniforms_for(ctx, program, "u_", in.width, in.height);
     bool drawn = ctx.draw(out);
     aq::unbind_textures(1);
     return drawn ? AQ_OK : AQ_ERROR;
+  }
+
+  // The uniforms of vignette.glsl, named prefix + name (the host fuses this node's function
+  // into a pass of ctx's size).
+  int set_uniforms(aq::Context& ctx, GLuint program, const std::string& prefix) {
+    set_uniforms_for(ctx, program, prefix, ctx.width(), ctx.height());
+    return AQ_OK;
+  }
+
+  // The ramp depends on the image's shape (its corner distance), so the size is the image's.
+  void set_uniforms_for(aq::Context& ctx, GLuint program, const std::string& prefix, int width,
+                        int height) {
+    const double radius = ctx.param_float(kRadius);
+    const double corner = corner_distance(width, height);
+    aq::set_float(program, (prefix + "radius").c_str(), radius);
+    aq::set_float(program, (prefix + "ramp").c_str(),
+                  ctx.param_float(kSoftness) * std::max(0.0, corner - radius));
+    aq::set_float(program, (prefix + "strength").c_str(), ctx.param_float(kStrength));
   }
 };
 
 }  // namespace
 
-AQ_NODE(kVignetteNode, Vignette, "vignette", "Color",
-        "Darkens the image towards its corners (aspect-correct radial ramp).", AQ_NODE_POINTWISE,
-        kInputs, kOutputs, kParams);
+AQ_POINTWISE_NODE(kVignetteNode, Vignette, "vignette", "Color",
+                  "Darkens the image towards its corners (aspect-correct radial ramp).", kInputs,
+                  kOutputs, kParams, shaders::vignette_glsl);
 AQ_PLUGIN("vignette", "1.0", &kVignetteNode)

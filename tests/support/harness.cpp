@@ -65,7 +65,9 @@ Backend& backend(const std::string& name) {
 
 }  // namespace
 
-const Registry& registry() { return loaded().registry; }
+const Registry& registry() {
+  return loaded().registry;
+}
 
 std::string source_path(const std::string& relative) {
   return std::string(AQ_SOURCE_DIR) + "/" + relative;
@@ -90,6 +92,7 @@ static Result<ImageF> render(Graph graph, const RenderOptions& options,
   eval.images = &images;
   eval.retain_outputs = false;
   eval.retain_static_outputs = false;  // every call really runs every node: tests compare runs
+  eval.fuse_pointwise = options.fuse_pointwise;
   auto texture = b.evaluator->evaluate(graph, eval, output);
   if (!texture.ok()) return texture.error();
   return b.evaluator->read_back(*texture);
@@ -167,7 +170,8 @@ double mean_abs_diff(const ImageF& a, const ImageF& b, int channels) {
   double sum = 0;
   for (int y = 0; y < a.height; ++y) {
     for (int x = 0; x < a.width; ++x) {
-      for (int c = 0; c < n; ++c) sum += std::abs(static_cast<double>(a.at(x, y, c)) - b.at(x, y, c));
+      for (int c = 0; c < n; ++c)
+        sum += std::abs(static_cast<double>(a.at(x, y, c)) - b.at(x, y, c));
     }
   }
   return sum / (static_cast<double>(a.width) * a.height * n);

@@ -22,14 +22,15 @@
 namespace aq::test {
 
 struct RenderOptions {
-  int width = 64;   // the graph's resolution (ctx.width/height for nodes that use it)
+  int width = 64;  // the graph's resolution (ctx.width/height for nodes that use it)
   int height = 64;
   int frame = 1;
   double fps = 24.0;
   std::string precision = "float";  // "half" or "float"
   std::string quality = "final";
-  std::string gl = "egl";           // "egl" or "osmesa"
-  std::string output;               // "node.port"; empty: the graph's output / node's first
+  std::string gl = "egl";      // "egl" or "osmesa"
+  std::string output;          // "node.port"; empty: the graph's output / node's first
+  bool fuse_pointwise = true;  // EvalOptions::fuse_pointwise
 };
 
 // Every plugin in the build's plugin folder plus the host's built-in types.
@@ -54,7 +55,7 @@ double psnr(const ImageF& a, const ImageF& b, double peak = 1.0, int channels = 
 bool all_finite(const ImageF& image);
 
 // Small deterministic test images.
-ImageF gradient_image(int width, int height);     // r = x, g = y, b = 1 - x, a = 1
+ImageF gradient_image(int width, int height);  // r = x, g = y, b = 1 - x, a = 1
 ImageF random_image(int width, int height, unsigned seed, float lo = 0.0f, float hi = 1.0f);
 ImageF constant_image(int width, int height, float r, float g, float b, float a = 1.0f);
 ImageF checker_image(int width, int height, int cell);

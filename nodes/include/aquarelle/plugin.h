@@ -159,6 +159,26 @@ enum {
 struct aq_host;
 struct aq_process_ctx;
 
+/* A pointwise node's per-pixel function, so the host can fuse a chain of pointwise nodes (and
+ * the resampling of a proxy render's output) into one pass instead of one pass per node, as
+ * Blender's compositor does. The node's process() must compute the same function: the host
+ * runs it whenever it does not fuse (e.g. when the node's own output is shown).
+ *
+ * `glsl` defines `vec4 AQ_APPLY(vec4 color, vec2 pixel, vec2 size)`: the output at the pixel
+ * centre `pixel` (in pixels, gl_FragCoord convention) of an image of `size` pixels, from the
+ * input colour there. Every uniform it declares is named `AQ_UNIFORM(name)`; the host defines
+ * both macros differently for each fused node. It may #include "aquarelle/<lib>.glsl".
+ * `set_uniforms` sets them on the bound `program`: the uniform AQ_UNIFORM(x) is named
+ * prefix + "x". ctx is as for process(), with width and height those of the fused pass.
+ * Returns AQ_OK, or AQ_ERROR after ctx->host->fail. */
+typedef struct aq_pointwise_desc {
+  uint32_t struct_size;
+  const char* name; /* shown in compile errors, e.g. "tint.glsl" */
+  const char* glsl;
+  int (*set_uniforms)(void* instance, struct aq_process_ctx* ctx, uint32_t program,
+                      const char* prefix);
+} aq_pointwise_desc;
+
 typedef struct aq_node_desc {
   uint32_t struct_size;
   const char* type_name; /* unique, [a-z0-9_]+ */
@@ -177,6 +197,10 @@ typedef struct aq_node_desc {
   void (*destroy)(void* instance);
   /* Runs the node. Returns AQ_OK, or AQ_ERROR after calling ctx->host->fail. */
   int (*process)(void* instance, struct aq_process_ctx* ctx);
+  /* Appended in ABI 1: for AQ_NODE_POINTWISE nodes with one image input and one image output,
+   * the per-pixel function the host may fuse; NULL: never fused. Read it only when
+   * struct_size covers it. */
+  const aq_pointwise_desc* pointwise;
 } aq_node_desc;
 
 typedef struct aq_plugin_desc {

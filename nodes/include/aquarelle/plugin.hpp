@@ -251,6 +251,39 @@ struct NodeAdapter {
   }
 };
 
+// The fusion hook of a pointwise node (aq_pointwise_desc::set_uniforms): NodeClass has
+// `int set_uniforms(aq::Context& ctx, GLuint program, const std::string& prefix)`.
+template <typename NodeClass>
+struct PointwiseAdapter {
+  static int set_uniforms(void* instance, aq_process_ctx* raw, uint32_t program,
+                          const char* prefix) {
+    Context ctx(raw);
+    if (!ensure_gl(raw)) return ctx.fail("could not load OpenGL functions from the host");
+    try {
+      return static_cast<NodeClass*>(instance)->set_uniforms(ctx, program,
+                                                             prefix != nullptr ? prefix : "");
+    } catch (const std::exception& e) {
+      return ctx.fail(std::string("internal error: ") + e.what());
+    } catch (...) {
+      return ctx.fail("internal error (unknown exception)");
+    }
+  }
+};
+
+// The stand-alone fragment shader of a pointwise node from its fusable function (see
+// aq_pointwise_desc): reads the input texel, applies the function, writes the result. A
+// node's process() uses it so that its own pass and the host's fused pass share one
+// definition.
+inline std::string pointwise_fragment(const char* glsl) {
+  return std::string("#define AQ_APPLY aq_apply\n#define AQ_UNIFORM(name) u_##name\n") + glsl +
+         "\nlayout(location = 0) out vec4 o_color;\n"
+         "uniform sampler2D u_image;\n"
+         "void main() {\n"
+         "  vec4 c = texelFetch(u_image, ivec2(gl_FragCoord.xy), 0);\n"
+         "  o_color = aq_apply(c, gl_FragCoord.xy, vec2(textureSize(u_image, 0)));\n"
+         "}\n";
+}
+
 template <typename T, size_t N>
 constexpr uint32_t count_of(const T (&)[N]) {
   return static_cast<uint32_t>(N);
@@ -273,9 +306,33 @@ constexpr uint32_t count_of(const T (&)[N]) {
                                     aq::count_of(params),                                          \
                                     &aq::NodeAdapter<NodeClass>::create,                           \
                                     &aq::NodeAdapter<NodeClass>::destroy,                          \
-                                    &aq::NodeAdapter<NodeClass>::process}
+                                    &aq::NodeAdapter<NodeClass>::process,                          \
+                                    nullptr}
 
-// Same, for a node without parameters.
+// Same, for a pointwise node the host may fuse: `glsl` is the aq_shader_source of its
+// per-pixel function (see aq_pointwise_desc) and NodeClass has set_uniforms (PointwiseAdapter).
+#define AQ_POINTWISE_NODE(NAME, NodeClass, type_name, category, description, inputs, outputs, \
+                          params, glsl)                                                       \
+  static const aq_pointwise_desc NAME##_pointwise = {                                         \
+      sizeof(aq_pointwise_desc), (glsl).name, (glsl).text,                                    \
+      &aq::PointwiseAdapter<NodeClass>::set_uniforms};                                        \
+  static const aq_node_desc NAME = {sizeof(aq_node_desc),                                     \
+                                    type_name,                                                \
+                                    category,                                                 \
+                                    description,                                              \
+                                    AQ_NODE_POINTWISE,                                        \
+                                    inputs,                                                   \
+                                    aq::count_of(inputs),                                     \
+                                    outputs,                                                  \
+                                    aq::count_of(outputs),                                    \
+                                    params,                                                   \
+                                    aq::count_of(params),                                     \
+                                    &aq::NodeAdapter<NodeClass>::create,                      \
+                                    &aq::NodeAdapter<NodeClass>::destroy,                     \
+                                    &aq::NodeAdapter<NodeClass>::process,                     \
+                                    &NAME##_pointwise}
+
+// Same as AQ_NODE, for a node without parameters.
 #define AQ_NODE_NO_PARAMS(NAME, NodeClass, type_name, category, description, flags, inputs, \
                           outputs)                                                          \
   static const aq_node_desc NAME = {sizeof(aq_node_desc),                                   \
@@ -291,7 +348,8 @@ constexpr uint32_t count_of(const T (&)[N]) {
                                     0,                                                      \
                                     &aq::NodeAdapter<NodeClass>::create,                    \
                                     &aq::NodeAdapter<NodeClass>::destroy,                   \
-                                    &aq::NodeAdapter<NodeClass>::process}
+                                    &aq::NodeAdapter<NodeClass>::process,                   \
+                                    nullptr}
 
 // Same, for a source node: no inputs (generators such as noise, caustics, scene).
 #define AQ_SOURCE_NODE(NAME, NodeClass, type_name, category, description, flags, outputs, params) \
@@ -308,7 +366,8 @@ constexpr uint32_t count_of(const T (&)[N]) {
                                     aq::count_of(params),                                         \
                                     &aq::NodeAdapter<NodeClass>::create,                          \
                                     &aq::NodeAdapter<NodeClass>::destroy,                         \
-                                    &aq::NodeAdapter<NodeClass>::process}
+                                    &aq::NodeAdapter<NodeClass>::process,                         \
+                                    nullptr}
 
 // Exports the plugin entry point listing the given node descriptions (pointers).
 #define AQ_PLUGIN(plugin_name, plugin_version, ...)                                    \

@@ -27,9 +27,10 @@ namespace aq {
 struct NodeTiming {
   std::string node;
   std::string type;
-  double gpu_ms = 0;   // GPU time of process() (timer query)
-  double cpu_ms = 0;   // wall time of process()
-  bool cached = false; // reused from the previous evaluation, not run
+  double gpu_ms = 0;    // GPU time of process() (timer query)
+  double cpu_ms = 0;    // wall time of process()
+  bool cached = false;  // reused from the previous evaluation, not run
+  bool fused = false;   // ran inside the pass of the node reading it (pointwise fusion)
 };
 
 struct EvalOptions {
@@ -46,6 +47,9 @@ struct EvalOptions {
   // node's GPU work as well: `aquarelle bench` uses it because llvmpipe's GL_TIMESTAMP pairs
   // around draws that no flush separates read far too low. Slower; off by default.
   bool finish_each_node = false;
+  // Run chains of pointwise nodes that give a fusable function as one pass (and the output's
+  // pointwise tail inside the proxy upscale). Off: every node runs its own process().
+  bool fuse_pointwise = true;
   // Images for `image_input` nodes, by their `name` parameter (tests, embedding).
   const std::map<std::string, ImageF>* images = nullptr;
 };

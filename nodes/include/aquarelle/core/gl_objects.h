@@ -37,15 +37,33 @@ class Handle {
   GLuint id_ = 0;
 };
 
-inline void delete_texture(GLuint id) { glDeleteTextures(1, &id); }
-inline void delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
-inline void delete_buffer(GLuint id) { glDeleteBuffers(1, &id); }
-inline void delete_vertex_array(GLuint id) { glDeleteVertexArrays(1, &id); }
-inline void delete_program(GLuint id) { glDeleteProgram(id); }
-inline void delete_shader(GLuint id) { glDeleteShader(id); }
-inline void delete_query(GLuint id) { glDeleteQueries(1, &id); }
-inline void delete_renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
-inline void delete_sampler(GLuint id) { glDeleteSamplers(1, &id); }
+inline void delete_texture(GLuint id) {
+  glDeleteTextures(1, &id);
+}
+inline void delete_framebuffer(GLuint id) {
+  glDeleteFramebuffers(1, &id);
+}
+inline void delete_buffer(GLuint id) {
+  glDeleteBuffers(1, &id);
+}
+inline void delete_vertex_array(GLuint id) {
+  glDeleteVertexArrays(1, &id);
+}
+inline void delete_program(GLuint id) {
+  glDeleteProgram(id);
+}
+inline void delete_shader(GLuint id) {
+  glDeleteShader(id);
+}
+inline void delete_query(GLuint id) {
+  glDeleteQueries(1, &id);
+}
+inline void delete_renderbuffer(GLuint id) {
+  glDeleteRenderbuffers(1, &id);
+}
+inline void delete_sampler(GLuint id) {
+  glDeleteSamplers(1, &id);
+}
 
 using Texture = Handle<delete_texture>;
 using Framebuffer = Handle<delete_framebuffer>;

@@ -39,8 +39,10 @@ struct NodeType {
   std::vector<PortInfo> inputs;
   std::vector<PortInfo> outputs;
   std::vector<ParamInfo> params;
-  std::string plugin_file;  // "(built in)" for host node types
+  std::string plugin_file;             // "(built in)" for host node types
   const aq_node_desc* desc = nullptr;  // null for host-built-in types
+  // The per-pixel function the evaluator may fuse (pointwise nodes that give one), else null.
+  const aq_pointwise_desc* fusable = nullptr;
 
   bool time_dependent() const { return (flags & AQ_NODE_TIME_DEPENDENT) != 0; }
   bool pointwise() const { return (flags & AQ_NODE_POINTWISE) != 0; }

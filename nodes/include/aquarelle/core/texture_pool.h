@@ -34,8 +34,8 @@ class TexturePool {
 
   TextureRef acquire(int width, int height, uint32_t format);
 
-  size_t live_count() const { return live_; }        // handed out, not yet returned
-  size_t free_count() const;                         // waiting in the pool
+  size_t live_count() const { return live_; }  // handed out, not yet returned
+  size_t free_count() const;                   // waiting in the pool
   size_t peak_live_count() const { return peak_live_; }
   size_t created_count() const { return created_; }  // GL textures ever made
   size_t bytes_allocated() const { return bytes_; }  // live + free

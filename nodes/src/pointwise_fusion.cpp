@@ -1,0 +1,88 @@
+// Fused pointwise passes (see pointwise_fusion.h).
+#include "pointwise_fusion.h"
+
+namespace aq {
+
+std::string fused_uniform_prefix(size_t stage) {
+  return "aq_s" + std::to_string(stage) + "_";
+}
+
+std::string fused_fragment_source(const std::vector<const char*>& glsl, bool resample) {
+  std::string source;
+  for (size_t i = 0; i < glsl.size(); ++i) {
+    source += "#define AQ_APPLY aq_apply_" + std::to_string(i) + "\n";
+    source += "#define AQ_UNIFORM(name) " + fused_uniform_prefix(i) + "##name\n";
+    source += glsl[i];
+    source += "\n#undef AQ_APPLY\n#undef AQ_UNIFORM\n";
+  }
+  source +=
+      "in vec2 v_uv;\n"
+      "layout(location = 0) out vec4 o_color;\n"
+      "uniform sampler2D aq_fused_input;\n"
+      "uniform vec2 aq_fused_size;\n"
+      "void main() {\n";
+  source += resample ? "  vec4 c = texture(aq_fused_input, v_uv);\n"
+                     : "  vec4 c = texelFetch(aq_fused_input, ivec2(gl_FragCoord.xy), 0);\n";
+  for (size_t i = 0; i < glsl.size(); ++i) {
+    source += "  c = aq_apply_" + std::to_string(i) + "(c, gl_FragCoord.xy, aq_fused_size);\n";
+  }
+  source += "  o_color = c;\n}\n";
+  return source;
+}
+
+Result<TextureRef> PointwiseFuser::run(ShaderCache& shaders, TexturePool& pool,
+                                       const std::vector<FusedStage>& stages,
+                                       const TextureRef& input, int width, int height,
+                                       uint32_t format) {
+  const aq_image& in = input->image;
+  const bool resample = in.width != width || in.height != height;
+  std::vector<const char*> glsl;
+  std::string names;
+  for (const FusedStage& stage : stages) {
+    glsl.push_back(stage.pointwise->glsl);
+    names += (names.empty() ? "" : "+") +
+             std::string(stage.pointwise->name != nullptr ? stage.pointwise->name : "pointwise");
+  }
+  const std::string text = fused_fragment_source(glsl, resample);
+  const std::string name = "fused(" + names + ")";
+  const aq_shader_source fragment{name.c_str(), text.c_str(), nullptr};
+  auto program = shaders.program(nullptr, &fragment);
+  if (!program.ok()) return program.error();
+  if (!framebuffer_) {
+    GLuint framebuffer = 0;
+    glCreateFramebuffers(1, &framebuffer);  // created, not just named: DSA calls need that
+    framebuffer_ = gl::Framebuffer(framebuffer);
+    vertex_array_ = gl::make_vertex_array();
+  }
+  TextureRef out = pool.acquire(width, height, format);
+  glUseProgram(*program);
+  for (size_t i = 0; i < stages.size(); ++i) {
+    const FusedStage& stage = stages[i];
+    stage.ctx->width = width;
+    stage.ctx->height = height;
+    const std::string prefix = fused_uniform_prefix(i);
+    if (stage.pointwise->set_uniforms(stage.instance, stage.ctx, *program, prefix.c_str()) !=
+        AQ_OK) {
+      glUseProgram(0);
+      return make_error("setting the uniforms of fused stage " + std::to_string(i + 1) + " failed");
+    }
+  }
+  glUseProgram(*program);  // a stage may have changed the binding
+  glBindTextureUnit(0, in.texture);
+  glUniform1i(glGetUniformLocation(*program, "aq_fused_input"), 0);
+  glUniform2f(glGetUniformLocation(*program, "aq_fused_size"), static_cast<float>(width),
+              static_cast<float>(height));
+  glNamedFramebufferTexture(framebuffer_.get(), GL_COLOR_ATTACHMENT0, out->image.texture, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
+  glViewport(0, 0, width, height);
+  glBindVertexArray(vertex_array_.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glBindTextureUnit(0, 0);
+  glUseProgram(0);
+  glNamedFramebufferTexture(framebuffer_.get(), GL_COLOR_ATTACHMENT0, 0, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return out;
+}
+
+}  // namespace aq

@@ -1,0 +1,44 @@
+// Fused pointwise passes: a chain of pointwise nodes that give their per-pixel function
+// (aq_pointwise_desc) runs as one shader instead of one pass per node, optionally resampling
+// its input to another size on the way (the output upscale of a proxy render), as Blender's
+// compositor fuses its pixel operations.
+#pragma once
+
+#include <aquarelle/core/gl_objects.h>
+#include <aquarelle/core/result.h>
+#include <aquarelle/core/texture_pool.h>
+#include <aquarelle/plugin.h>
+
+#include <string>
+#include <vector>
+
+#include "shader_cache.h"
+
+namespace aq {
+
+struct FusedStage {
+  const aq_pointwise_desc* pointwise = nullptr;
+  void* instance = nullptr;
+  aq_process_ctx* ctx = nullptr;  // as for process(); its width and height are the pass's
+};
+
+class PointwiseFuser {
+ public:
+  // Applies `stages` in order to `input`, writing a new pool texture of width x height in
+  // `format`. An input of another size is read with bilinear filtering (pixel centres map to
+  // pixel centres), one of the same size texel by texel.
+  Result<TextureRef> run(ShaderCache& shaders, TexturePool& pool,
+                         const std::vector<FusedStage>& stages, const TextureRef& input, int width,
+                         int height, uint32_t format);
+
+ private:
+  gl::Framebuffer framebuffer_;
+  gl::VertexArray vertex_array_;
+};
+
+// The fused fragment shader for functions `glsl` (stage i's uniforms get the prefix
+// "aq_s<i>_"), reading its input by texel or, with `resample`, bilinearly.
+std::string fused_fragment_source(const std::vector<const char*>& glsl, bool resample);
+std::string fused_uniform_prefix(size_t stage);
+
+}  // namespace aq
