@@ -38,7 +38,9 @@ struct Preset {
 
 // The seed's Figure 1: sand tray, rocks, corals, seaweed, shells, starfish, two clay pots, and a
 // fish swimming a loop. Same seed, same scene, on every machine.
-Preset make_underwater(uint64_t seed);
+// `detail` scales the sand tray's cell count (1 for a full-size render, the render scale for a
+// proxy one).
+Preset make_underwater(uint64_t seed, double detail = 1.0);
 
 // Small scenes for tests: "plane_box" (10x10 ground plane, id 1, and a unit box on it, id 2),
 // "pot" (the clay pot, id 1), "cube" (unit cube centred at the origin, id 1), "double_plane"

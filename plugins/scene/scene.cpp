@@ -99,12 +99,13 @@ class SceneNode {
     std::string path;
     int64_t seed = 0;
     int64_t smoothing = 0;
+    double detail = 1.0;
     bool operator==(const StaticKey&) const = default;
   };
 
   bool update_static(aq::Context& ctx) {
     StaticKey key{ctx.param_enum(kPreset), ctx.param_string(kPath), ctx.param_int(kSeed),
-                  ctx.param_int(kSmoothing)};
+                  ctx.param_int(kSmoothing), ctx.render_scale()};
     if (built_ && key == static_key_) return true;
     scene::Preset preset;
     if (key.preset == kPresetFile) {
@@ -114,7 +115,7 @@ class SceneNode {
         return false;
       }
     } else if (key.preset == 0) {
-      preset = scene::make_underwater(static_cast<uint64_t>(key.seed));
+      preset = scene::make_underwater(static_cast<uint64_t>(key.seed), key.detail);
     } else if (key.preset > 0 && key.preset < kPresetFile) {
       scene::make_test_preset(kPresetNames[key.preset], &preset);
     } else {
