@@ -34,7 +34,8 @@ struct NodeSamples {
         it->second.id = t.node;
         it->second.type = t.type;
       }
-      if (!t.cached) ++it->second.runs;
+      if (!t.cached && !t.fused) ++it->second.runs;
+      if (t.fused) it->second.fused = true;
       wall[t.node].push_back(t.cpu_ms);
       gpu[t.node].push_back(t.gpu_ms);
       wall_sum += t.cpu_ms;

@@ -26,6 +26,9 @@ struct NodeStats {
   Spread wall_ms;
   Spread gpu_ms;
   int runs = 0;  // frames (of the timed ones) on which process() ran
+  // Its function ran inside the pass of the node reading it (pointwise fusion): its time is in
+  // that node's.
+  bool fused = false;
 };
 
 struct PipelineTiming {

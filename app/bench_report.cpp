@@ -37,7 +37,8 @@ json pipeline_json(const PipelineTiming& timing, double copy_ms) {
                      {"wall_ms", spread_json(n.wall_ms)},
                      {"gpu_ms", spread_json(n.gpu_ms)},
                      {"copy_passes", ratio(n.wall_ms.median, copy_ms)},
-                     {"runs", n.runs}});
+                     {"runs", n.runs},
+                     {"fused", n.fused}});
   }
   return {{"static_nodes_cached", timing.static_cached},
           {"frame_ms", spread_json(timing.frame_ms)},
@@ -146,6 +147,11 @@ void print_report(const BenchReport& r, std::FILE* out) {
       if (candidate.id == n.id) c = &candidate;
     }
     char cached[64] = "-";
+    if (n.fused) {
+      std::fprintf(out, "%-14s %-12s %36s\n", n.id.c_str(), n.type.c_str(),
+                   "fused into its reader's pass");
+      continue;
+    }
     if (c != nullptr) {
       std::snprintf(cached, sizeof(cached), "%9.3f [%6.3f .. %6.3f]", c->wall_ms.median,
                     c->wall_ms.min, c->wall_ms.max);

@@ -21,7 +21,9 @@ namespace aq::app {
 namespace {
 
 volatile std::sig_atomic_t g_stop_requested = 0;
-void request_stop(int) { g_stop_requested = 1; }
+void request_stop(int) {
+  g_stop_requested = 1;
+}
 
 constexpr const char* kRenderHelp =
     R"(usage: aquarelle render GRAPH -o OUT [options]
@@ -56,15 +58,14 @@ std::string frame_path(const std::string& pattern, int frame) {
   size_t width = (end == std::string::npos ? pattern.size() : end) - start;
   char number[32];
   std::snprintf(number, sizeof(number), "%0*d", static_cast<int>(width), frame);
-  return pattern.substr(0, start) + number +
-         (end == std::string::npos ? "" : pattern.substr(end));
+  return pattern.substr(0, start) + number + (end == std::string::npos ? "" : pattern.substr(end));
 }
 
 void print_progress(int done, int total, double seconds) {
   const int bar = 30;
   int filled = total > 0 ? done * bar / total : bar;
-  std::printf("\r[%.*s%*s] %d/%d frames  %.1f s", filled,
-              "##############################", bar - filled, "", done, total, seconds);
+  std::printf("\r[%.*s%*s] %d/%d frames  %.1f s", filled, "##############################",
+              bar - filled, "", done, total, seconds);
   std::fflush(stdout);
 }
 
@@ -210,8 +211,7 @@ int run_render(int argc, char** argv) {
   std::error_code ec;
   std::filesystem::path out_dir = std::filesystem::path(frame_path(output, first)).parent_path();
   if (!out_dir.empty() && !std::filesystem::is_directory(out_dir, ec)) {
-    std::fprintf(stderr,
-                 "aquarelle render: output folder '%s' does not exist: create it first\n",
+    std::fprintf(stderr, "aquarelle render: output folder '%s' does not exist: create it first\n",
                  out_dir.string().c_str());
     return kExitBadInput;
   }
@@ -262,7 +262,7 @@ int run_render(int argc, char** argv) {
     options.frame = frame;
     options.measure_gpu_time = stats;
     options.finish_each_node = stats;  // timestamps without a flush under-read on llvmpipe
-    options.retain_outputs = false;  // textures return to the pool after their last reader
+    options.retain_outputs = false;    // textures return to the pool after their last reader
     auto result = evaluator.evaluate(graph, options);
     if (!result.ok()) {
       if (progress) std::printf("\n");
@@ -277,7 +277,8 @@ int run_render(int argc, char** argv) {
       }
       it->second.first.gpu_ms += timing.gpu_ms;
       it->second.first.cpu_ms += timing.cpu_ms;
-      if (!timing.cached) ++it->second.second;
+      if (!timing.cached && !timing.fused) ++it->second.second;
+      if (timing.fused) it->second.first.fused = true;
     }
     const aq_image& image = (*result)->image;
     Result<ImageF> pixels = make_error("not read");
@@ -322,6 +323,10 @@ int run_render(int argc, char** argv) {
     double gpu_total = 0, cpu_total = 0;
     for (const auto& id : order) {
       const auto& [timing, runs] = totals[id];
+      if (timing.fused) {
+        std::printf("%-16s %-12s %28s\n", id.c_str(), timing.type.c_str(), "fused into its reader");
+        continue;
+      }
       std::printf("%-16s %-12s %10.2f %10.2f %6d\n", id.c_str(), timing.type.c_str(),
                   timing.gpu_ms / frames_run, timing.cpu_ms / frames_run, runs);
       gpu_total += timing.gpu_ms / frames_run;
@@ -330,8 +335,10 @@ int run_render(int argc, char** argv) {
     std::printf("%-16s %-12s %10.2f %10.2f\n", "total/frame", "", gpu_total, cpu_total);
   }
   if (exit_code == kExitInterrupted) {
-    std::fprintf(stderr, "aquarelle render: interrupted; %d complete frame(s) written, "
-                         "run again with --resume to finish\n", written);
+    std::fprintf(stderr,
+                 "aquarelle render: interrupted; %d complete frame(s) written, "
+                 "run again with --resume to finish\n",
+                 written);
   }
   return exit_code;
 }

@@ -560,8 +560,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
     // The output's pointwise tail runs in the pass that resamples a proxy render's output.
     const TextureRef& chain_input = chain ? chain->input : input_refs[0];
     const bool tail_into_resample =
-        !is_deferred && options.fuse_pointwise && type->fusable != nullptr &&
-        id == target->node &&
+        !is_deferred && options.fuse_pointwise && type->fusable != nullptr && id == target->node &&
         (working.width != settings.width || working.height != settings.height) && chain_input &&
         chain_input->image.width == working.width && chain_input->image.height == working.height;
     if (is_deferred || ((chain || tail_into_resample) && !(state.valid && state.key == key))) {
@@ -607,6 +606,13 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       const int width = tail_into_resample ? settings.width : chain->input->image.width;
       const int height = tail_into_resample ? settings.height : chain->input->image.height;
       if (options.finish_each_node) glFinish();
+      if (options.measure_gpu_time) {
+        if (!state.timer_start) {
+          state.timer_start = gl::make_query();
+          state.timer_end = gl::make_query();
+        }
+        glQueryCounter(state.timer_start.get(), GL_TIMESTAMP);
+      }
       auto start = std::chrono::steady_clock::now();
       std::vector<FusedStage> stages;
       for (auto& stage : chain->stages) {
@@ -616,6 +622,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
                                     height, format);
       if (options.finish_each_node) glFinish();
       auto end = std::chrono::steady_clock::now();
+      if (options.measure_gpu_time) glQueryCounter(state.timer_end.get(), GL_TIMESTAMP);
       impl_->reset_gl_state();
       ++run_counts_[id];
       std::string errors;
@@ -635,9 +642,15 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       state.images[0] = *fused;
       state.key = key;
       state.valid = true;
-      timings_.push_back(NodeTiming{id, type->name, 0,
-                                    std::chrono::duration<double, std::milli>(end - start).count(),
-                                    false});
+      NodeTiming timing{id, type->name, 0,
+                        std::chrono::duration<double, std::milli>(end - start).count(), false};
+      if (options.measure_gpu_time) {
+        GLuint64 begin_ns = 0, end_ns = 0;
+        glGetQueryObjectui64v(state.timer_start.get(), GL_QUERY_RESULT, &begin_ns);
+        glGetQueryObjectui64v(state.timer_end.get(), GL_QUERY_RESULT, &end_ns);
+        timing.gpu_ms = end_ns > begin_ns ? static_cast<double>(end_ns - begin_ns) * 1e-6 : 0.0;
+      }
+      timings_.push_back(timing);
     } else {
       CallState call;
       call.impl = impl_.get();
