@@ -4,14 +4,20 @@
 //   strength s(p) = clamp(depth_weight·min(z/distance_scale, 1)³ + radial_weight·r², 0, 1)
 //   σ(p)          = sigma · s(p)
 //
-// `gaussian` (default): exact separable Gaussians. A uniform σ is two passes (horizontal into a
-// float scratch texture, then vertical). A varying σ renders a small stack of exact blurs at
-// σmax, σmax/2, σmax/4 ... and mixes the two levels around each pixel's σ so that the mixed
-// kernel has exactly the variance σ² (levels_per_octave = 2 or 3 puts levels closer):
+// `gaussian` (default): exact Gaussians. A uniform σ is two separable passes (horizontal into a
+// scratch texture, then vertical). A varying σ with σmax <= 2 working pixels (the underwater
+// graph at preview and final quality) is one pass: each pixel gathers the Gaussian of its own
+// σ, truncated at 2·ceil(σmax) taps per side, read as bilinear pairs ((R+1)² fetches). A wider
+// varying σ renders a small stack of exact blurs at σmax, σmax/2, σmax/4 ... and mixes the two
+// levels around each pixel's σ so that the mixed kernel has exactly the variance σ²
+// (levels_per_octave = 2 or 3 puts levels closer):
 //
 //   image ─► H(σ1) ─► V(σ1) ─► level 1 ─┐
 //         ─► H(σ2) ─► V(σ2) ─► level 2 ─┼─► composite(depth) ─► image
 //         ─► ...                ...    ─┘
+//
+// Shaders that depend on the stack size or on the depth input are compiled per variant
+// (#define), as llvmpipe runs every side of a branch on a uniform.
 //
 // `strided`: the seed's 5×5 kernel read with strides 0.3σ and σ, kept to show its artefacts.
 #include <aquarelle/plugin.hpp>
@@ -63,18 +69,36 @@ constexpr aq_param_desc kParams[] = {
 
 constexpr int kMaxLevels = 12;          // blurred levels in the stack besides the input (shader)
 constexpr double kSmallestLevel = 0.5;  // below this a Gaussian is nearly the identity
+// Largest σmax (working pixels) blurred in one direct pass; its radius is 2·ceil(σmax), so at
+// most 25 fetches, fewer than the stack's passes read at this size (README, cost).
+constexpr double kDirectMaxSigma = 2.0;
 
-// The shared strength function followed by a shader that calls it.
-aq_shader_source with_strength(const aq_shader_source& main, std::string& storage) {
-  if (storage.empty()) {
-    storage = std::string(shaders::blur_strength_glsl.text) + "\n#line 1\n" + main.text;
-  }
+// The truncation radius of the direct pass for a given σmax: an even number >= 2σmax.
+int direct_radius(double max_sigma) {
+  return 2 * std::max(1, static_cast<int>(std::ceil(max_sigma - 1e-9)));
+}
+
+// `defines`, then the shared strength function, then a shader that calls it. The host caches
+// programs by their text, so each variant compiles once.
+aq_shader_source with_strength(const aq_shader_source& main, const std::string& defines,
+                               std::string& storage) {
+  storage = defines + shaders::blur_strength_glsl.text + "\n#line 1\n" + main.text;
   return aq_shader_source{main.name, storage.c_str(), nullptr};
 }
 
+std::string define(const char* name, int value) {
+  return "#define " + std::string(name) + " " + std::to_string(value) + "\n";
+}
+
+// AQ_HAS_DEPTH for blur_strength.glsl: 0 none, 1 the image's size (texelFetch), 2 sampled.
+std::string depth_define(const aq::Context& ctx, const aq_image& in) {
+  if (!ctx.connected(1)) return define("AQ_HAS_DEPTH", 0);
+  const aq_image depth = ctx.input_image(1);
+  return define("AQ_HAS_DEPTH", depth.width == in.width && depth.height == in.height ? 1 : 2);
+}
+
 struct Blur {
-  std::string composite_source;
-  std::string strided_source;
+  std::string source;  // the last composed shader text (the host compiles it at once)
 
   int process(aq::Context& ctx) {
     const aq_image in = ctx.input_image(0);
@@ -96,8 +120,10 @@ struct Blur {
       ok = strided(ctx, in, out, sigma);
     } else if (uniform) {
       aq_image horizontal;
-      ok = ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &horizontal) &&
+      ok = ctx.scratch(in.width, in.height, scratch_format(ctx), &horizontal) &&
            gaussian(ctx, in, horizontal, out, max_sigma);
+    } else if (max_sigma <= kDirectMaxSigma) {
+      ok = direct_gaussian(ctx, in, out, sigma, max_sigma);
     } else {
       ok = variable_gaussian(ctx, in, out, sigma, max_sigma);
     }
@@ -105,7 +131,13 @@ struct Blur {
     return ok ? AQ_OK : AQ_ERROR;
   }
 
-  // Exact separable Gaussian of `in` into `out` (same size), through `horizontal`, a float
+  // Intermediate textures: float in float precision; half in half precision, where the output
+  // is rounded to half anyway (one more rounding, measured in the tests).
+  static uint32_t scratch_format(const aq::Context& ctx) {
+    return ctx.precise() ? AQ_FORMAT_RGBA32F : AQ_FORMAT_RGBA16F;
+  }
+
+  // Exact separable Gaussian of `in` into `out` (same size), through `horizontal`, a
   // texture of the same size.
   static bool gaussian(aq::Context& ctx, const aq_image& in, const aq_image& horizontal,
                        const aq_image& out, double sigma) {
@@ -154,6 +186,20 @@ struct Blur {
     aq::set_float(program, "u_tail_offset", pass.tail_offset);
   }
 
+  // σ per pixel, σmax small: one pass, each pixel's own truncated Gaussian.
+  bool direct_gaussian(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma,
+                       double max_sigma) {
+    const std::string defines =
+        define("AQ_RADIUS", direct_radius(max_sigma)) + depth_define(ctx, in);
+    GLuint program = ctx.program(with_strength(shaders::blur_direct_frag, defines, source));
+    if (program == 0) return false;
+    glUseProgram(program);
+    set_strength_uniforms(ctx, program, in);
+    aq::bind_texture(program, "u_image", 0, in);
+    aq::set_float(program, "u_sigma", sigma);
+    return ctx.draw(out);
+  }
+
   // σ per pixel: a stack of exact blurs mixed per pixel by the composite shader.
   bool variable_gaussian(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma,
                          double max_sigma) {
@@ -166,34 +212,46 @@ struct Blur {
     level_sigmas.push_back(0.0);  // level 0: the input itself
     std::reverse(level_sigmas.begin(), level_sigmas.end());
 
+    const uint32_t format = scratch_format(ctx);
     aq_image horizontal;
-    if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &horizontal)) return false;
+    if (!ctx.scratch(in.width, in.height, format, &horizontal)) return false;
     std::vector<aq_image> levels{in};
     for (size_t k = 1; k < level_sigmas.size(); ++k) {
       aq_image level;
-      if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &level)) return false;
+      if (!ctx.scratch(in.width, in.height, format, &level)) return false;
       if (!gaussian(ctx, in, horizontal, level, level_sigmas[k])) return false;
       levels.push_back(level);
     }
 
-    GLuint program = ctx.program(with_strength(shaders::blur_composite_frag, composite_source));
+    const int count = static_cast<int>(levels.size());
+    const std::string defines = define("AQ_LEVEL_COUNT", count) + depth_define(ctx, in);
+    GLuint program = ctx.program(with_strength(shaders::blur_composite_frag, defines, source));
     if (program == 0) return false;
     glUseProgram(program);
     set_strength_uniforms(ctx, program, in);
-    for (size_t k = 0; k < levels.size(); ++k) {
-      const std::string name = "u_level" + std::to_string(k);
+    // σ² of each level and the reciprocal gaps between neighbours, in double, rounded once.
+    std::vector<float> sigma2(count), rise(count, 0.0f), fall(count, 0.0f);
+    for (int k = 0; k < count; ++k) {
+      const std::string name = "u_levels[" + std::to_string(k) + "]";
       aq::bind_texture(program, name.c_str(), static_cast<GLuint>(k), levels[k]);
+      const double s2 = level_sigmas[k] * level_sigmas[k];
+      sigma2[k] = static_cast<float>(s2);
+      if (k > 0)
+        rise[k] = static_cast<float>(1.0 / (s2 - level_sigmas[k - 1] * level_sigmas[k - 1]));
+      if (k + 1 < count) {
+        fall[k] = static_cast<float>(1.0 / (level_sigmas[k + 1] * level_sigmas[k + 1] - s2));
+      }
     }
-    std::vector<float> sigmas(level_sigmas.begin(), level_sigmas.end());
-    glUniform1fv(glGetUniformLocation(program, "u_level_sigma"),
-                 static_cast<GLsizei>(sigmas.size()), sigmas.data());
-    aq::set_int(program, "u_level_count", static_cast<int>(levels.size()));
+    glUniform1fv(glGetUniformLocation(program, "u_level_sigma2"), count, sigma2.data());
+    glUniform1fv(glGetUniformLocation(program, "u_rise"), count, rise.data());
+    glUniform1fv(glGetUniformLocation(program, "u_fall"), count, fall.data());
     aq::set_float(program, "u_sigma", sigma);
     return ctx.draw(out);
   }
 
   bool strided(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma) {
-    GLuint program = ctx.program(with_strength(shaders::blur_strided_frag, strided_source));
+    GLuint program =
+        ctx.program(with_strength(shaders::blur_strided_frag, depth_define(ctx, in), source));
     if (program == 0) return false;
     glUseProgram(program);
     set_strength_uniforms(ctx, program, in);
@@ -206,7 +264,6 @@ struct Blur {
   static void set_strength_uniforms(aq::Context& ctx, GLuint program, const aq_image& in) {
     const bool has_depth = ctx.connected(1);
     if (has_depth) aq::bind_texture(program, "u_depth", 15, ctx.input_image(1));
-    aq::set_int(program, "u_has_depth", has_depth ? 1 : 0);
     aq::set_float(program, "u_distance_scale", ctx.param_float(kDistanceScale));
     aq::set_float(program, "u_depth_weight", ctx.param_float(kDepthWeight));
     aq::set_float(program, "u_radial_weight", ctx.param_float(kRadialWeight));

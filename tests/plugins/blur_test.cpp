@@ -2,7 +2,8 @@
 // exact Gaussian within 1e-4 in float precision (both tap modes), impulse response symmetric and
 // summing to 1, identity at sigma 0, sigma larger than the image, no checkerboard artefacts
 // with `gaussian` while `strided` shows them, the variable (depth and radial) blur against its
-// definition and against the ideal per-pixel Gaussian, and edge darkening kept on near objects.
+// definition and against the ideal per-pixel Gaussian (the one-pass path for σmax <= 2 px and
+// the stack above), and edge darkening kept on near objects.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -47,6 +48,20 @@ ImageF run(const ImageF& image, const nlohmann::json& params, const ImageF* dept
   return out.ok() ? *out : ImageF();
 }
 
+// What the `gaussian` method computes, as plugins/blur/README.md specifies it: one exact
+// Gaussian for a uniform σ, the truncated per-pixel Gaussian for a varying σ up to 2 px, the
+// stack of exact blurs above.
+ImageF gaussian_definition(const ImageF& input, const ImageF* depth, const BlurParams& p) {
+  const bool uniform = depth == nullptr && (p.radial_weight <= 0.0 || p.depth_weight >= 1.0);
+  if (uniform) return aq::reference::gaussian_blur(input, p.sigma * std::min(1.0, p.depth_weight));
+  const double max_sigma = p.sigma * std::min(1.0, p.depth_weight + p.radial_weight);
+  if (max_sigma <= aq::reference::kDirectBlurMaxSigma) {
+    return aq::reference::truncated_variable_blur(input, depth, p,
+                                                  aq::reference::direct_blur_radius(max_sigma));
+  }
+  return aq::reference::stacked_blur(input, depth, p);
+}
+
 // Depth growing from 0 at the left to `far` at the right, in channel 0.
 ImageF depth_ramp(int width, int height, double far) {
   ImageF depth(width, height, 4, 1.0f);
@@ -78,8 +93,9 @@ TEST(Blur, UniformGaussianInHalfPrecision) {
     const ImageF got = run(input, to_json(uniform(sigma)), nullptr, "half");
     ASSERT_FALSE(got.empty());
     const double err = aq::test::max_abs_diff(got, expected);
-    // Only the output is half (intermediates are RGBA32F): half an ulp below 1 is 2.4e-4.
-    EXPECT_LE(err, 5e-4) << "sigma " << sigma;
+    // Input, horizontal scratch and output are half floats (three roundings of at most half an
+    // ulp below 1, 2.4e-4) and llvmpipe filters half textures in reduced precision (README).
+    EXPECT_LE(err, 2e-3) << "sigma " << sigma;
     std::printf("[blur half] sigma %.1f: max abs %.3g, psnr %.1f dB\n", sigma, err,
                 aq::test::psnr(got, expected));
   }
@@ -213,14 +229,77 @@ TEST(Blur, ParameterSweepMatchesReference) {
         for (const ImageF* d : {&depth, static_cast<const ImageF*>(nullptr)}) {
           const ImageF got = run(input, to_json(params), d);
           ASSERT_FALSE(got.empty());
-          EXPECT_LE(aq::test::max_abs_diff(got, aq::reference::stacked_blur(input, d, params)),
-                    1e-4)
+          EXPECT_LE(aq::test::max_abs_diff(got, gaussian_definition(input, d, params)), 1e-4)
               << "sigma " << sigma << " radial " << radial << " scale " << scale << " depth "
               << (d != nullptr);
         }
       }
     }
   }
+}
+
+TEST(Blur, SmallVaryingSigmaIsOnePassTruncatedGaussianCloserToTheIdealThanTheStack) {
+  // The underwater graph's case: σ from 0 (near) to σmax (far, corners) over white noise, the
+  // hardest input. σmax 0.5, 1 and 2 are its draft, preview and final quality (sigma 2 at
+  // render scale 1/4, 1/2, 1); 1.5 takes the radius-4 kernel too.
+  const ImageF input = aq::test::random_image(80, 60, 31);
+  const ImageF depth = depth_ramp(80, 60, 30.0);
+  for (double sigma : {0.5, 1.0, 1.5, 2.0}) {
+    const BlurParams params{sigma, 20.0, 1.0, 0.35, 1};
+    const int radius = aq::reference::direct_blur_radius(sigma);
+    const ImageF definition = aq::reference::truncated_variable_blur(input, &depth, params, radius);
+    const ImageF ideal = aq::reference::exact_variable_blur(input, &depth, params);
+    const ImageF stack = aq::reference::stacked_blur(input, &depth, params);
+    const ImageF got = run(input, to_json(params), &depth);
+    const ImageF got_half = run(input, to_json(params), &depth, "half");
+    ASSERT_FALSE(got.empty());
+    ASSERT_FALSE(got_half.empty());
+    const double err = aq::test::max_abs_diff(got, definition);
+    const double err_half = aq::test::max_abs_diff(got_half, definition);
+    const double ideal_max = aq::test::max_abs_diff(got, ideal);
+    const double ideal_mean = aq::test::mean_abs_diff(got, ideal);
+    const double stack_max = aq::test::max_abs_diff(stack, ideal);
+    const double stack_mean = aq::test::mean_abs_diff(stack, ideal);
+    EXPECT_LE(err, 1e-4) << "sigma " << sigma;
+    // Half: the input, its bilinear fetches and the output are half floats (README).
+    EXPECT_LE(err_half, 1e-3) << "sigma " << sigma;
+    // Truncation at 2·ceil(σmax) >= 2σ taps: README's stated bounds against the ideal.
+    EXPECT_LE(ideal_max, 0.02) << "sigma " << sigma;
+    EXPECT_LE(ideal_mean, 0.001) << "sigma " << sigma;
+    // No accuracy lost against the stack this path replaces.
+    EXPECT_LT(ideal_max, stack_max) << "sigma " << sigma;
+    EXPECT_LT(ideal_mean, stack_mean) << "sigma " << sigma;
+    std::printf(
+        "[blur direct] sigma max %.1f radius %d: vs definition %.3g (half %.3g); vs ideal max "
+        "%.3g mean %.3g; the stack vs ideal max %.3g mean %.3g\n",
+        sigma, radius, err, err_half, ideal_max, ideal_mean, stack_max, stack_mean);
+  }
+}
+
+TEST(Blur, SmallVaryingSigmaKeepsSharpPixelsExactBesideNonFiniteColours) {
+  // Near pixels (depth 0.01 of 20: σ ≈ 1e-9) beside an infinite and a NaN colour stay the
+  // input exactly; far pixels around the NaN get it, as any convolution would.
+  ImageF input = aq::test::random_image(32, 32, 32);
+  ImageF depth(32, 32, 4, 0.01f);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 20; x < 32; ++x) depth.at(x, y, 0) = 40.0f;
+  for (int c = 0; c < 4; ++c) {
+    input.at(8, 8, c) = std::numeric_limits<float>::infinity();
+    input.at(26, 8, c) = std::numeric_limits<float>::quiet_NaN();
+  }
+  const BlurParams params{1.0, 20.0, 1.0, 0.0};
+  const ImageF got = run(input, to_json(params), &depth);
+  ASSERT_FALSE(got.empty());
+  for (int y = 6; y <= 10; ++y)
+    for (int x = 6; x <= 10; ++x)
+      for (int c = 0; c < 4; ++c) {
+        if (x == 8 && y == 8) continue;
+        EXPECT_EQ(got.at(x, y, c), input.at(x, y, c)) << x << "," << y;
+      }
+  EXPECT_TRUE(std::isnan(got.at(27, 8, 0)));
+  EXPECT_TRUE(std::isfinite(got.at(26, 20, 0)));
+  const ImageF definition = aq::reference::truncated_variable_blur(input, &depth, params, 2);
+  EXPECT_NEAR(got.at(26, 20, 0), definition.at(26, 20, 0), 1e-5);
 }
 
 TEST(Blur, StridedMatchesReferenceWithDepth) {

@@ -165,6 +165,40 @@ ImageF exact_variable_blur(const ImageF& image, const ImageF* depth, const BlurP
   return to_float(out);
 }
 
+int direct_blur_radius(double max_sigma) {
+  return 2 * std::max(1, static_cast<int>(std::ceil(max_sigma - 1e-9)));
+}
+
+ImageF truncated_variable_blur(const ImageF& image, const ImageF* depth, const BlurParams& params,
+                               int radius) {
+  const ImageD input = to_double(image);
+  ImageD out(image.width, image.height);
+  std::vector<double> k(radius + 1);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const double sigma =
+          params.sigma * blur_strength(x, y, image.width, image.height, depth, params);
+      // exp(-i²/2σ²) for |i| <= radius, normalised over the 2·radius + 1 taps.
+      double sum_k = 0.0;
+      for (int i = 0; i <= radius; ++i) {
+        k[i] = i == 0 ? 1.0 : sigma > 0.0 ? std::exp(-0.5 * (i / sigma) * (i / sigma)) : 0.0;
+        sum_k += i == 0 ? k[i] : 2.0 * k[i];
+      }
+      for (int c = 0; c < 4; ++c) {
+        double sum = 0.0;
+        for (int j = -radius; j <= radius; ++j) {
+          double row = 0.0;
+          for (int i = -radius; i <= radius; ++i)
+            row += k[std::abs(i)] *
+                   input.at(clamp_index(x + i, image.width), clamp_index(y + j, image.height), c);
+          sum += k[std::abs(j)] * row;
+        }
+        out.at(x, y, c) = sum / (sum_k * sum_k);
+      }
+    }
+  return to_float(out);
+}
+
 ImageF strided_blur(const ImageF& image, const ImageF* depth, const BlurParams& params) {
   const ImageD input = to_double(image);
   const double binomial[5] = {1, 4, 6, 4, 1};

@@ -1,7 +1,8 @@
 // CPU references of the `blur` node in double precision, written from the maths in
 // plugins/blur/README.md: the exact clamp-to-edge Gaussian, the per-pixel strength, the stack
 // of exact blurs mixed by variance, a per-pixel exact variable Gaussian (the ideal the stack
-// approximates) and the seed's strided 5×5 kernel. Used by the tests and `aquarelle bench`.
+// approximates), its truncation at a fixed radius (the one-pass path for a small σmax) and the
+// seed's strided 5×5 kernel. Used by the tests and `aquarelle bench`.
 #pragma once
 
 #include <aquarelle/core/image.h>
@@ -37,6 +38,16 @@ ImageF stacked_blur(const ImageF& image, const ImageF* depth, const BlurParams& 
 
 // The ideal variable blur: at each pixel the exact Gaussian of that pixel's own σ (gather).
 ImageF exact_variable_blur(const ImageF& image, const ImageF* depth, const BlurParams& params);
+
+// The largest σmax (pixels) the `gaussian` method blurs in one pass, and that pass's radius.
+constexpr double kDirectBlurMaxSigma = 2.0;
+// The one-pass radius for a varying σ up to `max_sigma`: 2·ceil(σmax), an even number >= 2.
+int direct_blur_radius(double max_sigma);
+
+// The one-pass variable blur: at each pixel the sampled Gaussian of its own σ truncated at
+// `radius` taps per side and normalised over the (2·radius + 1)² taps kept.
+ImageF truncated_variable_blur(const ImageF& image, const ImageF* depth, const BlurParams& params,
+                               int radius);
 
 // The `strided` method: 5×5 binomial kernel with strides 0.3σ and σ, bilinear clamp-to-edge
 // reads, mixed by strength.
