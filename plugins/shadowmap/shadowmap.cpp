@@ -6,6 +6,7 @@
 //             value = window depth in [0, 1] + slope-scaled bias; 1 where nothing is
 //
 // A point P is in shadow when 0.5 * (M * P).z / w + 0.5 > depth at its texel (M the matrix).
+#include <aquarelle/gl_raii.hpp>
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/scene_gpu.hpp>
 #include <aquarelle/scene_math.hpp>
@@ -13,8 +14,10 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "shadowmap_shaders.h"
 
@@ -53,38 +56,157 @@ class ShadowMap {
     if (program == 0) return AQ_ERROR;
 
     meshes_.update(*scene, ctx.raw()->gl_generation);
-    if (!ctx.bind_targets(&depth, 1, &depth_buffer)) return AQ_ERROR;
-    const float one = 1.0f;
-    const float nothing[4] = {1.0f, 0.0f, 0.0f, 0.0f};
-    glClearBufferfv(GL_COLOR, 0, nothing);
-    glClearBufferfv(GL_DEPTH, 0, &one);
-
     glm::mat4 light = aq::scene_math::light_view_projection(*scene);
     // Window depth per world unit along the light: the ortho depth is linear in distance.
     glm::vec3 direction = aq::scene_math::light_direction(*scene);
     glm::vec3 depth_row(light[0][2], light[1][2], light[2][2]);
     const double depth_per_world = 0.5 * std::abs(glm::dot(depth_row, direction));
 
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
     glUseProgram(program);
     aq::set_mat4(program, "u_light_view_projection", glm::value_ptr(light));
     aq::set_float(program, "u_slope_bias", ctx.param_float(kSlopeBias));
     aq::set_float(program, "u_constant_bias", ctx.param_float(kConstantBias) * depth_per_world);
     aq::set_float(program, "u_max_bias", ctx.param_float(kMaxBias) * depth_per_world);
-    const GLint model_location = glGetUniformLocation(program, "u_model");
-    for (uint32_t i = 0; i < scene->mesh_count; ++i) {
-      glUniformMatrix4fv(model_location, 1, GL_FALSE, scene->meshes[i].model);
-      meshes_.draw(scene->meshes[i]);
+
+    // Meshes unchanged since the last frame (same vertex data, same placement) are drawn once
+    // into a cached map; each frame copies it and draws only what moved (fish, swaying weed).
+    // The depth test keeps the nearest surface whatever the order, so the map is the same.
+    std::vector<bool> unchanged = find_unchanged(*scene);
+    const uint64_t static_key = static_casters_key(*scene, unchanged, light, size, ctx);
+    const bool any_unchanged =
+        std::find(unchanged.begin(), unchanged.end(), true) != unchanged.end();
+    if (any_unchanged &&
+        !update_static_casters(ctx, *scene, unchanged, static_key, size, program)) {
+      return AQ_ERROR;
     }
+    if (any_unchanged) {
+      glCopyImageSubData(casters_color_.get(), GL_TEXTURE_2D, 0, 0, 0, 0, depth.texture,
+                         GL_TEXTURE_2D, 0, 0, 0, 0, size, size, 1);
+      glCopyImageSubData(casters_depth_.get(), GL_TEXTURE_2D, 0, 0, 0, 0, depth_buffer.texture,
+                         GL_TEXTURE_2D, 0, 0, 0, 0, size, size, 1);
+    }
+    if (!ctx.bind_targets(&depth, 1, &depth_buffer)) return AQ_ERROR;
+    if (!any_unchanged) clear_targets();
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(program);
+    draw_meshes(*scene, unchanged, false, program);
     glDisable(GL_DEPTH_TEST);
     glUseProgram(0);
     return AQ_OK;
   }
 
  private:
+  static void clear_targets() {
+    const float one = 1.0f;
+    const float nothing[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+    glClearBufferfv(GL_COLOR, 0, nothing);
+    glClearBufferfv(GL_DEPTH, 0, &one);
+  }
+
+  void draw_meshes(const aq_scene& scene, const std::vector<bool>& unchanged, bool which,
+                   GLuint program) const {
+    const GLint model_location = glGetUniformLocation(program, "u_model");
+    for (uint32_t i = 0; i < scene.mesh_count; ++i) {
+      if (unchanged[i] != which) continue;
+      glUniformMatrix4fv(model_location, 1, GL_FALSE, scene.meshes[i].model);
+      meshes_.draw(scene.meshes[i]);
+    }
+  }
+
+  // Which meshes have the vertex data and placement they had on the previous call.
+  std::vector<bool> find_unchanged(const aq_scene& scene) {
+    std::vector<bool> unchanged(scene.mesh_count, false);
+    std::vector<MeshState> now(scene.mesh_count);
+    for (uint32_t i = 0; i < scene.mesh_count; ++i) {
+      now[i].revision = scene.meshes[i].geometry_revision;
+      std::copy(std::begin(scene.meshes[i].model), std::end(scene.meshes[i].model),
+                now[i].model.begin());
+      unchanged[i] = i < previous_.size() && previous_[i] == now[i];
+    }
+    previous_ = std::move(now);
+    return unchanged;
+  }
+
+  // Everything the cached map depends on: which meshes, their data and placement, the light,
+  // the biases and the size.
+  static uint64_t static_casters_key(const aq_scene& scene, const std::vector<bool>& unchanged,
+                                     const glm::mat4& light, int size, aq::Context& ctx) {
+    uint64_t key = 1469598103934665603ull;
+    auto mix = [&key](const void* data, size_t bytes) {
+      const auto* p = static_cast<const unsigned char*>(data);
+      for (size_t i = 0; i < bytes; ++i) key = (key ^ p[i]) * 1099511628211ull;
+    };
+    for (uint32_t i = 0; i < scene.mesh_count; ++i) {
+      if (!unchanged[i]) continue;
+      mix(&i, sizeof(i));
+      mix(&scene.meshes[i].geometry_revision, sizeof(uint64_t));
+      mix(scene.meshes[i].model, sizeof(scene.meshes[i].model));
+    }
+    mix(glm::value_ptr(light), sizeof(float) * 16);
+    mix(&size, sizeof(size));
+    for (Param p : {kSlopeBias, kConstantBias, kMaxBias}) {
+      const double value = ctx.param_float(p);
+      mix(&value, sizeof(value));
+    }
+    return key;
+  }
+
+  // Renders the unchanged meshes into the cached map when what it depends on changed.
+  bool update_static_casters(aq::Context& ctx, const aq_scene& scene,
+                             const std::vector<bool>& unchanged, uint64_t key, int size,
+                             GLuint program) {
+    const uint32_t generation = ctx.raw()->gl_generation;
+    if (generation != casters_generation_ || size != casters_size_) {
+      if (generation != casters_generation_) {
+        casters_color_.forget();  // names of an old context mean nothing here
+        casters_depth_.forget();
+        casters_framebuffer_.forget();
+      }
+      glTextureStorage2D(casters_color_.create(), 1, GL_R32F, size, size);
+      glTextureStorage2D(casters_depth_.create(), 1, GL_DEPTH_COMPONENT32F, size, size);
+      const GLuint framebuffer = casters_framebuffer_.create();
+      glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, casters_color_.get(), 0);
+      glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, casters_depth_.get(), 0);
+      casters_generation_ = generation;
+      casters_size_ = size;
+      casters_key_ = 0;
+    }
+    if (key == casters_key_) return true;
+    glBindFramebuffer(GL_FRAMEBUFFER, casters_framebuffer_.get());
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      ctx.fail("shadowmap: the cached caster framebuffer is incomplete");
+      return false;
+    }
+    glViewport(0, 0, size, size);
+    clear_targets();
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(program);
+    draw_meshes(scene, unchanged, true, program);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    casters_key_ = key;
+    return true;
+  }
+
+  struct MeshState {
+    uint64_t revision = 0;
+    std::array<float, 16> model{};
+    bool operator==(const MeshState&) const = default;
+  };
+
   aq::SceneMeshCache meshes_;
+  std::vector<MeshState> previous_;
+  aq::gl::Texture casters_color_;
+  aq::gl::Texture casters_depth_;
+  aq::gl::Framebuffer casters_framebuffer_;
+  uint32_t casters_generation_ = 0;
+  int casters_size_ = 0;
+  uint64_t casters_key_ = 0;
 };
 
 }  // namespace

@@ -196,3 +196,41 @@ TEST(ShadowMap, SizeSetsTheResolutionAndValuesAreDepths) {
 }
 
 }  // namespace
+
+namespace {
+
+// The underwater scene's shadow map at `frame`, from a node instance named `node_id` (a new
+// id is a new instance, with nothing cached).
+ImageF underwater_shadow(const std::string& node_id, int frame) {
+  nlohmann::json g = {{"aquarelle", 1},
+                      {"nodes",
+                       {{"scene", {{"type", "scene"}, {"params", {{"preset", "underwater"}}}}},
+                        {node_id,
+                         {{"type", "shadowmap"},
+                          {"params", {{"size", 256}}},
+                          {"inputs", {{"scene", "scene.scene"}}}}}}},
+                      {"output", node_id + ".depth"}};
+  aq::test::RenderOptions options;
+  options.width = 64;
+  options.height = 36;
+  options.frame = frame;
+  auto depth = aq::test::render_graph(g.dump(), options);
+  EXPECT_TRUE(depth.ok()) << depth.message();
+  return depth.ok() ? *depth : ImageF();
+}
+
+// Meshes that did not move since the last frame come from a cached map and only the moving
+// ones (fish, swaying seaweed) are drawn again: the map must be the one drawn from scratch.
+TEST(ShadowMap, CachedStillCastersGiveTheMapDrawnFromScratch) {
+  ImageF first, later;
+  for (int frame = 1; frame <= 4; ++frame) later = underwater_shadow("warm", frame);
+  first = underwater_shadow("warm", 1);  // back to frame 1: the moving meshes move back
+  const ImageF cold_later = underwater_shadow("cold_4", 4);
+  const ImageF cold_first = underwater_shadow("cold_1", 1);
+  ASSERT_FALSE(later.empty());
+  EXPECT_EQ(aq::test::max_abs_diff(later, cold_later), 0.0);
+  EXPECT_EQ(aq::test::max_abs_diff(first, cold_first), 0.0);
+  EXPECT_GT(aq::test::max_abs_diff(cold_first, cold_later), 0.0) << "something moved";
+}
+
+}  // namespace
