@@ -160,7 +160,8 @@ int EditorApp::run() {
   bool scripted = !options_.script.empty() || !options_.screenshot.empty() || options_.quit;
   double last_time = glfwGetTime();
   while (running_) {
-    bool idle = !state_.playing && !scripted && pending_ == Pending::kNone;
+    bool idle = !state_.playing && !scripted && pending_ == Pending::kNone &&
+                !(viewer_ && viewer_->refine_pending());
     if (idle) {
       glfwWaitEventsTimeout(0.25);  // wake for autosave and hot reload polls
     } else {
@@ -420,8 +421,9 @@ void EditorApp::draw_time_bar() {
   }
   ImGui::SameLine();
   double seconds = (state_.frame - settings.first_frame) / std::max(settings.fps, 1e-3);
-  ImGui::Text("t = %.2f s  %.0f fps  eval %.1f ms", seconds, settings.fps,
-              viewer_->last_evaluation_ms());
+  ImGui::Text("t = %.2f s  %.0f fps  eval %.1f ms%s", seconds, settings.fps,
+              viewer_->last_evaluation_ms(),
+              viewer_->refine_pending() ? " (draft while editing)" : "");
   // Status line.
   ImGui::TextDisabled("%s%s", document_.path().empty() ? "(untitled)" : document_.path().c_str(),
                       document_.dirty() ? " *" : "");

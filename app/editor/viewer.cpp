@@ -138,10 +138,21 @@ Viewer::Mapping Viewer::current_mapping() const {
 }
 
 void Viewer::update(const EditorState& state, bool force) {
+  using Clock = std::chrono::steady_clock;
   std::optional<PortRef> output = state.shown_output();
-  bool changed = force || state.doc.revision() != evaluated_revision_ ||
-                 output != evaluated_output_ || state.frame != evaluated_frame_;
+  const bool edited =
+      state.doc.revision() != evaluated_revision_ || state.frame != evaluated_frame_;
+  const auto now = Clock::now();
+  if (edited) last_edit_ = now;
+  // A draft shown during an interactive edit is refined once the edits pause.
+  const bool refine = showing_draft_ && !edited && now - last_edit_ > kRefineAfter;
+  bool changed = force || edited || output != evaluated_output_ || refine;
   if (!changed) return;
+  // Interactive edits (slider drags, playback) of a graph slower than a UI frame evaluate at
+  // draft quality, a quarter of the size through the proxy mechanism, and refine when idle.
+  const bool draft = edited && !force && output == evaluated_output_ &&
+                     last_full_ms_ > ui_frame_budget_ms_ &&
+                     state.doc.graph().settings.quality != "draft";
   evaluated_revision_ = state.doc.revision();
   evaluated_output_ = output;
   evaluated_frame_ = state.frame;
@@ -159,17 +170,19 @@ void Viewer::update(const EditorState& state, bool force) {
   options.finish_each_node = true;  // per-node times on the canvas must be each node's own
   auto start = std::chrono::steady_clock::now();
   Result<TextureRef> evaluated = Error{};
-  if (preview_divisor_ > 1) {
+  if (preview_divisor_ > 1 || draft) {
     // A throwaway copy for this evaluation only; edits still go to the one document graph.
     Graph preview = state.doc.graph();
     preview.settings.width = std::max(1, preview.settings.width / preview_divisor_);
     preview.settings.height = std::max(1, preview.settings.height / preview_divisor_);
+    if (draft) preview.settings.quality = "draft";
     evaluated = evaluator_.evaluate(preview, options, output);
   } else {
     evaluated = evaluator_.evaluate(state.doc.graph(), options, output);
   }
-  last_ms_ =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  last_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  showing_draft_ = draft;
+  if (!draft) last_full_ms_ = last_ms_;
   // Leave GL as ImGui's renderer expects it.
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   if (!evaluated) {

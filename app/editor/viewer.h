@@ -44,6 +44,12 @@ class Viewer {
   const std::string& error() const { return error_; }
   const std::string& error_node() const { return error_node_; }
   double last_evaluation_ms() const { return last_ms_; }
+  // The image shown is a draft of an interactive edit, to be refined once edits pause: the
+  // UI loop keeps polling instead of sleeping until then.
+  bool refine_pending() const { return showing_draft_; }
+  // Evaluations slower than this (ms) make interactive edits show drafts (default: a 30 fps
+  // UI frame).
+  void set_ui_frame_budget_ms(double ms) { ui_frame_budget_ms_ = ms; }
   bool has_image() const { return result_ != nullptr; }
 
  private:
@@ -61,6 +67,12 @@ class Viewer {
   std::string error_;
   std::string error_node_;
   double last_ms_ = 0;
+  // Interactive edits of a graph slower than a UI frame are evaluated as drafts.
+  static constexpr std::chrono::milliseconds kRefineAfter{300};
+  double ui_frame_budget_ms_ = 33.0;
+  double last_full_ms_ = 0;  // the last evaluation at the graph's own quality
+  bool showing_draft_ = false;
+  std::chrono::steady_clock::time_point last_edit_{};
 
   gl::Program program_;
   gl::VertexArray vertex_array_;
