@@ -44,6 +44,8 @@ reference render.
   --plot OUT.png          plot time against mean abs error, one curve per sweep
   --json                  print the report as JSON instead of the table
   --gl auto|egl|osmesa    GL backend (default auto)
+  --gl-device D           EGL device: auto (a GPU when EGL lists one, else llvmpipe),
+                          software, or an index; a bad one lists the devices
   -q, --quiet             no progress messages on stderr
 
 Exit codes: 0 ok, 1 bad input (graph, arguments, files), 2 no usable GL or plugins.
@@ -62,6 +64,7 @@ struct Arguments {
   std::string plot;
   bool json = false;
   std::string gl = "auto";
+  std::string gl_device = "auto";
   bool quiet = false;
 };
 
@@ -131,6 +134,10 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments* args) {
       args->plot = *v;
     } else if (arg == "--json") {
       args->json = true;
+    } else if (arg == "--gl-device") {
+      auto v = value();
+      if (!v) return kExitBadInput;
+      args->gl_device = *v;
     } else if (arg == "--gl") {
       auto v = value();
       if (!v) return kExitBadInput;
@@ -193,7 +200,7 @@ int run_bench(int argc, char** argv) {
   }
   if (!args.precision.empty()) graph.settings.precision = args.precision;
 
-  auto context = create_headless_context(*backend);
+  auto context = create_headless_context(*backend, args.gl_device);
   if (!context.ok()) {
     std::fprintf(stderr, "aquarelle bench: %s\n", context.message().c_str());
     return kExitEnvironment;

@@ -37,6 +37,8 @@ Renders the graph's output for each frame and writes it to OUT.
   --size WxH              override settings.width/height
   --set NODE.PARAM=VALUE  override a parameter (VALUE as JSON, e.g. 0.5, [1,0,0], "text")
   --gl auto|egl|osmesa    GL backend (default auto: EGL, then OSMesa)
+  --gl-device D           EGL device: auto (a GPU when EGL lists one, else llvmpipe),
+                          software, or an index; a bad one lists the devices
   --precision half|float  working precision (default: settings.precision)
   --quality draft|preview|final   quality preset (default: settings.quality); draft renders
                           at 1/4 of the size, preview at 1/2, final at full size, and the
@@ -72,7 +74,8 @@ void print_progress(int done, int total, double seconds) {
 }  // namespace
 
 int run_render(int argc, char** argv) {
-  std::string graph_path, output, frames, size, backend_name = "auto", precision, quality, view;
+  std::string graph_path, output, frames, size, backend_name = "auto", gl_device = "auto",
+                                                precision, quality, view;
   std::vector<std::string> sets;
   bool stats = false, resume = false, quiet = false, float_exr = false;
   int bits = 8;
@@ -97,6 +100,8 @@ int run_render(int argc, char** argv) {
       size = value();
     } else if (arg == "--set") {
       sets.push_back(value());
+    } else if (arg == "--gl-device") {
+      gl_device = value();
     } else if (arg == "--gl") {
       backend_name = value();
     } else if (arg == "--precision") {
@@ -232,7 +237,7 @@ int run_render(int argc, char** argv) {
     transform = std::move(*t);
   }
 
-  auto context = create_headless_context(*backend);
+  auto context = create_headless_context(*backend, gl_device);
   if (!context.ok()) {
     std::fprintf(stderr, "aquarelle render: %s\n", context.message().c_str());
     return kExitEnvironment;

@@ -5,7 +5,9 @@
 
 namespace aq {
 
-Result<std::unique_ptr<GlContext>> create_egl_context();
+// `device`: "auto" (a hardware EGL device, else Mesa's surfaceless platform), "software" (the
+// surfaceless platform) or the index of an EGL device.
+Result<std::unique_ptr<GlContext>> create_egl_context(const std::string& device);
 Result<std::unique_ptr<GlContext>> create_osmesa_context();
 
 // Lets a backend subclass call the protected loader.

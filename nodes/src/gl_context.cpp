@@ -18,10 +18,14 @@ uint32_t next_generation() {
 
 const char* backend_name(GlBackend backend) {
   switch (backend) {
-    case GlBackend::kAuto: return "auto";
-    case GlBackend::kEgl: return "egl";
-    case GlBackend::kOsmesa: return "osmesa";
-    case GlBackend::kExternal: return "window";
+    case GlBackend::kAuto:
+      return "auto";
+    case GlBackend::kEgl:
+      return "egl";
+    case GlBackend::kOsmesa:
+      return "osmesa";
+    case GlBackend::kExternal:
+      return "window";
   }
   return "?";
 }
@@ -38,8 +42,8 @@ std::string GlContext::description() const {
     const GLubyte* s = glGetString(name);
     return s != nullptr ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
   };
-  return "OpenGL " + text(GL_VERSION) + ", " + text(GL_RENDERER) + " (" +
-         backend_name(backend()) + ")";
+  return "OpenGL " + text(GL_VERSION) + ", " + text(GL_RENDERER) + " (" + backend_name(backend()) +
+         ")";
 }
 
 namespace {
@@ -81,13 +85,16 @@ bool GlContext::load_functions() {
          (GLAD_VERSION_MAJOR(version) == 4 && GLAD_VERSION_MINOR(version) >= 5);
 }
 
-Result<std::unique_ptr<GlContext>> create_headless_context(GlBackend backend) {
-  if (backend == GlBackend::kEgl) return create_egl_context();
+Result<std::unique_ptr<GlContext>> create_headless_context(GlBackend backend,
+                                                           const std::string& device) {
+  if (backend == GlBackend::kEgl) return create_egl_context(device);
   if (backend == GlBackend::kOsmesa) return create_osmesa_context();
   if (backend == GlBackend::kExternal) {
     return make_error("an external (window) context cannot be created headless");
   }
-  auto egl = create_egl_context();
+  // A device names an EGL device: no quiet fallback to OSMesa when it cannot be had.
+  if (!device.empty() && device != "auto") return create_egl_context(device);
+  auto egl = create_egl_context(device);
   if (egl.ok()) return egl;
   auto osmesa = create_osmesa_context();
   if (osmesa.ok()) return osmesa;

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace aq {
 
@@ -39,9 +40,16 @@ class GlContext {
   bool load_functions();
 };
 
-// Creates a headless context. kAuto tries EGL, then OSMesa; `tried` (optional) receives what
-// was tried and why each failed, for a single clear message when none works.
-Result<std::unique_ptr<GlContext>> create_headless_context(GlBackend backend);
+// Creates a headless context. kAuto tries EGL, then OSMesa; when none works the message says
+// what each attempt said. `device` picks the EGL device: "auto" takes a hardware device (a GPU)
+// when EGL lists one and Mesa's surfaceless platform (llvmpipe) otherwise; "software" always
+// the latter; a number the EGL device with that index (see egl_device_descriptions). OSMesa
+// ignores it.
+Result<std::unique_ptr<GlContext>> create_headless_context(GlBackend backend,
+                                                           const std::string& device = "auto");
+
+// "0: /dev/dri/renderD128 (hardware)", one per EGL device, for --gl-device and its messages.
+std::vector<std::string> egl_device_descriptions();
 
 // Adopts a context that something else (GLFW) created and made current.
 std::unique_ptr<GlContext> adopt_current_context(void* (*get_proc_address)(const char*));
