@@ -168,6 +168,10 @@ int run_bench(int argc, char** argv) {
   Arguments args;
   if (auto stop = parse_arguments(argc, argv, &args)) return *stop;
 
+  if (auto device = check_gl_device(args.gl_device); !device.ok()) {
+    std::fprintf(stderr, "aquarelle bench: --gl-device: %s\n", device.message().c_str());
+    return kExitBadInput;
+  }
   auto backend = parse_backend(args.gl);
   if (!backend.ok()) {
     std::fprintf(stderr, "aquarelle bench: --gl: %s\n", backend.message().c_str());

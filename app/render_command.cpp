@@ -141,6 +141,10 @@ int run_render(int argc, char** argv) {
                  kRenderHelp);
     return kExitBadInput;
   }
+  if (auto device = check_gl_device(gl_device); !device.ok()) {
+    std::fprintf(stderr, "aquarelle render: --gl-device: %s\n", device.message().c_str());
+    return kExitBadInput;
+  }
   auto backend = parse_backend(backend_name);
   if (!backend.ok()) {
     std::fprintf(stderr, "aquarelle render: --gl: %s\n", backend.message().c_str());

@@ -3,6 +3,8 @@
 // <GL/gl.h>, which clashes with glad, so it stays in a translation unit of its own).
 #include <aquarelle/core/gl_context.h>
 
+#include <algorithm>
+
 #include <glad/gl.h>
 
 #include "context_backends.h"
@@ -83,6 +85,15 @@ bool GlContext::load_functions() {
   generation_ = next_generation();
   return GLAD_VERSION_MAJOR(version) > 4 ||
          (GLAD_VERSION_MAJOR(version) == 4 && GLAD_VERSION_MINOR(version) >= 5);
+}
+
+Status check_gl_device(const std::string& device) {
+  const bool number =
+      !device.empty() && device.size() <= 4 &&
+      std::all_of(device.begin(), device.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (device == "auto" || device == "software" || number) return Ok{};
+  return make_error("GL device '" + device +
+                    "' must be auto, software or the index of an EGL device (0, 1, ...)");
 }
 
 Result<std::unique_ptr<GlContext>> create_headless_context(GlBackend backend,

@@ -99,11 +99,11 @@ class RenderBackend : public ::testing::TestWithParam<std::string> {};
 TEST_P(RenderBackend, RendersExrAndPng) {
   auto dir = scratch_dir("render_" + GetParam());
   auto graph = write_pipeline(dir);
-  auto exr = aquarelle("render " + graph.string() + " --frames 1 -q --gl " + GetParam() +
-                       " -o " + (dir / "out.exr").string());
+  auto exr = aquarelle("render " + graph.string() + " --frames 1 -q --gl " + GetParam() + " -o " +
+                       (dir / "out.exr").string());
   ASSERT_EQ(exr.exit_code, 0) << exr.output;
-  auto png = aquarelle("render " + graph.string() + " --frames 1 -q --gl " + GetParam() +
-                       " -o " + (dir / "out.png").string());
+  auto png = aquarelle("render " + graph.string() + " --frames 1 -q --gl " + GetParam() + " -o " +
+                       (dir / "out.png").string());
   ASSERT_EQ(png.exit_code, 0) << png.output;
 
   auto config = ColorConfig::load();
@@ -139,8 +139,8 @@ TEST(Cli, FrameRangesAndResume) {
   }
   fs::remove(dir / "f_0002.exr");
   auto time_before = fs::last_write_time(dir / "f_0001.exr");
-  auto resumed = aquarelle("render " + graph.string() + " --resume -o " +
-                           (dir / "f_####.exr").string());
+  auto resumed =
+      aquarelle("render " + graph.string() + " --resume -o " + (dir / "f_####.exr").string());
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   EXPECT_TRUE(fs::exists(dir / "f_0002.exr"));
   EXPECT_EQ(fs::last_write_time(dir / "f_0001.exr"), time_before) << "existing frame kept";
@@ -167,6 +167,8 @@ TEST(Cli, BadArgumentsAreRefusedWithExitCodeOne) {
       {"render " + graph + out + " --set tint.nope=1", "no parameter 'nope'"},
       {"render " + graph + out + " --set tint.amount=5", "amount"},
       {"render " + graph + out + " --gl vulkan", "unknown GL backend"},
+      {"render " + graph + out + " --gl-device gpu", "must be auto, software or the index"},
+      {"bench " + graph + " --no-sweep --gl-device -1", "must be auto, software or the index"},
       {"render " + graph + " -o /nonexistent/dir/x_####.exr", "does not exist"},
       {"render " + graph + " --frames 1-3 -o " + (dir / "no_hashes.exr").string(), "####"},
       {"render " + graph, "no output"},

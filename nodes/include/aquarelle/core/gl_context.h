@@ -48,6 +48,10 @@ class GlContext {
 Result<std::unique_ptr<GlContext>> create_headless_context(GlBackend backend,
                                                            const std::string& device = "auto");
 
+// Whether `device` is a well-formed device choice (auto, software or a number), with a message
+// saying what is accepted when not; whether a number names a device is known only at creation.
+Status check_gl_device(const std::string& device);
+
 // "0: /dev/dri/renderD128 (hardware)", one per EGL device, for --gl-device and its messages.
 std::vector<std::string> egl_device_descriptions();
 
