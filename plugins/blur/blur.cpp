@@ -44,7 +44,8 @@ enum Param {
   kDepthWeight,
   kRadialWeight,
   kLinearTaps,
-  kLevelsPerOctave
+  kLevelsPerOctave,
+  kReducedResolution
 };
 enum Method { kGaussian = 0, kStrided = 1 };
 constexpr aq_param_desc kParams[] = {
@@ -65,13 +66,25 @@ constexpr aq_param_desc kParams[] = {
                    "measured in the tests)"),
     aq::int_param("levels_per_octave", 1, 1, 3,
                   "blurs per doubling of sigma in the stack used when sigma varies per pixel: "
-                  "more is closer to the ideal per-pixel Gaussian and slower")};
+                  "more is closer to the ideal per-pixel Gaussian and slower"),
+    aq::bool_param("reduced_resolution", false,
+                   "blur sigmas above 4 px (uniform, or the stack's levels) on a pyramid reduced "
+                   "2^k times, sigma/2^k >= 2 px: much faster, error measured in the tests")};
 
 constexpr int kMaxLevels = 12;          // blurred levels in the stack besides the input (shader)
 constexpr double kSmallestLevel = 0.5;  // below this a Gaussian is nearly the identity
 // Largest σmax (working pixels) blurred in one direct pass; its radius is 2·ceil(σmax), so at
 // most 25 fetches, fewer than the stack's passes read at this size (README, cost).
 constexpr double kDirectMaxSigma = 2.0;
+
+// With `reduced_resolution`, Gaussians wider than this (working pixels) run on a pyramid.
+constexpr double kPyramidMinSigma = 4.0;
+
+// Pyramid levels for a Gaussian of σ: 2^k reductions leaving σ/2^k in [2, 4) reduced pixels.
+int pyramid_levels(double sigma) {
+  if (!(sigma > kPyramidMinSigma)) return 0;
+  return static_cast<int>(std::floor(std::log2(sigma / 2.0)));
+}
 
 // The truncation radius of the direct pass for a given σmax: an even number >= 2σmax.
 int direct_radius(double max_sigma) {
@@ -121,7 +134,7 @@ struct Blur {
     } else if (uniform) {
       aq_image horizontal;
       ok = ctx.scratch(in.width, in.height, scratch_format(ctx), &horizontal) &&
-           gaussian(ctx, in, horizontal, out, max_sigma);
+           blur_into(ctx, in, horizontal, out, max_sigma);
     } else if (max_sigma <= kDirectMaxSigma) {
       ok = direct_gaussian(ctx, in, out, sigma, max_sigma);
     } else {
@@ -162,6 +175,44 @@ struct Blur {
       if (!ctx.draw(targets[axis])) return false;
     }
     return true;
+  }
+
+  // A Gaussian of σ from `in` into `out` (same size): exact through the full-size scratch
+  // `horizontal`, or, with `reduced_resolution` and σ above kPyramidMinSigma, down a pyramid of
+  // 2×2 means k times (scale s = 2^k), an exact Gaussian of σ' there and bilinear back up. The
+  // box steps add s²/4 − 1/4 px² of variance per axis and the bilinear step (2s² + 1)/12 on
+  // average, so σ'² = σ²/s² − 1/4 (README).
+  bool blur_into(aq::Context& ctx, const aq_image& in, const aq_image& horizontal,
+                 const aq_image& out, double sigma) {
+    const int levels = ctx.param_bool(kReducedResolution) ? pyramid_levels(sigma) : 0;
+    if (levels == 0) return gaussian(ctx, in, horizontal, out, sigma);
+    const uint32_t format = scratch_format(ctx);
+    aq_image level = in;
+    for (int j = 0; j < levels; ++j) {
+      aq_image half;
+      if (!ctx.scratch((level.width + 1) / 2, (level.height + 1) / 2, format, &half)) return false;
+      GLuint program = ctx.program(shaders::blur_downsample_frag);
+      if (program == 0) return false;
+      glUseProgram(program);
+      aq::bind_texture(program, "u_image", 0, level);
+      aq::set_vec2(program, "u_source_size", level.width, level.height);
+      if (!ctx.draw(half)) return false;
+      level = half;
+    }
+    const double scale = std::exp2(levels);
+    aq_image reduced_horizontal, blurred;
+    if (!ctx.scratch(level.width, level.height, format, &reduced_horizontal) ||
+        !ctx.scratch(level.width, level.height, format, &blurred) ||
+        !gaussian(ctx, level, reduced_horizontal, blurred,
+                  std::sqrt(sigma * sigma / (scale * scale) - 0.25))) {
+      return false;
+    }
+    GLuint program = ctx.program(shaders::blur_upsample_frag);
+    if (program == 0) return false;
+    glUseProgram(program);
+    aq::bind_texture(program, "u_image", 0, blurred);
+    aq::set_vec2(program, "u_reduced_extent", scale * blurred.width, scale * blurred.height);
+    return ctx.draw(out);
   }
 
   static void set_table(GLuint program, const std::vector<blur::Tap>& taps, int axis,
@@ -219,7 +270,7 @@ struct Blur {
     for (size_t k = 1; k < level_sigmas.size(); ++k) {
       aq_image level;
       if (!ctx.scratch(in.width, in.height, format, &level)) return false;
-      if (!gaussian(ctx, in, horizontal, level, level_sigmas[k])) return false;
+      if (!blur_into(ctx, in, horizontal, level, level_sigmas[k])) return false;
       levels.push_back(level);
     }
 

@@ -24,8 +24,9 @@ aq::test::RenderOptions with_precision(const char* precision) {
 }
 
 nlohmann::json to_json(const BlurParams& p, bool linear_taps = true,
-                       const char* method = "gaussian") {
+                       const char* method = "gaussian", bool reduced_resolution = false) {
   return {{"method", method},
+          {"reduced_resolution", reduced_resolution},
           {"levels_per_octave", p.levels_per_octave},
           {"sigma", p.sigma},
           {"distance_scale", p.distance_scale},
@@ -60,6 +61,16 @@ ImageF gaussian_definition(const ImageF& input, const ImageF* depth, const BlurP
                                                   aq::reference::direct_blur_radius(max_sigma));
   }
   return aq::reference::stacked_blur(input, depth, p);
+}
+
+// Max abs difference over the pixels at least `margin` from every edge.
+double max_abs_diff_inside(const ImageF& a, const ImageF& b, int margin) {
+  double err = 0.0;
+  for (int y = margin; y < a.height - margin; ++y)
+    for (int x = margin; x < a.width - margin; ++x)
+      for (int c = 0; c < a.channels; ++c)
+        err = std::max<double>(err, std::abs(a.at(x, y, c) - b.at(x, y, c)));
+  return err;
 }
 
 // Depth growing from 0 at the left to `far` at the right, in channel 0.
@@ -300,6 +311,48 @@ TEST(Blur, SmallVaryingSigmaKeepsSharpPixelsExactBesideNonFiniteColours) {
   EXPECT_TRUE(std::isfinite(got.at(26, 20, 0)));
   const ImageF definition = aq::reference::truncated_variable_blur(input, &depth, params, 2);
   EXPECT_NEAR(got.at(26, 20, 0), definition.at(26, 20, 0), 1e-5);
+}
+
+TEST(Blur, ReducedResolutionPyramidIsWithinItsStatedError) {
+  // Against the exact Gaussian in double, on white noise (every frequency, the worst case for
+  // the 2×2 means) and on a checkerboard of 3 px cells (a frequency the box steps alias), odd
+  // sizes so that the pyramid's last rows and columns are partial.
+  const ImageF noise = aq::test::random_image(131, 97, 33);
+  const ImageF checker = aq::test::checker_image(131, 97, 3);
+  for (double sigma : {4.5, 7.0, 12.0, 24.0}) {
+    for (const ImageF* input : {&noise, &checker}) {
+      const ImageF expected = aq::reference::gaussian_blur(*input, sigma);
+      const ImageF got = run(*input, to_json(uniform(sigma), true, "gaussian", true));
+      ASSERT_FALSE(got.empty());
+      const double err = aq::test::max_abs_diff(got, expected);
+      const double mean = aq::test::mean_abs_diff(got, expected);
+      const double interior = max_abs_diff_inside(got, expected, static_cast<int>(2 * sigma));
+      std::printf(
+          "[blur pyramid] sigma %.1f %s: max %.3g (%.3g beyond 2 sigma of the edges), "
+          "mean %.3g\n",
+          sigma, input == &noise ? "noise" : "checker", err, interior, mean);
+    }
+  }
+  // A varying σ up to 16 px: the stack's levels above 4 px come from the pyramid.
+  const ImageF depth = depth_ramp(131, 97, 30.0);
+  const BlurParams params{16.0, 20.0, 1.0, 0.35, 1};
+  const ImageF got = run(noise, to_json(params, true, "gaussian", true), &depth);
+  ASSERT_FALSE(got.empty());
+  const ImageF stacked = aq::reference::stacked_blur(noise, &depth, params);
+  const double vs_stack = aq::test::max_abs_diff(got, stacked);
+  const double vs_stack_inside = max_abs_diff_inside(got, stacked, 32);
+  EXPECT_LE(vs_stack, 0.15);
+  EXPECT_LE(vs_stack_inside, 0.01);
+  std::printf(
+      "[blur pyramid] stack up to sigma 16: vs the exact stack max %.3g (%.3g beyond 32 px "
+      "of the edges), mean %.3g\n",
+      vs_stack, vs_stack_inside, aq::test::mean_abs_diff(got, stacked));
+
+  // At or below 4 px the option changes nothing.
+  const ImageF exact = run(noise, to_json(uniform(4.0)));
+  EXPECT_EQ(
+      aq::test::max_abs_diff(run(noise, to_json(uniform(4.0), true, "gaussian", true)), exact),
+      0.0);
 }
 
 TEST(Blur, StridedMatchesReferenceWithDepth) {
