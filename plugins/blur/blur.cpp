@@ -180,7 +180,7 @@ struct Blur {
   // A Gaussian of σ from `in` into `out` (same size): exact through the full-size scratch
   // `horizontal`, or, with `reduced_resolution` and σ above kPyramidMinSigma, down a pyramid of
   // 2×2 means k times (scale s = 2^k), an exact Gaussian of σ' there and bilinear back up. The
-  // box steps add s²/4 − 1/4 px² of variance per axis and the bilinear step (2s² + 1)/12 on
+  // box steps add (s² − 1)/12 px² of variance per axis and the bilinear step (2s² + 1)/12 on
   // average, so σ'² = σ²/s² − 1/4 (README).
   bool blur_into(aq::Context& ctx, const aq_image& in, const aq_image& horizontal,
                  const aq_image& out, double sigma) {
