@@ -45,9 +45,11 @@ enum Param {
   kRadialWeight,
   kLinearTaps,
   kLevelsPerOctave,
-  kReducedResolution
+  kReducedResolution,
+  kDirectKernel
 };
 enum Method { kGaussian = 0, kStrided = 1 };
+enum DirectKernel { kDirectAuto = 0, kDirectFull = 1, kDirectPinwheel = 2 };
 constexpr aq_param_desc kParams[] = {
     aq::enum_param("method", "gaussian|strided", kGaussian,
                    "gaussian: exact separable Gaussian (default); strided: the seed's 5x5 kernel "
@@ -69,7 +71,11 @@ constexpr aq_param_desc kParams[] = {
                   "more is closer to the ideal per-pixel Gaussian and slower"),
     aq::bool_param("reduced_resolution", false,
                    "blur sigmas above 4 px (uniform, or the stack's levels) on a pyramid reduced "
-                   "2^k times, sigma/2^k >= 2 px: much faster, error measured in the tests")};
+                   "2^k times, sigma/2^k >= 2 px: much faster, error measured in the tests"),
+    aq::enum_param("direct_kernel", "auto|full|pinwheel", kDirectAuto,
+                   "one-pass kernel for a varying sigma up to 1 working px: full = the 5x5 "
+                   "truncated Gaussian (9 reads); pinwheel = 17 of its 25 taps (5 reads, less "
+                   "accurate); auto = pinwheel at draft and preview quality, full at final")};
 
 constexpr int kMaxLevels = 12;          // blurred levels in the stack besides the input (shader)
 constexpr double kSmallestLevel = 0.5;  // below this a Gaussian is nearly the identity
@@ -240,8 +246,12 @@ struct Blur {
   // σ per pixel, σmax small: one pass, each pixel's own truncated Gaussian.
   bool direct_gaussian(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma,
                        double max_sigma) {
+    const int radius = direct_radius(max_sigma);
+    const int64_t kernel = ctx.param_enum(kDirectKernel);
+    const bool pinwheel =
+        radius == 2 && (kernel == kDirectPinwheel || (kernel == kDirectAuto && ctx.quality() < 2));
     const std::string defines =
-        define("AQ_RADIUS", direct_radius(max_sigma)) + depth_define(ctx, in);
+        define("AQ_RADIUS", radius) + define("AQ_PINWHEEL", pinwheel) + depth_define(ctx, in);
     GLuint program = ctx.program(with_strength(shaders::blur_direct_frag, defines, source));
     if (program == 0) return false;
     glUseProgram(program);

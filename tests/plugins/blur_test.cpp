@@ -287,6 +287,65 @@ TEST(Blur, SmallVaryingSigmaIsOnePassTruncatedGaussianCloserToTheIdealThanTheSta
   }
 }
 
+TEST(Blur, PinwheelKernelIsWithinItsStatedError) {
+  const ImageF input = aq::test::random_image(80, 60, 34);
+  const ImageF depth = depth_ramp(80, 60, 30.0);
+  for (double sigma : {0.5, 1.0}) {
+    const BlurParams params{sigma, 20.0, 1.0, 0.35, 1};
+    nlohmann::json json = to_json(params);
+    json["direct_kernel"] = "pinwheel";
+    const ImageF got = run(input, json, &depth);
+    const ImageF got_half = run(input, json, &depth, "half");
+    ASSERT_FALSE(got.empty());
+    ASSERT_FALSE(got_half.empty());
+    const ImageF definition = aq::reference::pinwheel_variable_blur(input, &depth, params);
+    const ImageF ideal = aq::reference::exact_variable_blur(input, &depth, params);
+    const ImageF stack = aq::reference::stacked_blur(input, &depth, params);
+    const double err = aq::test::max_abs_diff(got, definition);
+    const double err_half = aq::test::max_abs_diff(got_half, definition);
+    const double ideal_max = aq::test::max_abs_diff(got, ideal);
+    const double ideal_mean = aq::test::mean_abs_diff(got, ideal);
+    EXPECT_LE(err, 1e-4) << "sigma " << sigma;
+    EXPECT_LE(err_half, 1e-3) << "sigma " << sigma;
+    EXPECT_LE(ideal_max, 0.05) << "sigma " << sigma;
+    EXPECT_LE(ideal_mean, 0.004) << "sigma " << sigma;
+    // Still closer to the ideal than the stack of exact blurs it replaced.
+    EXPECT_LT(ideal_max, aq::test::max_abs_diff(stack, ideal)) << "sigma " << sigma;
+    EXPECT_LT(ideal_mean, aq::test::mean_abs_diff(stack, ideal)) << "sigma " << sigma;
+    std::printf(
+        "[blur pinwheel] sigma max %.1f: vs definition %.3g (half %.3g); vs ideal max %.3g mean "
+        "%.3g\n",
+        sigma, err, err_half, ideal_max, ideal_mean);
+  }
+}
+
+TEST(Blur, DirectKernelAutoIsPinwheelBelowFinalQuality) {
+  // sigma 2 output px at preview (render scale 1/2): σmax 1 working px, the radius-2 kernel.
+  const ImageF input = aq::test::random_image(96, 64, 35);
+  const ImageF depth = depth_ramp(96, 64, 30.0);
+  auto render = [&](const char* kernel, const char* quality) {
+    nlohmann::json json = to_json(BlurParams{2.0, 20.0, 1.0, 0.35, 1});
+    json["direct_kernel"] = kernel;
+    aq::test::RenderOptions options = with_precision("float");
+    options.width = 96;
+    options.height = 64;
+    options.quality = quality;
+    auto out = aq::test::run_node("blur", {{"image", input}, {"depth", depth}}, json, options);
+    EXPECT_TRUE(out.ok()) << (out.ok() ? "" : out.message());
+    return out.ok() ? *out : ImageF();
+  };
+  const ImageF preview_auto = render("auto", "preview");
+  const ImageF preview_pinwheel = render("pinwheel", "preview");
+  const ImageF preview_full = render("full", "preview");
+  ASSERT_FALSE(preview_auto.empty());
+  EXPECT_EQ(aq::test::max_abs_diff(preview_auto, preview_pinwheel), 0.0);
+  EXPECT_GT(aq::test::max_abs_diff(preview_auto, preview_full), 1e-3);
+  const ImageF final_auto = render("auto", "final");
+  const ImageF final_full = render("full", "final");
+  ASSERT_FALSE(final_auto.empty());
+  EXPECT_EQ(aq::test::max_abs_diff(final_auto, final_full), 0.0);
+}
+
 TEST(Blur, SmallVaryingSigmaKeepsSharpPixelsExactBesideNonFiniteColours) {
   // Near pixels (depth 0.01 of 20: σ ≈ 1e-9) beside an infinite and a NaN colour stay the
   // input exactly; far pixels around the NaN get it, as any convolution would.

@@ -199,6 +199,38 @@ ImageF truncated_variable_blur(const ImageF& image, const ImageF* depth, const B
   return to_float(out);
 }
 
+ImageF pinwheel_variable_blur(const ImageF& image, const ImageF* depth, const BlurParams& params) {
+  auto kept = [](int i, int j) {
+    if (std::abs(i) == 2 && std::abs(j) == 2) return false;
+    return !((i == -2 && j == 1) || (i == 1 && j == 2) || (i == 2 && j == -1) ||
+             (i == -1 && j == -2));
+  };
+  const ImageD input = to_double(image);
+  ImageD out(image.width, image.height);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const double sigma =
+          params.sigma * blur_strength(x, y, image.width, image.height, depth, params);
+      auto g = [&](int i) {
+        return i == 0 ? 1.0 : sigma > 0.0 ? std::exp(-0.5 * (i / sigma) * (i / sigma)) : 0.0;
+      };
+      double total = 0.0;
+      double sum[4] = {0, 0, 0, 0};
+      for (int j = -2; j <= 2; ++j)
+        for (int i = -2; i <= 2; ++i) {
+          if (!kept(i, j)) continue;
+          const double w = g(i) * g(j);
+          if (w == 0.0) continue;
+          total += w;
+          for (int c = 0; c < 4; ++c)
+            sum[c] +=
+                w * input.at(clamp_index(x + i, image.width), clamp_index(y + j, image.height), c);
+        }
+      for (int c = 0; c < 4; ++c) out.at(x, y, c) = sum[c] / total;
+    }
+  return to_float(out);
+}
+
 ImageF strided_blur(const ImageF& image, const ImageF* depth, const BlurParams& params) {
   const ImageD input = to_double(image);
   const double binomial[5] = {1, 4, 6, 4, 1};

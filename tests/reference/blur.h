@@ -49,6 +49,11 @@ int direct_blur_radius(double max_sigma);
 ImageF truncated_variable_blur(const ImageF& image, const ImageF* depth, const BlurParams& params,
                                int radius);
 
+// The one-pass path's `pinwheel` kernel: the per-pixel sampled Gaussian on the 5×5 taps less
+// the 4 corners and (−2, 1), (1, 2), (2, −1), (−1, −2) (x right, y up), normalised over the
+// 17 taps kept.
+ImageF pinwheel_variable_blur(const ImageF& image, const ImageF* depth, const BlurParams& params);
+
 // The `strided` method: 5×5 binomial kernel with strides 0.3σ and σ, bilinear clamp-to-edge
 // reads, mixed by strength.
 ImageF strided_blur(const ImageF& image, const ImageF* depth, const BlurParams& params);

@@ -6,7 +6,12 @@
 // fetch at 2k−1 + w(2k)/(w(2k−1) + w(2k)); the kernel is separable, so the 2D sum is the
 // outer product of the per-axis fetches: (AQ_RADIUS + 1)² reads in all (the centre one a
 // texelFetch), exact in real arithmetic.
-// blur.cpp prepends AQ_RADIUS and AQ_HAS_DEPTH and the strength function.
+// With AQ_PINWHEEL (radius 2 only, the `direct_kernel` setting of draft and preview quality)
+// the 5×5 support loses its 4 corners and 4 of its 8 other outer texels, (−2, 1), (1, 2),
+// (2, −1), (−1, −2), so that what is left tiles into the centre texel and four 2×2 blocks
+// turned by 90° about it: 5 reads instead of 9, each block exact as one bilinear fetch since
+// the kernel is separable. The kernel keeps its 90° rotations but not its mirror symmetry.
+// blur.cpp prepends AQ_RADIUS, AQ_PINWHEEL and AQ_HAS_DEPTH and the strength function.
 layout(location = 0) out vec4 o_color;
 
 uniform sampler2D u_image;
@@ -16,6 +21,26 @@ float blur_strength(vec2 frag);
 
 const int kPairs = AQ_RADIUS / 2;
 
+#if AQ_PINWHEEL
+void main() {
+  vec2 frag = gl_FragCoord.xy;
+  float sigma = u_sigma * blur_strength(frag);
+  float log2_q = sigma > 0.0 ? -0.7213475204444817 / (sigma * sigma) : -1.0e30;
+  float w1 = exp2(log2_q);
+  float ratio = exp2(3.0 * log2_q);  // w(2) / w(1)
+  // The block {1, 2} × {0, 1}: along x taps 1, 2, across taps 0, 1.
+  float along = 1.0 + ratio / (1.0 + ratio);
+  float across = w1 / (1.0 + w1);
+  float block = w1 * (1.0 + ratio) * (1.0 + w1);
+  vec2 inv_size = 1.0 / u_size;
+  vec4 centre = texelFetch(u_image, ivec2(frag), 0);
+  vec4 blocks = texture(u_image, (frag + vec2(along, across)) * inv_size) +
+                texture(u_image, (frag + vec2(-across, along)) * inv_size) +
+                texture(u_image, (frag + vec2(-along, -across)) * inv_size) +
+                texture(u_image, (frag + vec2(across, -along)) * inv_size);
+  o_color = w1 > 0.0 ? (centre + block * blocks) / (1.0 + 4.0 * block) : centre;
+}
+#else
 void main() {
   vec2 frag = gl_FragCoord.xy;
   float sigma = u_sigma * blur_strength(frag);
@@ -58,3 +83,4 @@ void main() {
   float inv_norm = 1.0 / norm;
   o_color = weight[1] > 0.0 ? sum * (inv_norm * inv_norm) : centre;
 }
+#endif
