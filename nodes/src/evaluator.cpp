@@ -65,6 +65,55 @@ struct FusedChain {
   std::vector<std::unique_ptr<Stage>> stages;
 };
 
+// The context process() (or a fused stage's set_uniforms) sees for one node.
+void fill_process_ctx(aq_process_ctx& ctx, const aq_host* host, uint32_t gl_generation,
+                      CallState& call, std::vector<aq_input_value>& inputs,
+                      std::vector<aq_param_value>& params, const Settings& settings,
+                      uint32_t format, double time, int frame, const PixelSize& size) {
+  ctx.struct_size = sizeof(aq_process_ctx);
+  ctx.host = host;
+  ctx.host_data = &call;
+  ctx.node_id = call.node_id.c_str();
+  ctx.inputs = inputs.data();
+  ctx.input_count = static_cast<uint32_t>(inputs.size());
+  ctx.params = params.data();
+  ctx.param_count = static_cast<uint32_t>(params.size());
+  ctx.width = size.width;
+  ctx.height = size.height;
+  ctx.precision = settings.precision == "float" ? AQ_PRECISION_FLOAT : AQ_PRECISION_HALF;
+  ctx.working_format = format;
+  ctx.time = time;
+  ctx.frame = frame;
+  ctx.fps = settings.fps;
+  ctx.gl_generation = gl_generation;
+  ctx.quality = quality_index(settings.quality);
+  ctx.render_scale = render_scale(settings.quality);
+}
+
+// Pointwise nodes whose function runs inside their reader's pass instead of a pass of their
+// own: they give a fusable function, are not the output, and their only reader is another
+// such node reading them on its image input.
+std::set<std::string> deferred_nodes(const Graph& graph, const Registry& registry,
+                                     const std::vector<std::string>& order,
+                                     std::map<std::string, int>& readers,
+                                     const std::string& target) {
+  std::set<std::string> deferred;
+  auto fusable = [&](const std::string& id) {
+    const NodeType* type = registry.find(graph.nodes.at(id).type);
+    return type != nullptr && type->fusable != nullptr;
+  };
+  for (const auto& reader_id : order) {
+    if (!fusable(reader_id)) continue;
+    const NodeType* reader_type = registry.find(graph.nodes.at(reader_id).type);
+    const Node& reader = graph.nodes.at(reader_id);
+    auto link = reader.inputs.find(reader_type->inputs[0].name);
+    if (link == reader.inputs.end()) continue;
+    const std::string& source = link->second.node;
+    if (source != target && readers[source] == 1 && fusable(source)) deferred.insert(source);
+  }
+  return deferred;
+}
+
 struct Evaluator::Impl {
   GlContext& context;
   TexturePool& pool;
@@ -378,50 +427,9 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
 
   std::map<std::string, bool> varies;
 
-  // Pointwise nodes whose function runs inside their reader's pass instead of a pass of their
-  // own: they give a fusable function, are not the output, and their only reader is another
-  // such node reading them on its image input.
-  std::set<std::string> deferred;
-  if (options.fuse_pointwise) {
-    auto fusable = [&](const std::string& id) {
-      const NodeType* type = registry_.find(graph.nodes.at(id).type);
-      return type != nullptr && type->fusable != nullptr;
-    };
-    for (const auto& reader_id : order) {
-      if (!fusable(reader_id)) continue;
-      const NodeType* reader_type = registry_.find(graph.nodes.at(reader_id).type);
-      const Node& reader = graph.nodes.at(reader_id);
-      auto link = reader.inputs.find(reader_type->inputs[0].name);
-      if (link == reader.inputs.end()) continue;
-      const std::string& source = link->second.node;
-      if (source != target->node && readers[source] == 1 && fusable(source)) {
-        deferred.insert(source);
-      }
-    }
-  }
-  auto fill_process_ctx = [&](aq_process_ctx& ctx, CallState& call,
-                              std::vector<aq_input_value>& inputs,
-                              std::vector<aq_param_value>& params, const Settings& settings,
-                              uint32_t format, double time, int frame, const PixelSize& size) {
-    ctx.struct_size = sizeof(aq_process_ctx);
-    ctx.host = &impl_->host;
-    ctx.host_data = &call;
-    ctx.node_id = call.node_id.c_str();
-    ctx.inputs = inputs.data();
-    ctx.input_count = static_cast<uint32_t>(inputs.size());
-    ctx.params = params.data();
-    ctx.param_count = static_cast<uint32_t>(params.size());
-    ctx.width = size.width;
-    ctx.height = size.height;
-    ctx.precision = settings.precision == "float" ? AQ_PRECISION_FLOAT : AQ_PRECISION_HALF;
-    ctx.working_format = format;
-    ctx.time = time;
-    ctx.frame = frame;
-    ctx.fps = settings.fps;
-    ctx.gl_generation = context_.generation();
-    ctx.quality = quality_index(settings.quality);
-    ctx.render_scale = render_scale(settings.quality);
-  };
+  const std::set<std::string> deferred =
+      options.fuse_pointwise ? deferred_nodes(graph, registry_, order, readers, target->node)
+                             : std::set<std::string>{};
   // The stages of each fused chain so far, by the id of its last deferred node.
   std::map<std::string, std::shared_ptr<FusedChain>> chains;
   const Settings& settings = graph.settings;
@@ -558,7 +566,9 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
     }
     const bool is_deferred = deferred.count(id) != 0;
     // The output's pointwise tail runs in the pass that resamples a proxy render's output.
-    const TextureRef& chain_input = chain ? chain->input : input_refs[0];
+    // Nodes without inputs (image_input, generators) have no input_refs[0].
+    const TextureRef chain_input =
+        chain ? chain->input : (input_refs.empty() ? TextureRef() : input_refs[0]);
     const bool tail_into_resample =
         !is_deferred && options.fuse_pointwise && type->fusable != nullptr && id == target->node &&
         (working.width != settings.width || working.height != settings.height) && chain_input &&
@@ -588,8 +598,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       stage->call.impl = impl_.get();
       stage->call.state = &state;
       stage->call.node_id = id;
-      fill_process_ctx(stage->ctx, stage->call, stage->inputs, stage->params, settings, format,
-                       time, options.frame, working);
+      fill_process_ctx(stage->ctx, &impl_->host, context_.generation(), stage->call, stage->inputs,
+                       stage->params, settings, format, time, options.frame, working);
       chain->stages.push_back(std::move(stage));
     }
     if (is_deferred) {
@@ -658,7 +668,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       call.node_id = id;
       call.input_refs = &input_refs;
       aq_process_ctx ctx{};
-      fill_process_ctx(ctx, call, inputs, params, settings, format, time, options.frame, working);
+      fill_process_ctx(ctx, &impl_->host, context_.generation(), call, inputs, params, settings,
+                       format, time, options.frame, working);
 
       for (auto& image : state.images) image.reset();
       for (auto& scene : state.scenes) scene = nullptr;
