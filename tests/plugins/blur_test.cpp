@@ -346,6 +346,26 @@ TEST(Blur, DirectKernelAutoIsPinwheelBelowFinalQuality) {
   EXPECT_EQ(aq::test::max_abs_diff(final_auto, final_full), 0.0);
 }
 
+TEST(Blur, OnePassHandlesTinyAndThinImages) {
+  // 1×1, 1×N and N×1: every neighbour fetch clamps to the edge; both kernels match their
+  // definitions (radial term only, no depth, so σ varies along the row).
+  for (auto [w, h] : {std::pair{1, 1}, std::pair{1, 9}, std::pair{9, 1}, std::pair{3, 5}}) {
+    const ImageF input = aq::test::random_image(w, h, 36);
+    const BlurParams params{1.0, 20.0, 0.2, 0.8};
+    for (const char* kernel : {"full", "pinwheel"}) {
+      nlohmann::json json = to_json(params);
+      json["direct_kernel"] = kernel;
+      const ImageF got = run(input, json);
+      ASSERT_FALSE(got.empty());
+      const ImageF expected =
+          std::string(kernel) == "full"
+              ? aq::reference::truncated_variable_blur(input, nullptr, params, 2)
+              : aq::reference::pinwheel_variable_blur(input, nullptr, params);
+      EXPECT_LE(aq::test::max_abs_diff(got, expected), 1e-5) << w << "x" << h << " " << kernel;
+    }
+  }
+}
+
 TEST(Blur, SmallVaryingSigmaKeepsSharpPixelsExactBesideNonFiniteColours) {
   // Near pixels (depth 0.01 of 20: σ ≈ 1e-9) beside an infinite and a NaN colour stay the
   // input exactly; far pixels around the NaN get it, as any convolution would.
