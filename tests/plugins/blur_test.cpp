@@ -104,9 +104,8 @@ TEST(Blur, UniformGaussianInHalfPrecision) {
     const ImageF got = run(input, to_json(uniform(sigma)), nullptr, "half");
     ASSERT_FALSE(got.empty());
     const double err = aq::test::max_abs_diff(got, expected);
-    // Input, horizontal scratch and output are half floats (three roundings of at most half an
-    // ulp below 1, 2.4e-4) and llvmpipe filters half textures in reduced precision (README).
-    EXPECT_LE(err, 2e-3) << "sigma " << sigma;
+    // Only the output is half (intermediates are RGBA32F): half an ulp below 1 is 2.4e-4.
+    EXPECT_LE(err, 5e-4) << "sigma " << sigma;
     std::printf("[blur half] sigma %.1f: max abs %.3g, psnr %.1f dB\n", sigma, err,
                 aq::test::psnr(got, expected));
   }
