@@ -7,7 +7,8 @@
 // `gaussian` (default): exact Gaussians. A uniform σ is two separable passes (horizontal into a
 // scratch texture, then vertical). A varying σ with σmax <= 2 working pixels (the underwater
 // graph at preview and final quality) is one pass: each pixel gathers the Gaussian of its own
-// σ, truncated at 2·ceil(σmax) taps per side, read as bilinear pairs ((R+1)² fetches). A wider
+// σ, truncated at 2·ceil(σmax) taps per side, read as bilinear pairs ((R+1)² fetches; at draft
+// and preview quality and σmax <= 1, the 5-fetch `pinwheel` subset of the 5×5 taps). A wider
 // varying σ renders a small stack of exact blurs at σmax, σmax/2, σmax/4 ... and mixes the two
 // levels around each pixel's σ so that the mixed kernel has exactly the variance σ²
 // (levels_per_octave = 2 or 3 puts levels closer):
@@ -18,6 +19,8 @@
 //
 // Shaders that depend on the stack size or on the depth input are compiled per variant
 // (#define), as llvmpipe runs every side of a branch on a uniform.
+//
+// `reduced_resolution` runs Gaussians above 4 px on a pyramid of 2×2 means and back up.
 //
 // `strided`: the seed's 5×5 kernel read with strides 0.3σ and σ, kept to show its artefacts.
 #include <aquarelle/plugin.hpp>
