@@ -167,6 +167,58 @@ Result<std::vector<Sweep>> blur_sweeps(GlContext& context, const Registry& regis
     return s.error();
   }
   sweeps.push_back(varying);
+
+  // The one-pass kernels for a small varying sigma at the preview's render scale (half the
+  // graph's sigma in working pixels): all 25 taps, or the 17-tap pinwheel the proxy presets use.
+  reference::BlurParams small = params;
+  small.sigma = 0.5 * sigma;
+  std::snprintf(label, sizeof(label), "blur depth sigma=%g", small.sigma);
+  Sweep one_pass = cpu_sweep(label, "blur", "");
+  one_pass.reference = varying.reference;
+  auto small_ideal = timed_reference(&one_pass.reference_ms, [&] {
+    return reference::exact_variable_blur(images.at("image"), &images.at("depth"), small);
+  });
+  configs.clear();
+  for (const char* precision : kPrecisions) {
+    for (const char* kernel : {"full", "pinwheel"}) {
+      configs.push_back({std::string("direct_kernel ") + kernel,
+                         {{"method", "gaussian"}, {"direct_kernel", kernel}},
+                         precision,
+                         small_ideal});
+    }
+  }
+  json small_params = varying_params;
+  small_params["sigma"] = small.sigma;
+  if (auto s =
+          run_configs(context, registry, plan, "blur", small_params,
+                      {{"image", "image"}, {"depth", "depth"}}, images, configs, w, h, &one_pass);
+      !s.ok()) {
+    return s.error();
+  }
+  sweeps.push_back(one_pass);
+
+  // A wide uniform blur, exact against the reduced-resolution pyramid (blur at a lower level
+  // of 2x2 means with the variance corrected, then upsampled).
+  constexpr double kWideSigma = 12.0;
+  std::snprintf(label, sizeof(label), "blur wide sigma=%g", kWideSigma);
+  Sweep wide = cpu_sweep(label, "blur", "");
+  wide.reference = "exact Gaussian, double precision (reference::gaussian_blur)";
+  auto wide_exact = timed_reference(
+      &wide.reference_ms, [&] { return reference::gaussian_blur(images.at("image"), kWideSigma); });
+  configs.clear();
+  const json full_size = {{"method", "gaussian"}, {"reduced_resolution", false}};
+  const json pyramid = {{"method", "gaussian"}, {"reduced_resolution", true}};
+  for (const char* precision : kPrecisions) {
+    configs.push_back({"full resolution", full_size, precision, wide_exact});
+    configs.push_back({"reduced_resolution", pyramid, precision, wide_exact});
+  }
+  const json wide_params = {{"sigma", kWideSigma}, {"depth_weight", 1.0}, {"radial_weight", 0.0}};
+  if (auto s = run_configs(context, registry, plan, "blur", wide_params, {{"image", "image"}},
+                           images, configs, w, h, &wide);
+      !s.ok()) {
+    return s.error();
+  }
+  sweeps.push_back(wide);
   return sweeps;
 }
 
