@@ -1,5 +1,5 @@
-// Test harness: a process-wide headless context per backend, the build's plugins, and helpers
-// to run nodes and graphs and compare images. See harness.h.
+// Test harness: a headless context per backend kept until the last test, the build's plugins, and
+// helpers to run nodes and graphs and compare images. See harness.h.
 #include "support/harness.h"
 
 #include <aquarelle/core/evaluator.h>
@@ -40,12 +40,17 @@ struct Backend {
   std::string error;
 };
 
-// Contexts and evaluators live for the whole test process (never destroyed: drivers do not
-// like contexts torn down during static destruction).
+// Contexts and evaluators live until the last test has run: shutdown() (called by main() in
+// test_main.cpp) destroys them then, before exit and LeakSanitizer's check, and not from
+// static destructors, where the drivers may already have torn down their own state.
+std::map<std::string, Backend*>& backends() {
+  static auto* backends = new std::map<std::string, Backend*>();
+  return *backends;
+}
+
 Backend& backend(const std::string& name) {
-  static std::map<std::string, Backend*> backends;
-  auto it = backends.find(name);
-  if (it != backends.end()) return *it->second;
+  auto it = backends().find(name);
+  if (it != backends().end()) return *it->second;
   auto* b = new Backend();
   auto parsed = parse_backend(name);
   if (!parsed.ok()) {
@@ -59,7 +64,7 @@ Backend& backend(const std::string& name) {
       b->evaluator = std::make_unique<Evaluator>(*b->context, loaded().registry);
     }
   }
-  backends[name] = b;
+  backends()[name] = b;
   return *b;
 }
 
@@ -67,6 +72,15 @@ Backend& backend(const std::string& name) {
 
 const Registry& registry() {
   return loaded().registry;
+}
+
+void shutdown() {
+  for (auto& [name, b] : backends()) {
+    b->evaluator.reset();  // activates its context to delete its GL objects: before the context
+    b->context.reset();
+    delete b;
+  }
+  backends().clear();
 }
 
 std::string source_path(const std::string& relative) {

@@ -36,6 +36,12 @@ struct RenderOptions {
 // Every plugin in the build's plugin folder plus the host's built-in types.
 const Registry& registry();
 
+// Destroys the evaluators and GL contexts made so far (each evaluator before its context); a
+// later call makes new ones. Runs by itself after the last test (test_main.cpp), so that leak
+// checking at exit sees them freed. The registry and the plugins stay loaded until exit (their
+// code must stay mapped for a leak report to name it).
+void shutdown();
+
 // Renders a graph given as JSON text (the file format). `images` feeds `image_input` nodes
 // by their `name` parameter.
 Result<ImageF> render_graph(const std::string& json_text, const RenderOptions& options = {},
