@@ -9,7 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$(pwd)"
-plugin_tests="${1:-plugins\.(tint|vignette|blur|fog)_test}"
+plugin_tests="${1:-plugins\.(tint|vignette|blur|fog|hard_cases|watercolor_graph)_test}"
 build=build-asan
 
 generator=()
