@@ -84,6 +84,9 @@ cached = {n["id"]: n for n in modes["cached_static_nodes"]["nodes"]}
 for n in modes["every_node_runs"]["nodes"]:
     c = cached.get(n["id"])
     g = n["wall_ms"]
+    if n.get("fused"):
+        lines.append(f"| {n['id']} | {n['type']} | fused into its reader's pass | - | - | - | - |")
+        continue
     lines.append(f"| {n['id']} | {n['type']} | {ms(g['median'])} [{ms(g['min'])} .. {ms(g['max'])}] "
                  f"| {n['copy_passes']:.1f} | {ms(c['wall_ms']['median']) if c else '-'} "
                  f"| {c['runs'] if c else '-'} of {report['frames']} | {ms(n['gpu_ms']['median'])} |")

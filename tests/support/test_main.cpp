@@ -22,6 +22,7 @@ namespace {
 // `<unknown module>` frames that no suppression can name, once per load. Keeping the driver
 // mapped until exit (RTLD_NODELETE) leaves that state reachable, as in a process that never
 // terminates its display, and keeps the driver's frames named in any other report.
+#if defined(__SANITIZE_ADDRESS__)
 void keep_gl_drivers_loaded() {
   std::vector<std::string> drivers;
   dl_iterate_phdr(
@@ -38,6 +39,7 @@ void keep_gl_drivers_loaded() {
     dlopen(path.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
   }
 }
+#endif
 
 class HarnessEnvironment : public ::testing::Environment {
  public:
