@@ -12,8 +12,8 @@ namespace aq::app {
 namespace {
 
 nlohmann::json param_json(const ParamInfo& p) {
-  nlohmann::json j = {{"name", p.name}, {"type", param_type_name(p.type)},
-                      {"description", p.description}};
+  nlohmann::json j = {
+      {"name", p.name}, {"type", param_type_name(p.type)}, {"description", p.description}};
   switch (p.type) {
     case AQ_PARAM_FLOAT:
       j["default"] = p.default_value[0];
@@ -25,12 +25,14 @@ nlohmann::json param_json(const ParamInfo& p) {
       j["min"] = static_cast<int64_t>(p.min_value);
       j["max"] = static_cast<int64_t>(p.max_value);
       break;
-    case AQ_PARAM_BOOL: j["default"] = p.default_value[0] != 0; break;
+    case AQ_PARAM_BOOL:
+      j["default"] = p.default_value[0] != 0;
+      break;
     case AQ_PARAM_ENUM:
       j["values"] = p.enum_values;
       if (!p.enum_values.empty()) {
-        j["default"] = p.enum_values[static_cast<size_t>(p.default_value[0]) %
-                                     p.enum_values.size()];
+        j["default"] =
+            p.enum_values[static_cast<size_t>(p.default_value[0]) % p.enum_values.size()];
       }
       break;
     case AQ_PARAM_COLOR:
@@ -38,7 +40,9 @@ nlohmann::json param_json(const ParamInfo& p) {
       j["default"] = {p.default_value[0], p.default_value[1], p.default_value[2]};
       break;
     case AQ_PARAM_STRING:
-    case AQ_PARAM_PATH: j["default"] = p.default_string; break;
+    case AQ_PARAM_PATH:
+      j["default"] = p.default_string;
+      break;
   }
   return j;
 }
@@ -104,12 +108,16 @@ int print_presets() {
   std::vector<fs::path> candidates = {
       exe.parent_path().parent_path() / "share/aquarelle/performance.json",
       fs::path(AQ_SOURCE_DIR) / "docs/performance/bench.json"};
-  std::printf("quality presets (settings.quality, or render --quality):\n"
-              "  draft    fastest, coarsest internal resolutions\n"
-              "  preview  in between\n"
-              "  final    the default: full quality\n\n");
-  std::printf("Each node receives the preset (aq_process_ctx.quality) and chooses its own settings;\n"
-              "its README says which (today: the caustic grid).\n\n");
+  std::printf(
+      "quality presets (settings.quality, or render --quality):\n"
+      "  draft    renders at 1/4 of the graph's size, caustic grid / 8\n"
+      "  preview  renders at 1/2 of the graph's size, caustic grid / 4\n"
+      "  final    full size, every node at the parameters asked for (the default)\n\n");
+  std::printf(
+      "A proxy preset renders the nodes at the reduced size and resamples the output to\n"
+      "the graph's size; parameters in pixels keep meaning output pixels\n"
+      "(aq_process_ctx.render_scale). Each node also receives the preset\n"
+      "(aq_process_ctx.quality); its README says what it changes.\n\n");
   for (const auto& path : candidates) {
     std::ifstream file(path);
     if (!file) continue;
@@ -132,8 +140,9 @@ int print_presets() {
                     point.value("psnr", 0.0));
       }
     }
-    std::printf("\nerrors are against a float render at the final preset; regenerate with "
-                "scripts/update-performance.sh\n");
+    std::printf(
+        "\nerrors are against a float render at the final preset; regenerate with "
+        "scripts/update-performance.sh\n");
     return kExitOk;
   }
   std::printf("no measurements found: run scripts/update-performance.sh (aquarelle bench)\n");
@@ -148,10 +157,11 @@ int run_nodes(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
     if (arg == "--help" || arg == "-h") {
-      std::printf("usage: aquarelle nodes [TYPE] [--json] [--presets]\n\n"
-                  "Lists the installed node types (plugins on the plugin path and the host's\n"
-                  "built-in ones) with their ports and parameters. --json prints them as JSON;\n"
-                  "--presets prints the quality presets with their measured cost and error.\n");
+      std::printf(
+          "usage: aquarelle nodes [TYPE] [--json] [--presets]\n\n"
+          "Lists the installed node types (plugins on the plugin path and the host's\n"
+          "built-in ones) with their ports and parameters. --json prints them as JSON;\n"
+          "--presets prints the quality presets with their measured cost and error.\n");
       return kExitOk;
     }
     if (arg == "--json") {
