@@ -37,6 +37,22 @@ struct NodeState {
   gl::Query timer_start;  // GL_TIMESTAMP pairs: llvmpipe's GL_TIME_ELAPSED reads garbage when
   gl::Query timer_end;    // a query spans shader compilation, timestamps do not
   BuiltinState builtin;
+
+  // GL_TIMESTAMP pair around this node's work.
+  void mark_start() {
+    if (!timer_start) {
+      timer_start = gl::make_query();
+      timer_end = gl::make_query();
+    }
+    glQueryCounter(timer_start.get(), GL_TIMESTAMP);
+  }
+  void mark_end() { glQueryCounter(timer_end.get(), GL_TIMESTAMP); }
+  double marked_gpu_ms() const {
+    GLuint64 begin_ns = 0, end_ns = 0;
+    glGetQueryObjectui64v(timer_start.get(), GL_QUERY_RESULT, &begin_ns);
+    glGetQueryObjectui64v(timer_end.get(), GL_QUERY_RESULT, &end_ns);
+    return end_ns > begin_ns ? static_cast<double>(end_ns - begin_ns) * 1e-6 : 0.0;
+  }
 };
 
 struct CallState {
@@ -616,13 +632,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       const int width = tail_into_resample ? settings.width : chain->input->image.width;
       const int height = tail_into_resample ? settings.height : chain->input->image.height;
       if (options.finish_each_node) glFinish();
-      if (options.measure_gpu_time) {
-        if (!state.timer_start) {
-          state.timer_start = gl::make_query();
-          state.timer_end = gl::make_query();
-        }
-        glQueryCounter(state.timer_start.get(), GL_TIMESTAMP);
-      }
+      if (options.measure_gpu_time) state.mark_start();
       auto start = std::chrono::steady_clock::now();
       std::vector<FusedStage> stages;
       for (auto& stage : chain->stages) {
@@ -632,7 +642,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
                                     height, format);
       if (options.finish_each_node) glFinish();
       auto end = std::chrono::steady_clock::now();
-      if (options.measure_gpu_time) glQueryCounter(state.timer_end.get(), GL_TIMESTAMP);
+      if (options.measure_gpu_time) state.mark_end();
       impl_->reset_gl_state();
       ++run_counts_[id];
       std::string errors;
@@ -654,12 +664,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       state.valid = true;
       NodeTiming timing{id, type->name, 0,
                         std::chrono::duration<double, std::milli>(end - start).count(), false};
-      if (options.measure_gpu_time) {
-        GLuint64 begin_ns = 0, end_ns = 0;
-        glGetQueryObjectui64v(state.timer_start.get(), GL_QUERY_RESULT, &begin_ns);
-        glGetQueryObjectui64v(state.timer_end.get(), GL_QUERY_RESULT, &end_ns);
-        timing.gpu_ms = end_ns > begin_ns ? static_cast<double>(end_ns - begin_ns) * 1e-6 : 0.0;
-      }
+      if (options.measure_gpu_time) timing.gpu_ms = state.marked_gpu_ms();
       timings_.push_back(timing);
     } else {
       CallState call;
@@ -674,13 +679,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       for (auto& image : state.images) image.reset();
       for (auto& scene : state.scenes) scene = nullptr;
       if (options.finish_each_node) glFinish();  // earlier nodes' work is not this node's
-      if (options.measure_gpu_time) {
-        if (!state.timer_start) {
-          state.timer_start = gl::make_query();
-          state.timer_end = gl::make_query();
-        }
-        glQueryCounter(state.timer_start.get(), GL_TIMESTAMP);
-      }
+      if (options.measure_gpu_time) state.mark_start();
       auto start = std::chrono::steady_clock::now();
       int status = AQ_OK;
       if (type->desc == nullptr) {
@@ -698,17 +697,12 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       }
       if (options.finish_each_node) glFinish();
       auto end = std::chrono::steady_clock::now();
-      if (options.measure_gpu_time) glQueryCounter(state.timer_end.get(), GL_TIMESTAMP);
+      if (options.measure_gpu_time) state.mark_end();
       impl_->reset_gl_state();
       call.scratch.clear();
       NodeTiming timing{id, type->name, 0,
                         std::chrono::duration<double, std::milli>(end - start).count(), false};
-      if (options.measure_gpu_time) {
-        GLuint64 begin_ns = 0, end_ns = 0;
-        glGetQueryObjectui64v(state.timer_start.get(), GL_QUERY_RESULT, &begin_ns);
-        glGetQueryObjectui64v(state.timer_end.get(), GL_QUERY_RESULT, &end_ns);
-        timing.gpu_ms = end_ns > begin_ns ? static_cast<double>(end_ns - begin_ns) * 1e-6 : 0.0;
-      }
+      if (options.measure_gpu_time) timing.gpu_ms = state.marked_gpu_ms();
       timings_.push_back(timing);
       ++run_counts_[id];
       if (status != AQ_OK || !call.error.empty()) {

@@ -59,6 +59,13 @@ bool same_size(const aq_image& a, const aq_image& b) {
 }
 
 struct CelLight {
+  struct Variant {
+    bool shadow, caustics, quantize;
+    int pcf_radius;
+    bool same_size;
+    bool operator==(const Variant&) const = default;
+  };
+  Variant variant_{};
   std::string source;  // outlives the program call that reads it
   aq::gl::Sampler repeating;
   uint32_t sampler_generation = 0;
@@ -80,8 +87,13 @@ struct CelLight {
     const bool gbuffer_same_size = same_size(position, ctx.input_image(kNormal)) &&
                                    same_size(position, ctx.input_image(kAlbedo)) &&
                                    same_size(position, ctx.input_image(kId));
-    source = variant_source(has_shadow, has_caustics, ctx.param_bool(kQuantize),
-                            static_cast<int>(ctx.param_int(kPcfRadius)), gbuffer_same_size);
+    const Variant variant{has_shadow, has_caustics, ctx.param_bool(kQuantize),
+                          static_cast<int>(ctx.param_int(kPcfRadius)), gbuffer_same_size};
+    if (source.empty() || variant != variant_) {  // not re-made every frame
+      source = variant_source(variant.shadow, variant.caustics, variant.quantize,
+                              variant.pcf_radius, variant.same_size);
+      variant_ = variant;
+    }
     // No source path: hot reload would read the file without the variant's defines.
     const aq_shader_source fragment{shaders::cel_light_frag.name, source.c_str(), nullptr};
     GLuint program = ctx.program(fragment);
