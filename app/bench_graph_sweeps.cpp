@@ -15,15 +15,21 @@ namespace {
 using json = nlohmann::json;
 
 // A quality parameter with no CPU reference: the values swept and the one taken as reference.
+// `auto_param` names the node's switch that picks the value from what the camera sees (off
+// for the fixed values and the reference; one more point has it on, capped by the graph's own
+// value), so the sweep shows what that shortcut costs in error.
 struct QualityParam {
   const char* type;
   const char* param;
   std::vector<int> values;
   int reference_value;
+  const char* auto_param;
+  const char* port;  // the output whose width the auto point reports
 };
 
 const QualityParam kQualityParams[] = {
-    {"shadowmap", "size", {256, 512, 1024, 2048}, 4096},
+    {"shadowmap", "size", {256, 512, 1024, 2048}, 4096, "auto_size", "depth"},
+    {"caustics", "resolution", {32, 64, 128, 256}, 512, "auto_resolution", "image"},
 };
 
 // The pipeline reference: float precision, final quality, and each approximating node at its
@@ -40,9 +46,20 @@ Graph reference_pipeline(const Graph& graph) {
       node.params["grid"] = 1024;
     } else if (node.type == "shadowmap") {
       node.params["size"] = 4096;
+      node.params["auto_size"] = false;
     }
   }
   return reference;
+}
+
+// The width of `port` of `node_id` when `graph` is evaluated (what an auto setting picked).
+Result<int> output_width(Evaluator& evaluator, const Graph& graph, const std::string& node_id,
+                         const std::string& port) {
+  EvalOptions options;
+  options.frame = graph.settings.first_frame;
+  auto result = evaluator.evaluate(graph, options, PortRef{node_id, port});
+  if (!result.ok()) return result.error();
+  return (*result)->image.width;
 }
 
 Result<Sweep> quality_param_sweep(GlContext& context, const Registry& registry, const Graph& graph,
@@ -56,31 +73,47 @@ Result<Sweep> quality_param_sweep(GlContext& context, const Registry& registry, 
                     "' = " + std::to_string(quality.reference_value) + " in float precision";
   sweep.time_measure = "node wall";
   Evaluator evaluator(context, registry);
-  auto configure = [&](int value, const std::string& precision) {
+  struct Config {
+    int value;  // < 0: the node picks it (auto_param on, capped by the graph's value)
+    std::string precision;
+  };
+  auto configure = [&](const Config& config) {
     Graph g = graph;
     g.settings.width = plan.width;
     g.settings.height = plan.height;
-    g.settings.precision = precision;
-    g.nodes[node_id].params[quality.param] = value;
+    g.settings.precision = config.precision;
+    auto& params = g.nodes[node_id].params;
+    if (config.value >= 0) params[quality.param] = config.value;
+    if (quality.auto_param != nullptr) params[quality.auto_param] = config.value < 0;
     return g;
   };
-  auto reference = measure_node(evaluator, configure(quality.reference_value, "float"), node_id,
+  auto reference = measure_node(evaluator, configure({quality.reference_value, "float"}), node_id,
                                 nullptr, 0, plan.warmup);
   if (!reference.ok()) return make_error("sweep of '" + node_id + "': " + reference.message());
 
-  std::vector<std::pair<int, std::string>> configs;
-  for (int value : quality.values) configs.emplace_back(value, graph.settings.precision);
-  configs.emplace_back(quality.reference_value, "float");
+  std::vector<Config> configs;
+  for (int value : quality.values) configs.push_back({value, graph.settings.precision});
+  if (quality.auto_param != nullptr) configs.push_back({-1, graph.settings.precision});
+  configs.push_back({quality.reference_value, "float"});
   for (size_t i = 0; i < configs.size(); ++i) {
     const auto& [value, precision] = configs[i];
-    auto measured = measure_node(evaluator, configure(value, precision), node_id, nullptr,
-                                 plan.frames, plan.warmup);
+    auto measured =
+        measure_node(evaluator, configure(configs[i]), node_id, nullptr, plan.frames, plan.warmup);
     if (!measured.ok()) return make_error("sweep of '" + node_id + "': " + measured.message());
     auto error = compare_images(measured->output, reference->output);
     if (!error.ok()) return make_error("sweep of '" + node_id + "': " + error.message());
     SweepPoint point;
-    point.setting = std::string(quality.param) + "=" + std::to_string(value);
-    point.params = {{quality.param, value}};
+    if (value < 0) {
+      auto picked = output_width(evaluator, configure(configs[i]), node_id, quality.port);
+      if (!picked.ok()) return make_error("sweep of '" + node_id + "': " + picked.message());
+      // The size it picked is in working pixels, the fixed settings are before the render
+      // scale: say which.
+      point.setting = std::string(quality.auto_param) + ": " + std::to_string(*picked) + " px";
+      point.params = {{quality.auto_param, true}};
+    } else {
+      point.setting = std::string(quality.param) + "=" + std::to_string(value);
+      point.params = {{quality.param, value}};
+    }
     point.precision = precision;
     point.time_ms = measured->wall_ms;
     point.gpu_ms = measured->gpu_ms;

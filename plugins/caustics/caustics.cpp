@@ -4,6 +4,8 @@
 // additive accumulation of folded triangles, bounded degenerate triangles. See README.md.
 #include <aquarelle/gl_raii.hpp>
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/scene_math.hpp>
+#include <aquarelle/view_bounds.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +16,8 @@
 
 namespace {
 
+constexpr aq_port_desc kInputs[] = {aq::optional_scene_port(
+    "scene", "the scene the caustics fall on: sizes the texture to its footprint on screen")};
 constexpr aq_port_desc kOutputs[] = {
     aq::image_port("image", "caustic intensity in rgb (1 = unfocused light), tileable")};
 enum Param {
@@ -25,10 +29,14 @@ enum Param {
   kSpeed,
   kEta,
   kMaxIntensity,
-  kNormalizeEnergy
+  kNormalizeEnergy,
+  kTile,
+  kAutoResolution
 };
 constexpr aq_param_desc kParams[] = {
-    aq::int_param("resolution", 256, 1, 4096, "texture pixels per tile side (square output)"),
+    aq::int_param("resolution", 256, 1, 4096,
+                  "texture pixels per tile side (square output; the largest, with "
+                  "auto_resolution)"),
     aq::int_param("grid", 256, 4, 2048,
                   "refraction grid cells per tile side; error falls as 1/grid (see README)"),
     aq::float_param("depth", 0.5, 0.0, 4.0, "floor depth below the mean water level, in tiles"),
@@ -40,7 +48,33 @@ constexpr aq_param_desc kParams[] = {
     aq::float_param("max_intensity", 32.0, 1.0, 10000.0,
                     "clamp of one triangle's intensity (bounds degenerate triangles)", 0.0, "log"),
     aq::bool_param("normalize_energy", true,
-                   "rescale so the tile's mean is exactly 1 (corrects clamp and sampling loss)")};
+                   "rescale so the tile's mean is exactly 1 (corrects clamp and sampling loss)"),
+    aq::float_param("tile", 4.0, 0.01, 1000.0,
+                    "world units one tile covers where it is projected (cel_light.caustic_tile)"),
+    aq::bool_param("auto_resolution", true,
+                   "with `scene` connected: about one texel per screen pixel at the nearest "
+                   "receiver in view under the water (at most `resolution`)")};
+
+// Texture pixels per tile side for about one texel per screen pixel where the tile is seen
+// largest: at the nearest point, under the water, of the meshes' boxes in view. A tile is
+// `tile` world units wide there; the camera shows a world unit at depth z on H / (2 tan(fov/2) z)
+// pixels (the most it shows of a unit in any direction: slanted receivers show less).
+int footprint_resolution(const aq_scene& scene, aq::view_bounds::MeshBoxes& boxes, double tile,
+                         int width, int height, int largest) {
+  const auto frustum = aq::view_bounds::frustum_planes(aq::scene_math::camera_view_projection(
+      scene.camera, static_cast<float>(width) / static_cast<float>(height)));
+  std::vector<aq::view_bounds::Plane> planes(frustum.begin(), frustum.end());
+  planes.push_back(aq::view_bounds::below(scene.water_height));
+  const auto points = aq::view_bounds::visible_points(boxes.world_boxes(scene), planes);
+  const auto nearest = aq::view_bounds::nearest_depth(
+      points, aq::scene_math::to_dmat4(aq::scene_math::camera_view(scene.camera)));
+  if (!nearest) return std::min(largest, 16);  // no receiver in view: nothing to show
+  const double depth = std::max<double>(*nearest, scene.camera.near_plane);
+  const double needed =
+      tile * aq::view_bounds::pixels_per_world_unit(scene.camera.fov_y_degrees, height, depth);
+  const int rounded = static_cast<int>(std::ceil(std::min(needed, 1e6) / 8.0) * 8.0);
+  return std::clamp(rounded, std::min(largest, 16), largest);
+}
 
 // A run of grid cells along one axis: [first, first + count).
 struct CellRange {
@@ -60,13 +94,19 @@ CellRange cells_reaching_tile(int shift, int grid, double reach) {
 
 struct Caustics {
   aq::gl::VertexArray empty_vertex_array;  // core profile needs one bound to draw
+  aq::view_bounds::MeshBoxes boxes;
   uint32_t vertex_array_generation = 0;
 
   int process(aq::Context& ctx) {
     // `resolution` is for a full-size render; a proxy render shows the tile on fewer pixels.
-    const int resolution =
+    int resolution =
         std::max(1, static_cast<int>(std::lround(static_cast<double>(ctx.param_int(kResolution)) *
                                                  ctx.render_scale())));
+    const aq_scene* scene = ctx.input_scene(0);
+    if (scene != nullptr && ctx.param_bool(kAutoResolution)) {
+      resolution = footprint_resolution(*scene, boxes, ctx.param_float(kTile), ctx.width(),
+                                        ctx.height(), resolution);
+    }
     // The quality preset trades the grid (cost ~ grid^2 triangles, error ~ 1/grid): draft an
     // eighth, preview a quarter (the texture is already halved by the render scale, so about a
     // cell per two texels), final the grid asked for.
@@ -216,10 +256,10 @@ struct Caustics {
   }
 };
 
-AQ_SOURCE_NODE(kCausticsNode, Caustics, "caustics", "Light",
-               "Tileable animated caustic texture (Stam's grid refraction): intensity = original / "
-               "refracted triangle area, accumulated additively; mean 1 over the tile.",
-               AQ_NODE_TIME_DEPENDENT, kOutputs, kParams);
+AQ_NODE(kCausticsNode, Caustics, "caustics", "Light",
+        "Tileable animated caustic texture (Stam's grid refraction): intensity = original / "
+        "refracted triangle area, accumulated additively; mean 1 over the tile.",
+        AQ_NODE_TIME_DEPENDENT, kInputs, kOutputs, kParams);
 
 }  // namespace
 

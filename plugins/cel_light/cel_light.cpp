@@ -68,6 +68,7 @@ struct CelLight {
   Variant variant_{};
   std::string source;  // outlives the program call that reads it
   aq::gl::Sampler repeating;
+  aq::view_bounds::MeshBoxes boxes;
   uint32_t sampler_generation = 0;
 
   int process(aq::Context& ctx) {
@@ -120,7 +121,14 @@ struct CelLight {
       glBindSampler(5, repeating.get());
     }
 
+    // The matrix the shadow map was drawn with: fitted to the receivers in view, for its size.
     glm::mat4 light = aq::scene_math::light_view_projection(*scene);
+    if (has_shadow) {
+      const aq::scene_math::ViewFit fit = aq::scene_math::fit_to_view(
+          *scene, boxes.world_boxes(*scene),
+          static_cast<float>(ctx.width()) / static_cast<float>(ctx.height()));
+      light = aq::scene_math::light_view_projection(*scene, fit, ctx.input_image(kShadow).width);
+    }
     glm::vec3 direction = aq::scene_math::light_direction(*scene);
     aq::set_mat4(program, "u_light_view_projection", glm::value_ptr(light));
     aq::set_vec3(program, "u_light_direction", glm::value_ptr(direction));

@@ -1,8 +1,10 @@
 // shadowmap: depth of the scene seen from its directional light (Paré-Vogt & Chaid §2.3),
-// through an orthographic projection fitted to the scene's bounds. The matrix comes from
+// through an orthographic projection fitted to the receivers the camera can see (the scene's
+// depth range, so casters out of view still cast). The matrix comes from
 // aquarelle/scene_math.hpp so cel_light, which reads this map, uses exactly the same one.
 //
-//   scene ──► light_view_projection(scene) ──► draw every mesh ──► depth (R32F, size x size)
+//   scene ──► fit_to_view ──► light_view_projection(scene, fit, size) ──► draw every mesh
+//                                                    ──► depth (R32F, size x size)
 //             value = window depth in [0, 1] + slope-scaled bias; 1 where nothing is
 //
 // A point P is in shadow when 0.5 * (M * P).z / w + 0.5 > depth at its texel (M the matrix).
@@ -26,15 +28,19 @@ namespace {
 constexpr aq_port_desc kInputs[] = {aq::scene_port("scene", "meshes and the light")};
 constexpr aq_port_desc kOutputs[] = {
     aq::image_port("depth", "light-space depth in [0, 1] with bias (R32F); 1 = nothing")};
-enum Param { kSize, kSlopeBias, kConstantBias, kMaxBias };
+enum Param { kSize, kSlopeBias, kConstantBias, kMaxBias, kAutoSize };
 constexpr aq_param_desc kParams[] = {
-    aq::int_param("size", 1024, 16, 8192, "shadow map width and height in texels"),
+    aq::int_param("size", 1024, 16, 8192,
+                  "shadow map width and height in texels (the largest, with auto_size)"),
     aq::float_param("slope_bias", 2.0, 0.0, 20.0,
                     "bias in multiples of the depth change across one texel (acne at grazing "
                     "light needs >= 1.5 with PCF)"),
     aq::float_param("constant_bias", 0.005, 0.0, 1.0, "constant bias in world units"),
     aq::float_param("max_bias", 0.5, 0.0, 100.0,
-                    "cap on the total bias in world units (edge-on triangles)")};
+                    "cap on the total bias in world units (edge-on triangles)"),
+    aq::bool_param("auto_size", true,
+                   "size the map for about one texel per screen pixel at the nearest receiver "
+                   "in view (at most `size`)")};
 
 class ShadowMap {
  public:
@@ -46,9 +52,15 @@ class ShadowMap {
     }
     // `size` is for a full-size render: a proxy render needs the texels per screen pixel of
     // the full one, so the map shrinks with the render scale.
-    const int size =
+    const int max_size =
         std::max(16, static_cast<int>(std::lround(static_cast<double>(ctx.param_int(kSize)) *
                                                   ctx.render_scale())));
+    const aq::scene_math::ViewFit fit = aq::scene_math::fit_to_view(
+        *scene, boxes_.world_boxes(*scene),
+        static_cast<float>(ctx.width()) / static_cast<float>(ctx.height()));
+    const int size = ctx.param_bool(kAutoSize) ? aq::scene_math::shadow_size_for_view(
+                                                     fit, scene->camera, ctx.height(), max_size)
+                                               : max_size;
     aq_image depth, depth_buffer;
     if (!ctx.output(0, size, size, AQ_FORMAT_R32F, &depth)) return AQ_ERROR;
     if (!ctx.scratch(size, size, AQ_FORMAT_DEPTH32F, &depth_buffer)) return AQ_ERROR;
@@ -56,7 +68,7 @@ class ShadowMap {
     if (program == 0) return AQ_ERROR;
 
     meshes_.update(*scene, ctx.raw()->gl_generation);
-    glm::mat4 light = aq::scene_math::light_view_projection(*scene);
+    glm::mat4 light = aq::scene_math::light_view_projection(*scene, fit, size);
     // Window depth per world unit along the light: the ortho depth is linear in distance.
     glm::vec3 direction = aq::scene_math::light_direction(*scene);
     glm::vec3 depth_row(light[0][2], light[1][2], light[2][2]);
@@ -200,6 +212,7 @@ class ShadowMap {
   };
 
   aq::SceneMeshCache meshes_;
+  aq::view_bounds::MeshBoxes boxes_;
   std::vector<MeshState> previous_;
   aq::gl::Texture casters_color_;
   aq::gl::Texture casters_depth_;
@@ -212,7 +225,7 @@ class ShadowMap {
 }  // namespace
 
 AQ_NODE(kShadowMapNode, ShadowMap, "shadowmap", "Light",
-        "Depth of the scene from its light (orthographic, fitted to the scene bounds), with "
-        "slope-scaled bias.",
+        "Depth of the scene from its light (orthographic, fitted to the receivers in view), "
+        "with slope-scaled bias.",
         0, kInputs, kOutputs, kParams);
 AQ_PLUGIN("shadowmap", "1.0", &kShadowMapNode)

@@ -22,7 +22,8 @@ TEST(ProxyRender, NodesSeeTheScaledSizeAndTheOutputComesBackAtTheGraphSize) {
     "aquarelle": 1,
     "nodes": {
       "scene": {"type": "scene", "params": {"preset": "plane_box"}},
-      "shadow": {"type": "shadowmap", "params": {"size": 256}, "inputs": {"scene": "scene.scene"}},
+      "shadow": {"type": "shadowmap", "params": {"size": 256, "auto_size": false},
+                 "inputs": {"scene": "scene.scene"}},
       "noise": {"type": "noise", "params": {"scale": 4}}
     },
     "output": "noise.image"

@@ -30,39 +30,41 @@ struct Light {
 };
 
 std::string graph(const std::array<double, 3>& light, int map_size, int pcf_radius,
-                  double slope_bias = 2.0, double constant_bias = 0.005) {
-  nlohmann::json g = {
-      {"aquarelle", 1},
-      {"nodes",
-       {{"scene",
-         {{"type", "scene"},
-          {"params",
-           {{"preset", "plane_box"},
-            {"smoothing", 0},
-            {"camera_position", {0.0, 9.0, 5.0}},
-            {"camera_target", {0.0, 0.0, 0.0}},
-            {"fov", 60.0},
-            {"light_direction", {light[0], light[1], light[2]}},
-            {"light_color", {1.0, 1.0, 1.0}},
-            {"light_intensity", 1.0},
-            {"ambient", {0.0, 0.0, 0.0}}}}}},
-        {"gbuf", {{"type", "gbuffer"}, {"inputs", {{"scene", "scene.scene"}}}}},
-        {"shadow",
-         {{"type", "shadowmap"},
-          {"params",
-           {{"size", map_size}, {"slope_bias", slope_bias}, {"constant_bias", constant_bias}}},
-          {"inputs", {{"scene", "scene.scene"}}}}},
-        {"light",
-         {{"type", "cel_light"},
-          {"params", {{"quantize", false}, {"pcf_radius", pcf_radius}}},
-          {"inputs",
-           {{"scene", "scene.scene"},
-            {"position", "gbuf.position"},
-            {"normal", "gbuf.normal"},
-            {"albedo", "gbuf.albedo"},
-            {"id", "gbuf.id"},
-            {"shadow", "shadow.depth"}}}}}}},
-      {"output", "light.image"}};
+                  double slope_bias = 2.0, double constant_bias = 0.005, bool auto_size = false) {
+  nlohmann::json g = {{"aquarelle", 1},
+                      {"nodes",
+                       {{"scene",
+                         {{"type", "scene"},
+                          {"params",
+                           {{"preset", "plane_box"},
+                            {"smoothing", 0},
+                            {"camera_position", {0.0, 9.0, 5.0}},
+                            {"camera_target", {0.0, 0.0, 0.0}},
+                            {"fov", 60.0},
+                            {"light_direction", {light[0], light[1], light[2]}},
+                            {"light_color", {1.0, 1.0, 1.0}},
+                            {"light_intensity", 1.0},
+                            {"ambient", {0.0, 0.0, 0.0}}}}}},
+                        {"gbuf", {{"type", "gbuffer"}, {"inputs", {{"scene", "scene.scene"}}}}},
+                        {"shadow",
+                         {{"type", "shadowmap"},
+                          {"params",
+                           {{"size", map_size},
+                            {"slope_bias", slope_bias},
+                            {"constant_bias", constant_bias},
+                            {"auto_size", auto_size}}},
+                          {"inputs", {{"scene", "scene.scene"}}}}},
+                        {"light",
+                         {{"type", "cel_light"},
+                          {"params", {{"quantize", false}, {"pcf_radius", pcf_radius}}},
+                          {"inputs",
+                           {{"scene", "scene.scene"},
+                            {"position", "gbuf.position"},
+                            {"normal", "gbuf.normal"},
+                            {"albedo", "gbuf.albedo"},
+                            {"id", "gbuf.id"},
+                            {"shadow", "shadow.depth"}}}}}}},
+                      {"output", "light.image"}};
   return g.dump();
 }
 
@@ -88,8 +90,8 @@ struct Comparison {
 // ray casting from its gbuffer position.
 Comparison compare_with_reference(const std::array<double, 3>& light, int map_size, int pcf,
                                   const char* precision = "float", double slope_bias = 2.0,
-                                  double constant_bias = 0.005) {
-  const std::string g = graph(light, map_size, pcf, slope_bias, constant_bias);
+                                  double constant_bias = 0.005, bool auto_size = false) {
+  const std::string g = graph(light, map_size, pcf, slope_bias, constant_bias, auto_size);
   ImageF lit = render(g, "light.image", precision);
   ImageF position = render(g, "gbuf.position", precision);
   ImageF id = render(g, "gbuf.id", precision);
@@ -126,6 +128,28 @@ TEST(ShadowMap, ShadowLiesWhereRayCastingPutsIt) {
     EXPECT_EQ(c.wrong_interior, 0) << light.angle_from_vertical_degrees;
     EXPECT_LT(c.wrong_edge, c.plane_pixels / 100) << light.angle_from_vertical_degrees;
   }
+}
+
+// auto_size picks the map from the receivers in view (about a texel per pixel at the nearest);
+// cel_light must find the matrix the map was drawn with from the map's size alone.
+TEST(ShadowMap, AutoSizedMapIsSmallerAndShadowsStayWhereRayCastingPutsThem) {
+  for (Light light : {Light{45.0}, Light{60.0, -70.0}}) {
+    Comparison c = compare_with_reference(light.direction(), 4096, 1, "float", 2.0, 0.005, true);
+    EXPECT_GT(c.shadow_pixels, 40) << light.angle_from_vertical_degrees;
+    EXPECT_EQ(c.wrong_interior, 0) << light.angle_from_vertical_degrees;
+    EXPECT_LT(c.wrong_edge, c.plane_pixels / 100) << light.angle_from_vertical_degrees;
+  }
+  aq::test::RenderOptions options;
+  options.width = kSize;
+  options.height = kSize;
+  options.output = "shadow.depth";
+  auto depth =
+      aq::test::render_graph(graph(Light{45.0}.direction(), 4096, 1, 2.0, 0.005, true), options);
+  ASSERT_TRUE(depth.ok()) << depth.message();
+  EXPECT_EQ(depth->width, depth->height);
+  EXPECT_EQ(depth->width % 16, 0);
+  EXPECT_LT(depth->width, 4096) << "a " << kSize << " px view needs far fewer texels";
+  EXPECT_GE(depth->width, kSize);
 }
 
 TEST(ShadowMap, NoAcneOnThePlaneAtGrazingLight) {

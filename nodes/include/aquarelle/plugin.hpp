@@ -36,6 +36,9 @@ constexpr aq_port_desc optional_image_port(const char* name, const char* descrip
 constexpr aq_port_desc scene_port(const char* name, const char* description) {
   return aq_port_desc{name, AQ_PORT_SCENE, 0, description};
 }
+constexpr aq_port_desc optional_scene_port(const char* name, const char* description) {
+  return aq_port_desc{name, AQ_PORT_SCENE, AQ_PORT_OPTIONAL, description};
+}
 
 constexpr aq_param_desc float_param(const char* name, double def, double min, double max,
                                     const char* description, double step = 0.0,

@@ -1,15 +1,18 @@
 // Camera and light matrices of an aq_scene, shared by every node that rasterises a scene or
 // looks a point up in a shadow map (gbuffer, shadowmap, cel_light). The light matrix must be
 // bit-identical in the node that writes the shadow map and the node that reads it, so it is
-// computed here, once, from the scene alone (never from a node's own parameters).
+// computed here, once, from what both nodes have: the scene, the render's aspect ratio and the
+// shadow map's size (never from a node's own parameters).
 //
 //   world ──camera_view──► view ──camera_projection──► clip        (gbuffer)
 //   world ──light_view_projection──────────────────► clip, z in [-1, 1] (shadowmap, cel_light)
+//            fitted to the scene, or to the receivers in view (fit_to_view, view_bounds.hpp)
 //
 // Header-only; depends on plugin.h and glm only, so plugins and tests may include it.
 #pragma once
 
 #include <aquarelle/plugin.h>
+#include <aquarelle/view_bounds.hpp>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -17,6 +20,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
+#include <vector>
 
 namespace aq::scene_math {
 
@@ -55,11 +60,10 @@ inline glm::vec3 light_direction(const aq_scene& scene) {
   return len > 1e-8f && std::isfinite(len) ? d / len : glm::vec3(0, -1, 0);
 }
 
-// Orthographic view-projection from the light, fitted tightly to the scene's bounds: the eight
-// corners of the bounding box are taken to light view space and the box they span (with a
-// small margin in depth so nothing is clipped) becomes the projection volume. Depth written
-// through it (gl_FragCoord.z) is the same quantity cel_light recomputes as 0.5 * ndc.z + 0.5.
-inline glm::mat4 light_view_projection(const aq_scene& scene) {
+// The light's view: looking along the light at the centre of the scene bounds (a fallback box
+// when the bounds are empty), and the bounds' radius.
+inline glm::mat4 light_view(const aq_scene& scene, glm::vec3* lo_out = nullptr,
+                            glm::vec3* hi_out = nullptr, float* radius_out = nullptr) {
   glm::vec3 lo = to_vec3(scene.bounds_min);
   glm::vec3 hi = to_vec3(scene.bounds_max);
   if (!(hi.x >= lo.x && hi.y >= lo.y && hi.z >= lo.z)) {
@@ -69,19 +73,133 @@ inline glm::mat4 light_view_projection(const aq_scene& scene) {
   glm::vec3 centre = 0.5f * (lo + hi);
   float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
   glm::vec3 dir = light_direction(scene);
-  glm::mat4 view = glm::lookAt(centre - dir * (2.0f * radius), centre, stable_up(dir, {0, 1, 0}));
-  glm::vec3 vmin(1e30f), vmax(-1e30f);
+  if (lo_out != nullptr) *lo_out = lo;
+  if (hi_out != nullptr) *hi_out = hi;
+  if (radius_out != nullptr) *radius_out = radius;
+  return glm::lookAt(centre - dir * (2.0f * radius), centre, stable_up(dir, {0, 1, 0}));
+}
+
+// The scene's bounds in light view space.
+inline void light_space_bounds(const aq_scene& scene, glm::vec3& vmin, glm::vec3& vmax,
+                               float& radius) {
+  glm::vec3 lo, hi;
+  glm::mat4 view = light_view(scene, &lo, &hi, &radius);
+  vmin = glm::vec3(1e30f);
+  vmax = glm::vec3(-1e30f);
   for (int corner = 0; corner < 8; ++corner) {
     glm::vec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
     glm::vec3 v = glm::vec3(view * glm::vec4(p, 1.0f));
     vmin = glm::min(vmin, v);
     vmax = glm::max(vmax, v);
   }
+}
+
+// Orthographic view-projection from the light, fitted tightly to the scene's bounds: the eight
+// corners of the bounding box are taken to light view space and the box they span (with a
+// small margin in depth so nothing is clipped) becomes the projection volume. Depth written
+// through it (gl_FragCoord.z) is the same quantity cel_light recomputes as 0.5 * ndc.z + 0.5.
+inline glm::mat4 light_view_projection(const aq_scene& scene) {
+  glm::vec3 vmin, vmax;
+  float radius = 0.0f;
+  light_space_bounds(scene, vmin, vmax, radius);
   // Square-ish texels are not needed; a degenerate (flat) extent is widened to stay invertible.
   float pad = 1e-3f * radius;
   glm::mat4 projection = glm::ortho(vmin.x - pad, vmax.x + pad, vmin.y - pad, vmax.y + pad,
                                     -vmax.z - 0.01f * radius, -vmin.z + 0.01f * radius);
-  return projection * view;
+  return projection * light_view(scene);
+}
+
+// ---- Fitting the shadow map to what the camera sees ----------------------------------------
+//
+// A texel of a map fitted to the whole scene is wasted wherever the camera cannot see. Only
+// receivers in view need shadow texels; a caster that shadows one lies on the light ray through
+// it, so inside the same light-space rectangle, and the depth range stays the scene's (casters
+// out of view still cast). The receivers in view are the mesh boxes clipped to the frustum
+// (view_bounds.hpp).
+
+struct ViewFit {
+  bool any_visible = false;     // false: nothing of the scene in view; the scene fit is used
+  glm::dvec2 lo{0.0}, hi{0.0};  // receivers in view, light view space xy, within the scene's
+  double nearest_depth = 0.0;   // camera depth of the nearest receiver point in view
+};
+
+inline glm::dmat4 to_dmat4(const glm::mat4& m) {
+  return glm::dmat4(m);
+}
+
+// The camera's view-projection at `aspect` (width / height of the render), as the gbuffer
+// draws it.
+inline glm::dmat4 camera_view_projection(const aq_camera& camera, float aspect) {
+  return to_dmat4(camera_projection(camera, aspect)) * to_dmat4(camera_view(camera));
+}
+
+inline ViewFit fit_to_view(const aq_scene& scene, std::span<const view_bounds::Box> mesh_boxes,
+                           float aspect) {
+  ViewFit fit;
+  const auto planes = view_bounds::frustum_planes(camera_view_projection(scene.camera, aspect));
+  const std::vector<glm::dvec3> points = view_bounds::visible_points(mesh_boxes, planes);
+  if (points.empty()) return fit;
+  glm::vec3 vmin, vmax;
+  float radius = 0.0f;
+  light_space_bounds(scene, vmin, vmax, radius);
+  const glm::dmat4 view = to_dmat4(light_view(scene));
+  fit.lo = glm::dvec2(1e300);
+  fit.hi = glm::dvec2(-1e300);
+  for (const glm::dvec3& p : points) {
+    const glm::dvec2 q(view * glm::dvec4(p, 1.0));
+    fit.lo = glm::min(fit.lo, q);
+    fit.hi = glm::max(fit.hi, q);
+  }
+  fit.lo = glm::max(fit.lo, glm::dvec2(vmin.x, vmin.y));
+  fit.hi = glm::min(fit.hi, glm::dvec2(vmax.x, vmax.y));
+  fit.any_visible = fit.hi.x >= fit.lo.x && fit.hi.y >= fit.lo.y;
+  fit.nearest_depth = view_bounds::nearest_depth(points, to_dmat4(camera_view(scene.camera)))
+                          .value_or(scene.camera.near_plane);
+  return fit;
+}
+
+// Shadow map texels for about one texel per screen pixel at the nearest receiver in view (the
+// densest place the map is looked up), at most `max_size`, a multiple of 16, at least 16.
+inline int shadow_size_for_view(const ViewFit& fit, const aq_camera& camera, int height_pixels,
+                                int max_size) {
+  if (!fit.any_visible) return std::max(16, max_size);
+  const double extent = std::max(fit.hi.x - fit.lo.x, fit.hi.y - fit.lo.y);
+  const double needed = extent * view_bounds::pixels_per_world_unit(
+                                     camera.fov_y_degrees, height_pixels,
+                                     std::max<double>(fit.nearest_depth, camera.near_plane));
+  const double rounded = std::ceil(std::min(needed, 1e6) / 16.0) * 16.0;
+  return std::clamp(static_cast<int>(rounded), 16, std::max(16, max_size));
+}
+
+// The light's view-projection fitted to the receivers in view, for a `map_size` map. Shadow
+// edges must not crawl as the camera moves: the window's size steps in sixteenths of the
+// scene's extent and its origin moves in whole texels, so a texel keeps its place in the world
+// until the window's size changes step.
+inline glm::mat4 light_view_projection(const aq_scene& scene, const ViewFit& fit, int map_size) {
+  if (!fit.any_visible || map_size < 2) return light_view_projection(scene);
+  glm::vec3 vmin, vmax;
+  float radius = 0.0f;
+  light_space_bounds(scene, vmin, vmax, radius);
+  const double pad = 1e-3 * radius;
+  const glm::dvec2 scene_lo = glm::dvec2(vmin.x, vmin.y) - pad;
+  const glm::dvec2 scene_hi = glm::dvec2(vmax.x, vmax.y) + pad;
+  glm::dvec2 lo = scene_lo, hi = scene_hi;
+  const double size = static_cast<double>(map_size);
+  for (int axis = 0; axis < 2; ++axis) {
+    const double scene_extent = scene_hi[axis] - scene_lo[axis];
+    const double step = scene_extent / 16.0;
+    // One texel more than the receivers span, so snapping the origin down keeps them inside.
+    const double wanted = (fit.hi[axis] - fit.lo[axis]) * size / (size - 1.0) + 2.0 * pad;
+    const double extent = std::min(scene_extent, std::max(step, std::ceil(wanted / step) * step));
+    if (extent >= scene_extent) continue;  // the whole scene: nothing to gain
+    const double texel = extent / size;
+    lo[axis] = std::floor((fit.lo[axis] - pad) / texel) * texel;
+    hi[axis] = lo[axis] + extent;
+  }
+  glm::mat4 projection =
+      glm::ortho(static_cast<float>(lo.x), static_cast<float>(hi.x), static_cast<float>(lo.y),
+                 static_cast<float>(hi.y), -vmax.z - 0.01f * radius, -vmin.z + 0.01f * radius);
+  return projection * light_view(scene);
 }
 
 }  // namespace aq::scene_math
