@@ -152,6 +152,44 @@ TEST(ShadowMap, AutoSizedMapIsSmallerAndShadowsStayWhereRayCastingPutsThem) {
   EXPECT_GE(depth->width, kSize);
 }
 
+// Hard views for the fit to what the camera sees: inside the box (the nearest receiver is at
+// the near plane: the cap), looking at the sky (nothing in view: the scene fit at the cap), and
+// far away (a few texels are enough). The map stays a map of depths in every case.
+TEST(ShadowMap, AutoSizeInHardViews) {
+  struct View {
+    std::array<double, 3> position, target;
+    int expected_size;  // 0: less than the cap
+  };
+  for (const View& view : {View{{0.0, 0.5, 0.0}, {0.0, 0.5, -1.0}, 1024},
+                           View{{0.0, 3.0, 0.0}, {0.0, 9.0, 0.1}, 1024},
+                           View{{0.0, 60.0, 90.0}, {0.0, 0.0, 0.0}, 0}}) {
+    nlohmann::json g = nlohmann::json::parse(graph(Light{45.0}.direction(), 1024, 1, 2.0, 0.005,
+                                                   true));
+    g["nodes"]["scene"]["params"]["camera_position"] = view.position;
+    g["nodes"]["scene"]["params"]["camera_target"] = view.target;
+    aq::test::RenderOptions options;
+    options.width = 64;
+    options.height = 48;
+    options.output = "shadow.depth";
+    auto depth = aq::test::render_graph(g.dump(), options);
+    ASSERT_TRUE(depth.ok()) << depth.message();
+    if (view.expected_size > 0) {
+      EXPECT_EQ(depth->width, view.expected_size) << view.position[1];
+    } else {
+      EXPECT_LT(depth->width, 256) << "the scene is a few pixels on screen";
+    }
+    EXPECT_TRUE(aq::test::all_finite(*depth));
+    float lo = 1e9f;
+    for (int y = 0; y < depth->height; ++y)
+      for (int x = 0; x < depth->width; ++x) lo = std::min(lo, depth->at(x, y, 0));
+    EXPECT_LT(lo, 0.9f) << "the scene is in the map";
+    options.output = "light.image";
+    auto lit = aq::test::render_graph(g.dump(), options);
+    ASSERT_TRUE(lit.ok()) << lit.message();
+    EXPECT_TRUE(aq::test::all_finite(*lit));
+  }
+}
+
 TEST(ShadowMap, NoAcneOnThePlaneAtGrazingLight) {
   // 80 degrees from the vertical: the plane's depth changes fast across each texel.
   for (int size : {256, 1024, 2048}) {
