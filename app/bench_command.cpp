@@ -26,9 +26,11 @@ format (the yardstick), then each node of GRAPH over N frames after warm-up (med
 time with their spread), once with every node running each frame and once with static nodes
 cached, and reports the frame cost as copy passes per frame. Then sweeps the quality settings
 of the graph's nodes (blur method and taps, caustic grid, erode/dilate size and footprint,
-shadow map size and its auto size, caustic texture size and its footprint size, half or float
-precision) measuring time and error (max abs, mean abs, PSNR) against a reference: the double-precision CPU references of tests/reference where they exist,
-else the node at its highest quality in float; and the graph's quality presets against a float
+shadow map size and its auto size, caustic texture size and its footprint size, normal
+smoothing iterations, half or float precision) measuring time and error (max abs, mean abs,
+PSNR) against a reference: the double-precision CPU references of tests/reference where they
+exist, exact values where they are known (smoothing: the sphere a bumpy mesh stands for), else
+the node at its highest quality in float; and the graph's quality presets against a float
 reference render.
 
   GRAPH                   graph file (default: graphs/underwater.json)

@@ -188,6 +188,12 @@ Result<std::vector<Sweep>> run_graph_sweeps(GlContext& context, const Registry& 
     if (!sweep.ok()) return sweep.error();
     sweeps.push_back(*sweep);
   }
+  if (types.count("scene") > 0 && !first_node_of_type(graph, "scene").empty()) {
+    const json iterations = graph_param(graph, registry, "scene", "smoothing");
+    auto sweep = smoothing_sweep(plan, iterations.is_number() ? iterations.get<int>() : -1);
+    if (!sweep.ok()) return sweep.error();
+    sweeps.push_back(*sweep);
+  }
   if (plan.pipeline) {
     auto sweep = preset_sweep(context, registry, graph, plan);
     if (!sweep.ok()) return sweep.error();

@@ -184,8 +184,13 @@ std::vector<size_t> pareto_points(const Sweep& sweep) {
 }
 
 ImageF draw_plot(const std::vector<Sweep>& sweeps, const std::string& title) {
-  const int width = 1000, height = 640;
-  const int left = 90, right = width - 260, bottom = 70, top = height - 50;
+  // The legend is as wide as its longest label, so no series name is cut off.
+  int legend_width = Canvas::text_width("hollow: other");
+  for (const auto& sweep : sweeps) {
+    legend_width = std::max(legend_width, Canvas::text_width(sweep.series) + 18);
+  }
+  const int width = 740 + legend_width + 40, height = 640;
+  const int left = 90, right = 740, bottom = 70, top = height - 50;
   Canvas canvas(width, height);
 
   // Axis ranges in decades, from the points; errors of exactly 0 sit on a floor line.

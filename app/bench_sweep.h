@@ -1,11 +1,12 @@
 // Speed-against-error sweeps of `aquarelle bench`. A sweep is one curve of the plot: one node
 // type (or the whole pipeline) measured at several quality settings against one reference.
 //
-// Three kinds of reference, named in every report:
+// Four kinds of reference, named in every report:
 //   cpu_reference        the node alone on a fixed test input against the double-precision CPU
 //                        implementation in tests/reference/ (written from the maths);
 //   highest_quality      where no CPU reference exists: the graph's output with the node at the
 //                        highest quality of the sweep, in float precision;
+//   analytic_reference   known exact values (normal smoothing: the sphere a bumpy mesh stands for);
 //   pipeline_reference   the whole graph at quality `final`, float precision, exact blur taps
 //                        and a converged caustic grid.
 #pragma once
@@ -71,5 +72,10 @@ Result<std::vector<Sweep>> run_reference_sweeps(GlContext& context, const Regist
 Result<std::vector<Sweep>> run_graph_sweeps(GlContext& context, const Registry& registry,
                                             const Graph& graph, const SweepPlan& plan,
                                             const std::set<std::string>& types);
+
+// The scene node's normal smoothing at several iteration counts, CPU-timed, against the
+// analytic normals of the shape a bumpy low-poly test mesh stands for (bench_smoothing_sweep.cpp).
+// `graph_iterations` (the graph's setting) is added to the counts swept.
+Result<Sweep> smoothing_sweep(const SweepPlan& plan, int graph_iterations);
 
 }  // namespace aq::app

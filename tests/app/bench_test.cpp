@@ -186,6 +186,35 @@ TEST(Bench, WritesCsvAndPlot) {
   EXPECT_EQ(std::string(signature + 1, 3), "PNG");
 }
 
+// The scene's normal smoothing against the sphere a bumpy low-poly test mesh stands for: flat
+// facets are far off (~16 degrees), one iteration removes the bumps, and the graph's own count
+// is among the points.
+TEST(Bench, SmoothingSweepMeasuresTheFacetsAway) {
+  const auto dir = aq::test::scratch_dir("bench_smoothing");
+  auto result = aq::test::run_command(
+      std::string(AQ_APP_PATH) + " bench " + aq::test::source_path("graphs/pot_smoothing.json") +
+      " --node scene --size 32x32 --frames 1 --warmup 0 -q --json 2>" +
+      (dir / "stderr.txt").string());
+  ASSERT_EQ(result.exit_code, 0);
+  const json report = json::parse(result.output, nullptr, false);
+  ASSERT_FALSE(report.is_discarded());
+  const json* sweep = nullptr;
+  for (const auto& s : report["sweeps"]) {
+    if (s["series"] == "scene smoothing") sweep = &s;
+  }
+  ASSERT_NE(sweep, nullptr);
+  EXPECT_EQ((*sweep)["kind"], "analytic_reference");
+  std::map<std::string, double> error;
+  for (const auto& point : (*sweep)["points"]) {
+    ASSERT_TRUE(finite_number(point["mean_abs"])) << point["setting"];
+    error[point["setting"].get<std::string>()] = point["mean_abs"].get<double>();
+  }
+  ASSERT_TRUE(error.count("smoothing=0") && error.count("smoothing=1") &&
+              error.count("smoothing=7"));
+  EXPECT_GT(error.at("smoothing=0"), 3.0 * error.at("smoothing=1"));
+  EXPECT_LT(error.at("smoothing=7"), error.at("smoothing=0"));
+}
+
 TEST(Bench, RefusesBadInputWithExitCode1) {
   EXPECT_EQ(aq::test::aquarelle("bench --frobnicate").exit_code, 1);
   EXPECT_EQ(aq::test::aquarelle("bench /nonexistent/graph.json").exit_code, 1);

@@ -160,11 +160,11 @@ TEST(ShadowMap, AutoSizeInHardViews) {
     std::array<double, 3> position, target;
     int expected_size;  // 0: less than the cap
   };
-  for (const View& view : {View{{0.0, 0.5, 0.0}, {0.0, 0.5, -1.0}, 1024},
-                           View{{0.0, 3.0, 0.0}, {0.0, 9.0, 0.1}, 1024},
-                           View{{0.0, 60.0, 90.0}, {0.0, 0.0, 0.0}, 0}}) {
-    nlohmann::json g = nlohmann::json::parse(graph(Light{45.0}.direction(), 1024, 1, 2.0, 0.005,
-                                                   true));
+  for (const View& view :
+       {View{{0.0, 0.5, 0.0}, {0.0, 0.5, -1.0}, 1024}, View{{0.0, 3.0, 0.0}, {0.0, 9.0, 0.1}, 1024},
+        View{{0.0, 60.0, 90.0}, {0.0, 0.0, 0.0}, 0}}) {
+    nlohmann::json g =
+        nlohmann::json::parse(graph(Light{45.0}.direction(), 1024, 1, 2.0, 0.005, true));
     g["nodes"]["scene"]["params"]["camera_position"] = view.position;
     g["nodes"]["scene"]["params"]["camera_target"] = view.target;
     aq::test::RenderOptions options;
