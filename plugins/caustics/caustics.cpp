@@ -30,7 +30,6 @@ enum Param {
   kEta,
   kMaxIntensity,
   kNormalizeEnergy,
-  kTile,
   kAutoResolution
 };
 constexpr aq_param_desc kParams[] = {
@@ -49,16 +48,15 @@ constexpr aq_param_desc kParams[] = {
                     "clamp of one triangle's intensity (bounds degenerate triangles)", 0.0, "log"),
     aq::bool_param("normalize_energy", true,
                    "rescale so the tile's mean is exactly 1 (corrects clamp and sampling loss)"),
-    aq::float_param("tile", 4.0, 0.01, 1000.0,
-                    "world units one tile covers where it is projected (cel_light.caustic_tile)"),
     aq::bool_param("auto_resolution", true,
                    "with `scene` connected: about one texel per screen pixel at the nearest "
                    "receiver in view under the water (at most `resolution`)")};
 
 // Texture pixels per tile side for about one texel per screen pixel where the tile is seen
 // largest: at the nearest point, under the water, of the meshes' boxes in view. A tile is
-// `tile` world units wide there; the camera shows a world unit at depth z on H / (2 tan(fov/2) z)
-// pixels (the most it shows of a unit in any direction: slanted receivers show less).
+// `tile` world units wide there (the scene's caustic_tile, as cel_light projects it); the camera
+// shows a world unit at depth z on H / (2 tan(fov/2) z) pixels (the most it shows of a unit in any
+// direction: slanted receivers show less).
 int footprint_resolution(const aq_scene& scene, aq::view_bounds::MeshBoxes& boxes, double tile,
                          int width, int height, int largest) {
   const auto frustum = aq::view_bounds::frustum_planes(aq::scene_math::camera_view_projection(
@@ -104,7 +102,7 @@ struct Caustics {
                                                  ctx.render_scale())));
     const aq_scene* scene = ctx.input_scene(0);
     if (scene != nullptr && ctx.param_bool(kAutoResolution)) {
-      resolution = footprint_resolution(*scene, boxes, ctx.param_float(kTile), ctx.width(),
+      resolution = footprint_resolution(*scene, boxes, aq::scene_caustic_tile(*scene), ctx.width(),
                                         ctx.height(), resolution);
     }
     // The quality preset trades the grid (cost ~ grid^2 triangles, error ~ 1/grid): draft an

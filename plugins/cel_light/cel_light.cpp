@@ -38,8 +38,9 @@ constexpr aq_param_desc kParams[] = {
                   "HSV value levels: v -> round(v (levels-1)) / (levels-1); 1 = flat colour"),
     aq::bool_param("quantize", true, "apply cel shading (off: plain diffuse light)"),
     aq::int_param("pcf_radius", 1, 0, 4, "shadow filter: (2r+1)^2 taps, 0 = one tap"),
-    aq::float_param("caustic_tile", 4.0, 0.01, 1000.0,
-                    "world units covered by one period of the caustic texture"),
+    aq::float_param("caustic_tile", 0.0, 0.0, 1000.0,
+                    "world units covered by one period of the caustic texture; 0: the scene's "
+                    "(scene.caustic_tile, which the caustics node sizes its texture for)"),
     aq::float_param("caustic_strength", 1.0, 0.0, 4.0,
                     "0: no caustics, 1: as computed, >1: more contrast"),
     aq::color_param("background", 0.1, 0.3, 0.4, "colour where id = 0 (open water)")};
@@ -135,7 +136,9 @@ struct CelLight {
     aq::set_vec3(program, "u_light_color", scene->light.color);
     aq::set_vec3(program, "u_ambient", scene->light.ambient);
     aq::set_float(program, "u_water_height", scene->water_height);
-    aq::set_float(program, "u_caustic_tile", ctx.param_float(kCausticTile));
+    const double own_tile = ctx.param_float(kCausticTile);
+    aq::set_float(program, "u_caustic_tile",
+                  own_tile > 0.0 ? own_tile : aq::scene_caustic_tile(*scene));
     aq::set_float(program, "u_caustic_strength", ctx.param_float(kCausticStrength));
     aq::set_int(program, "u_levels", static_cast<int>(ctx.param_int(kLevels)));
     aq::set_vec3(program, "u_background", ctx.param_vec3(kBackground));

@@ -40,6 +40,7 @@ enum Param {
   kLightIntensity,
   kAmbient,
   kWaterHeight,
+  kCausticTile,
   kFishSpeed,
   kSway
 };
@@ -64,6 +65,8 @@ constexpr aq_param_desc kParams[] = {
     aq::color_param("ambient", 0.32, 0.37, 0.42, "ambient light (linear)"),
     aq::float_param("water_height", 6.0, -1000.0, 1000.0,
                     "world y of the water surface (caustic projection plane)"),
+    aq::float_param("caustic_tile", 4.0, 0.01, 1000.0,
+                    "world units one period of the water's caustic pattern covers"),
     aq::float_param("fish_speed", 0.35, 0.0, 5.0, "fish loop speed, radians per second"),
     aq::float_param("sway", 1.0, 0.0, scene::kMaxSway, "seaweed sway amplitude (0 freezes it)")};
 
@@ -224,6 +227,7 @@ class SceneNode {
     }
     scene_.time = ctx.time();
     scene_.water_height = static_cast<float>(ctx.param_float(kWaterHeight));
+    scene_.caustic_tile = static_cast<float>(ctx.param_float(kCausticTile));
   }
 
   bool built_ = false;

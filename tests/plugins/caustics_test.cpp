@@ -335,27 +335,26 @@ TEST(Caustics, ParameterSweepStaysFiniteCoveredAndNearEnergy) {
 // With a scene connected, the texture gets about one texel per screen pixel where a tile looks
 // largest: at the nearest receiver in view under the water. The plane_box scene seen straight
 // down from 4 units up: the box top (y = 1) is 3 units away, the floor 4; a tile of 4 world
-// units at depth z covers 4 H / (2 tan(fov / 2) z) pixels (pinhole camera), rounded up to 8.
-int footprint_width(double water_height, bool auto_resolution = true) {
-  nlohmann::json g = {{"aquarelle", 1},
-                      {"nodes",
-                       {{"scene",
-                         {{"type", "scene"},
-                          {"params",
-                           {{"preset", "plane_box"},
-                            {"camera_position", {0.0, 4.0, 0.0}},
-                            {"camera_target", {0.0, 0.0, -0.001}},
-                            {"fov", 50.0},
-                            {"water_height", water_height}}}}},
-                        {"caustics",
-                         {{"type", "caustics"},
-                          {"params",
-                           {{"grid", 16},
-                            {"resolution", 256},
-                            {"tile", 4.0},
-                            {"auto_resolution", auto_resolution}}},
-                          {"inputs", {{"scene", "scene.scene"}}}}}}},
-                      {"output", "caustics.image"}};
+// units (the scene's caustic_tile) at depth z covers 4 H / (2 tan(fov / 2) z) pixels (pinhole
+// camera), rounded up to 8.
+int footprint_width(double water_height, bool auto_resolution = true, double tile = 4.0) {
+  nlohmann::json g = {
+      {"aquarelle", 1},
+      {"nodes",
+       {{"scene",
+         {{"type", "scene"},
+          {"params",
+           {{"preset", "plane_box"},
+            {"camera_position", {0.0, 4.0, 0.0}},
+            {"camera_target", {0.0, 0.0, -0.001}},
+            {"fov", 50.0},
+            {"water_height", water_height},
+            {"caustic_tile", tile}}}}},
+        {"caustics",
+         {{"type", "caustics"},
+          {"params", {{"grid", 16}, {"resolution", 256}, {"auto_resolution", auto_resolution}}},
+          {"inputs", {{"scene", "scene.scene"}}}}}}},
+      {"output", "caustics.image"}};
   aq::test::RenderOptions options;
   options.width = 96;
   options.height = 64;
@@ -377,6 +376,8 @@ TEST(Caustics, TextureSizeFollowsTheFootprintOfATileOnScreen) {
   EXPECT_EQ(footprint_width(0.5), pinhole_texels(4.0, 64, 50.0, 3.5));
   EXPECT_EQ(footprint_width(-5.0), 16);  // nothing under the water in view
   EXPECT_EQ(footprint_width(10.0, false), 256);
+  // The tile's size is the scene's (the period cel_light projects with by default).
+  EXPECT_EQ(footprint_width(10.0, true, 2.0), pinhole_texels(2.0, 64, 50.0, 3.0));
 }
 
 }  // namespace

@@ -25,7 +25,8 @@ struct LightSetup {
   std::array<double, 3> ambient{0.22, 0.27, 0.32};
   int levels = 4;
   bool quantize = true;
-  double caustic_tile = 4.0;
+  double caustic_tile = 4.0;  // cel_light's own; 0 takes the scene's
+  double scene_caustic_tile = 4.0;
   double caustic_strength = 1.0;
   int pcf_radius = 0;
   double water_height = 6.0;
@@ -45,7 +46,8 @@ std::string graph(const LightSetup& s, bool shadow, bool caustics) {
                               {"light_color", s.light_color},
                               {"light_intensity", s.intensity},
                               {"ambient", s.ambient},
-                              {"water_height", s.water_height}}}}},
+                              {"water_height", s.water_height},
+                              {"caustic_tile", s.scene_caustic_tile}}}}},
                           {"light",
                            {{"type", "cel_light"},
                             {"params",
@@ -391,6 +393,34 @@ TEST(CelLight, CausticsTileInWorldUnitsAndFollowTheLight) {
   EXPECT_LT(worst, 2e-3);
   EXPECT_LT(lo, 1.5) << "some points get the dark part of the texture";
   EXPECT_GT(hi, 2.0) << "and some the bright quadrant";
+}
+
+// caustic_tile 0 projects the texture with the scene's period (the one the caustics node sizes
+// its texture for): the same picture as giving that period to cel_light itself.
+TEST(CelLight, ZeroCausticTileTakesTheScenes) {
+  LightSetup own = overhead();
+  own.light_direction = {0.4, -1.0, 0.2};
+  own.quantize = false;
+  own.caustic_tile = 2.0;
+  own.scene_caustic_tile = 7.0;
+  LightSetup from_scene = own;
+  from_scene.caustic_tile = 0.0;
+  from_scene.scene_caustic_tile = 2.0;
+  LightSetup other = from_scene;
+  other.scene_caustic_tile = 3.0;
+  ImageF caustic = aq::test::random_image(8, 8, 5, 0.0f, 3.0f);
+  GBufferImages g = flat_gbuffer(1, 1, 1);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      g.position.at(x, y, 0) = static_cast<float>(x * 0.07);
+      g.position.at(x, y, 2) = static_cast<float>(y * 0.05);
+    }
+  auto images = as_inputs(g);
+  images["caustics"] = caustic;
+  const ImageF a = run(own, images), b = run(from_scene, images), c = run(other, images);
+  ASSERT_FALSE(a.empty() || b.empty() || c.empty());
+  EXPECT_EQ(aq::test::max_abs_diff(a, b), 0.0);
+  EXPECT_GT(aq::test::max_abs_diff(b, c), 0.1) << "the scene's period is really used";
 }
 
 }  // namespace

@@ -116,6 +116,10 @@ typedef struct aq_scene {
   float bounds_max[3];
   double time; /* seconds */
   float water_height; /* world y of the water surface (caustic projection) */
+  /* World units one period of the water's caustic pattern covers (the caustic texture's tile,
+   * as cel_light projects it and as the caustics node sizes it). Appended in ABI 1: read it
+   * only when struct_size covers it (plugin.hpp's aq::scene_caustic_tile does). */
+  float caustic_tile;
 } aq_scene;
 
 /* ---- Node descriptions: data the host reads without running anything ---------------- */

@@ -40,6 +40,15 @@ constexpr aq_port_desc optional_scene_port(const char* name, const char* descrip
   return aq_port_desc{name, AQ_PORT_SCENE, AQ_PORT_OPTIONAL, description};
 }
 
+// The scene's caustic tile in world units; 4 (the period before the field existed) for a
+// scene from an older plugin or with a value that is not a positive number.
+inline double scene_caustic_tile(const aq_scene& scene) {
+  const bool present = scene.struct_size >= offsetof(aq_scene, caustic_tile) + sizeof(float);
+  return present && scene.caustic_tile > 0.0f && scene.caustic_tile < 1e30f
+             ? static_cast<double>(scene.caustic_tile)
+             : 4.0;
+}
+
 constexpr aq_param_desc float_param(const char* name, double def, double min, double max,
                                     const char* description, double step = 0.0,
                                     const char* ui_hint = "slider") {
