@@ -5,7 +5,6 @@
 #include <aquarelle/gl_raii.hpp>
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/scene_math.hpp>
-#include <aquarelle/view_bounds.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -53,25 +52,17 @@ constexpr aq_param_desc kParams[] = {
                    "receiver in view under the water (at most `resolution`)")};
 
 // Texture pixels per tile side for about one texel per screen pixel where the tile is seen
-// largest: at the nearest point, under the water, of the meshes' boxes in view. A tile is
-// `tile` world units wide there (the scene's caustic_tile, as cel_light projects it); the camera
-// shows a world unit at depth z on H / (2 tan(fov/2) z) pixels (the most it shows of a unit in any
-// direction: slanted receivers show less).
+// largest: at the nearest point, under the water, of the meshes' boxes in view, where a tile is
+// `tile` world units wide (the scene's caustic_tile, as cel_light projects it).
 int footprint_resolution(const aq_scene& scene, aq::view_bounds::MeshBoxes& boxes, double tile,
                          int width, int height, int largest) {
-  const auto frustum = aq::view_bounds::frustum_planes(aq::scene_math::camera_view_projection(
-      scene.camera, static_cast<float>(width) / static_cast<float>(height)));
-  std::vector<aq::view_bounds::Plane> planes(frustum.begin(), frustum.end());
-  planes.push_back(aq::view_bounds::below(scene.water_height));
-  const auto points = aq::view_bounds::visible_points(boxes.world_boxes(scene), planes);
-  const auto nearest = aq::view_bounds::nearest_depth(
-      points, aq::scene_math::to_dmat4(aq::scene_math::camera_view(scene.camera)));
-  if (!nearest) return std::min(largest, 16);  // no receiver in view: nothing to show
-  const double depth = std::max<double>(*nearest, scene.camera.near_plane);
-  const double needed =
-      tile * aq::view_bounds::pixels_per_world_unit(scene.camera.fov_y_degrees, height, depth);
-  const int rounded = static_cast<int>(std::ceil(std::min(needed, 1e6) / 8.0) * 8.0);
-  return std::clamp(rounded, std::min(largest, 16), largest);
+  const aq::view_bounds::Plane under_water[] = {aq::view_bounds::below(scene.water_height)};
+  const auto points = aq::scene_math::visible_receivers(
+      scene, boxes.world_boxes(scene), static_cast<float>(width) / static_cast<float>(height),
+      under_water);
+  const auto depth = aq::scene_math::nearest_receiver_depth(scene.camera, points);
+  if (!depth) return std::min(largest, 16);  // no receiver in view: nothing to show
+  return aq::scene_math::footprint_texels(tile, scene.camera, height, *depth, 8, largest);
 }
 
 // A run of grid cells along one axis: [first, first + count).

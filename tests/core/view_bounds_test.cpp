@@ -34,7 +34,18 @@ aq_camera camera_at(glm::vec3 position, glm::vec3 target, float fov = 50.0f) {
 }
 
 glm::dmat4 view_of(const aq_camera& camera) {
-  return aq::scene_math::to_dmat4(aq::scene_math::camera_view(camera));
+  return glm::dmat4(aq::scene_math::camera_view(camera));
+}
+
+std::array<Plane, 6> frustum_of(const aq_camera& camera, float aspect) {
+  return aq::view_bounds::frustum_planes(aq::scene_math::camera_view_projection(camera, aspect));
+}
+
+Box box_of(glm::dvec3 lo, glm::dvec3 hi) {
+  Box box;
+  box.add(lo);
+  box.add(hi);
+  return box;
 }
 
 // The nearest camera depth over a dense grid of the box's points inside the planes: an upper
@@ -56,12 +67,8 @@ double sampled_nearest_depth(const Box& box, std::span<const Plane> planes, cons
 
 TEST(ViewBounds, BoxInsideTheFrustumKeepsItsCorners) {
   const aq_camera camera = camera_at({0, 0, 10}, {0, 0, 0});
-  const auto planes =
-      aq::view_bounds::frustum_planes(aq::scene_math::camera_view_projection(camera, 1.0f));
-  Box box;
-  box.add({-1, -1, -1});
-  box.add({1, 1, 1});
-  const auto points = aq::view_bounds::clip_box(box, planes);
+  const auto points =
+      aq::view_bounds::clip_box(box_of({-1, -1, -1}, {1, 1, 1}), frustum_of(camera, 1.0f));
   ASSERT_FALSE(points.empty());
   for (const auto& p : points) {
     EXPECT_NEAR(std::abs(p.x), 1.0, 1e-9);
@@ -71,25 +78,20 @@ TEST(ViewBounds, BoxInsideTheFrustumKeepsItsCorners) {
   EXPECT_NEAR(*aq::view_bounds::nearest_depth(points, view_of(camera)), 9.0, 1e-9);
 }
 
-TEST(ViewBounds, BoxBehindTheCameraIsNotSeen) {
-  const aq_camera camera = camera_at({0, 0, 10}, {0, 0, 0});
-  const auto planes =
-      aq::view_bounds::frustum_planes(aq::scene_math::camera_view_projection(camera, 1.0f));
-  Box box;
-  box.add({-1, -1, 11});
-  box.add({1, 1, 13});
-  EXPECT_TRUE(aq::view_bounds::clip_box(box, planes).empty());
-  EXPECT_FALSE(aq::view_bounds::nearest_depth({}, view_of(camera)).has_value());
+TEST(ViewBounds, BoxesBehindOrBesideTheCameraAreNotSeen) {
+  const aq_camera camera = camera_at({0, 0, 10}, {0, 0, 0});  // fov 50, looking down -z
+  const auto frustum = frustum_of(camera, 1.0f);
+  EXPECT_TRUE(aq::view_bounds::clip_box(box_of({-1, -1, 11}, {1, 1, 13}), frustum).empty());
+  // Beside: at depth 6 (the boxes' far side) the view reaches x = 6 tan(25°) ≈ 2.8, so a box
+  // from x = 3 is outside and one from x = 2 reaches in.
+  EXPECT_TRUE(aq::view_bounds::clip_box(box_of({3, -1, 4}, {4, 1, 6}), frustum).empty());
+  EXPECT_FALSE(aq::view_bounds::clip_box(box_of({2, -1, 4}, {4, 1, 6}), frustum).empty());
 }
 
 TEST(ViewBounds, CameraInsideABoxSeesItFromTheNearPlane) {
   const aq_camera camera = camera_at({0, 0, 0}, {0, 0, -1});
-  const auto planes =
-      aq::view_bounds::frustum_planes(aq::scene_math::camera_view_projection(camera, 1.5f));
-  Box box;
-  box.add({-3, -3, -3});
-  box.add({3, 3, 3});
-  const auto points = aq::view_bounds::clip_box(box, planes);
+  const auto points =
+      aq::view_bounds::clip_box(box_of({-3, -3, -3}, {3, 3, 3}), frustum_of(camera, 1.5f));
   EXPECT_NEAR(*aq::view_bounds::nearest_depth(points, view_of(camera)), camera.near_plane, 1e-6);
 }
 
@@ -104,14 +106,9 @@ TEST(ViewBounds, NearestDepthMatchesSamplingForRandomViews) {
         camera_at({3.0f * u(random), 2.5f + 2.0f * u(random), 6.0f},
                   {u(random), 0.5f * u(random), -1.0f}, 40.0f + 10 * u(random));
     std::vector<Plane> planes;
-    for (const Plane& p : aq::view_bounds::frustum_planes(
-             aq::scene_math::camera_view_projection(camera, 16.0f / 9.0f))) {
-      planes.push_back(p);
-    }
+    for (const Plane& p : frustum_of(camera, 16.0f / 9.0f)) planes.push_back(p);
     planes.push_back(aq::view_bounds::below(0.2 + 0.3 * u(random)));
-    Box floor;
-    floor.add({-8, -0.5, -8});
-    floor.add({8, 0.6, 8});
+    const Box floor = box_of({-8, -0.5, -8}, {8, 0.6, 8});
     const auto points = aq::view_bounds::clip_box(floor, planes);
     const double sampled = sampled_nearest_depth(floor, planes, view_of(camera), 96);
     if (points.empty()) {
@@ -186,11 +183,8 @@ TEST(ShadowFit, ReceiversInViewAreInsideAndTexelsAreFiner) {
   const glm::mat4 fitted = aq::scene_math::light_view_projection(s.scene, fit, size);
   const glm::mat4 whole = aq::scene_math::light_view_projection(s.scene);
   // Every point of the floor in view lands inside the fitted map.
-  const auto planes =
-      aq::view_bounds::frustum_planes(aq::scene_math::camera_view_projection(camera, aspect));
-  Box floor;
-  floor.add({-20, -0.5, -20});
-  floor.add({20, 0.5, 20});
+  const auto planes = frustum_of(camera, aspect);
+  const Box floor = box_of({-20, -0.5, -20}, {20, 0.5, 20});
   for (const auto& p : aq::view_bounds::clip_box(floor, planes)) {
     const glm::dvec3 c = to_clip(fitted, p);
     EXPECT_LE(std::abs(c.x), 1.0 + 1e-6);

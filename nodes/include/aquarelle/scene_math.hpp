@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -60,10 +61,16 @@ inline glm::vec3 light_direction(const aq_scene& scene) {
   return len > 1e-8f && std::isfinite(len) ? d / len : glm::vec3(0, -1, 0);
 }
 
-// The light's view: looking along the light at the centre of the scene bounds (a fallback box
-// when the bounds are empty), and the bounds' radius.
-inline glm::mat4 light_view(const aq_scene& scene, glm::vec3* lo_out = nullptr,
-                            glm::vec3* hi_out = nullptr, float* radius_out = nullptr) {
+// The light's frame: its view (looking along the light at the centre of the scene bounds, a
+// fallback box when the bounds are empty), the bounds in that view space and their radius.
+// Every light matrix below starts from it, so writer and reader share each float operation.
+struct LightFrame {
+  glm::mat4 view;
+  glm::vec3 vmin, vmax;  // the scene's bounds in light view space
+  float radius;
+};
+
+inline LightFrame light_frame(const aq_scene& scene) {
   glm::vec3 lo = to_vec3(scene.bounds_min);
   glm::vec3 hi = to_vec3(scene.bounds_max);
   if (!(hi.x >= lo.x && hi.y >= lo.y && hi.z >= lo.z)) {
@@ -71,27 +78,19 @@ inline glm::mat4 light_view(const aq_scene& scene, glm::vec3* lo_out = nullptr,
     hi = glm::vec3(1.0f);
   }
   glm::vec3 centre = 0.5f * (lo + hi);
-  float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
+  LightFrame frame;
+  frame.radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
   glm::vec3 dir = light_direction(scene);
-  if (lo_out != nullptr) *lo_out = lo;
-  if (hi_out != nullptr) *hi_out = hi;
-  if (radius_out != nullptr) *radius_out = radius;
-  return glm::lookAt(centre - dir * (2.0f * radius), centre, stable_up(dir, {0, 1, 0}));
-}
-
-// The scene's bounds in light view space.
-inline void light_space_bounds(const aq_scene& scene, glm::vec3& vmin, glm::vec3& vmax,
-                               float& radius) {
-  glm::vec3 lo, hi;
-  glm::mat4 view = light_view(scene, &lo, &hi, &radius);
-  vmin = glm::vec3(1e30f);
-  vmax = glm::vec3(-1e30f);
+  frame.view = glm::lookAt(centre - dir * (2.0f * frame.radius), centre, stable_up(dir, {0, 1, 0}));
+  frame.vmin = glm::vec3(1e30f);
+  frame.vmax = glm::vec3(-1e30f);
   for (int corner = 0; corner < 8; ++corner) {
     glm::vec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
-    glm::vec3 v = glm::vec3(view * glm::vec4(p, 1.0f));
-    vmin = glm::min(vmin, v);
-    vmax = glm::max(vmax, v);
+    glm::vec3 v = glm::vec3(frame.view * glm::vec4(p, 1.0f));
+    frame.vmin = glm::min(frame.vmin, v);
+    frame.vmax = glm::max(frame.vmax, v);
   }
+  return frame;
 }
 
 // Orthographic view-projection from the light, fitted tightly to the scene's bounds: the eight
@@ -99,14 +98,54 @@ inline void light_space_bounds(const aq_scene& scene, glm::vec3& vmin, glm::vec3
 // small margin in depth so nothing is clipped) becomes the projection volume. Depth written
 // through it (gl_FragCoord.z) is the same quantity cel_light recomputes as 0.5 * ndc.z + 0.5.
 inline glm::mat4 light_view_projection(const aq_scene& scene) {
-  glm::vec3 vmin, vmax;
-  float radius = 0.0f;
-  light_space_bounds(scene, vmin, vmax, radius);
+  const LightFrame f = light_frame(scene);
   // Square-ish texels are not needed; a degenerate (flat) extent is widened to stay invertible.
-  float pad = 1e-3f * radius;
-  glm::mat4 projection = glm::ortho(vmin.x - pad, vmax.x + pad, vmin.y - pad, vmax.y + pad,
-                                    -vmax.z - 0.01f * radius, -vmin.z + 0.01f * radius);
-  return projection * light_view(scene);
+  float pad = 1e-3f * f.radius;
+  glm::mat4 projection = glm::ortho(f.vmin.x - pad, f.vmax.x + pad, f.vmin.y - pad, f.vmax.y + pad,
+                                    -f.vmax.z - 0.01f * f.radius, -f.vmin.z + 0.01f * f.radius);
+  return projection * f.view;
+}
+
+// ---- What the camera sees of the scene ---------------------------------------------------
+//
+// The receivers in view are the meshes' boxes clipped to the camera's frustum (and to any extra
+// half-space, e.g. under the water): view_bounds.hpp. Internal textures are sized from them.
+
+// The camera's view-projection at `aspect` (width / height of the render), as the gbuffer
+// draws it.
+inline glm::dmat4 camera_view_projection(const aq_camera& camera, float aspect) {
+  return glm::dmat4(camera_projection(camera, aspect)) * glm::dmat4(camera_view(camera));
+}
+
+// Vertices of the receivers in view: each mesh box ∩ the frustum ∩ every `extra` half-space.
+inline std::vector<glm::dvec3> visible_receivers(const aq_scene& scene,
+                                                 std::span<const view_bounds::Box> mesh_boxes,
+                                                 float aspect,
+                                                 std::span<const view_bounds::Plane> extra = {}) {
+  const auto frustum = view_bounds::frustum_planes(camera_view_projection(scene.camera, aspect));
+  std::vector<view_bounds::Plane> planes(frustum.begin(), frustum.end());
+  planes.insert(planes.end(), extra.begin(), extra.end());
+  return view_bounds::visible_points(mesh_boxes, planes);
+}
+
+// Camera depth of the nearest of `points` (nullopt for none), at least the near plane.
+inline std::optional<double> nearest_receiver_depth(const aq_camera& camera,
+                                                    std::span<const glm::dvec3> points) {
+  const auto nearest = view_bounds::nearest_depth(points, glm::dmat4(camera_view(camera)));
+  if (!nearest) return std::nullopt;
+  return std::max<double>(*nearest, camera.near_plane);
+}
+
+// Texels for about one texel per screen pixel across `world_extent` world units seen at
+// `depth` (a pinhole camera shows a world unit facing it at depth z on H / (2 tan(fov/2) z)
+// pixels, the most it shows of a unit in any direction): rounded up to a multiple of
+// `multiple`, at least min(16, largest), at most `largest`.
+inline int footprint_texels(double world_extent, const aq_camera& camera, int height_pixels,
+                            double depth, int multiple, int largest) {
+  const double needed =
+      world_extent * view_bounds::pixels_per_world_unit(camera.fov_y_degrees, height_pixels, depth);
+  const double rounded = std::ceil(std::min(needed, 1e6) / multiple) * multiple;
+  return std::clamp(static_cast<int>(rounded), std::min(16, largest), largest);
 }
 
 // ---- Fitting the shadow map to what the camera sees ----------------------------------------
@@ -114,8 +153,7 @@ inline glm::mat4 light_view_projection(const aq_scene& scene) {
 // A texel of a map fitted to the whole scene is wasted wherever the camera cannot see. Only
 // receivers in view need shadow texels; a caster that shadows one lies on the light ray through
 // it, so inside the same light-space rectangle, and the depth range stays the scene's (casters
-// out of view still cast). The receivers in view are the mesh boxes clipped to the frustum
-// (view_bounds.hpp).
+// out of view still cast).
 
 struct ViewFit {
   bool any_visible = false;     // false: nothing of the scene in view; the scene fit is used
@@ -123,26 +161,13 @@ struct ViewFit {
   double nearest_depth = 0.0;   // camera depth of the nearest receiver point in view
 };
 
-inline glm::dmat4 to_dmat4(const glm::mat4& m) {
-  return glm::dmat4(m);
-}
-
-// The camera's view-projection at `aspect` (width / height of the render), as the gbuffer
-// draws it.
-inline glm::dmat4 camera_view_projection(const aq_camera& camera, float aspect) {
-  return to_dmat4(camera_projection(camera, aspect)) * to_dmat4(camera_view(camera));
-}
-
 inline ViewFit fit_to_view(const aq_scene& scene, std::span<const view_bounds::Box> mesh_boxes,
                            float aspect) {
   ViewFit fit;
-  const auto planes = view_bounds::frustum_planes(camera_view_projection(scene.camera, aspect));
-  const std::vector<glm::dvec3> points = view_bounds::visible_points(mesh_boxes, planes);
+  const std::vector<glm::dvec3> points = visible_receivers(scene, mesh_boxes, aspect);
   if (points.empty()) return fit;
-  glm::vec3 vmin, vmax;
-  float radius = 0.0f;
-  light_space_bounds(scene, vmin, vmax, radius);
-  const glm::dmat4 view = to_dmat4(light_view(scene));
+  const LightFrame frame = light_frame(scene);
+  const glm::dmat4 view(frame.view);
   fit.lo = glm::dvec2(1e300);
   fit.hi = glm::dvec2(-1e300);
   for (const glm::dvec3& p : points) {
@@ -150,11 +175,10 @@ inline ViewFit fit_to_view(const aq_scene& scene, std::span<const view_bounds::B
     fit.lo = glm::min(fit.lo, q);
     fit.hi = glm::max(fit.hi, q);
   }
-  fit.lo = glm::max(fit.lo, glm::dvec2(vmin.x, vmin.y));
-  fit.hi = glm::min(fit.hi, glm::dvec2(vmax.x, vmax.y));
+  fit.lo = glm::max(fit.lo, glm::dvec2(frame.vmin.x, frame.vmin.y));
+  fit.hi = glm::min(fit.hi, glm::dvec2(frame.vmax.x, frame.vmax.y));
   fit.any_visible = fit.hi.x >= fit.lo.x && fit.hi.y >= fit.lo.y;
-  fit.nearest_depth = view_bounds::nearest_depth(points, to_dmat4(camera_view(scene.camera)))
-                          .value_or(scene.camera.near_plane);
+  fit.nearest_depth = *nearest_receiver_depth(scene.camera, points);
   return fit;
 }
 
@@ -162,13 +186,10 @@ inline ViewFit fit_to_view(const aq_scene& scene, std::span<const view_bounds::B
 // densest place the map is looked up), at most `max_size`, a multiple of 16, at least 16.
 inline int shadow_size_for_view(const ViewFit& fit, const aq_camera& camera, int height_pixels,
                                 int max_size) {
-  if (!fit.any_visible) return std::max(16, max_size);
+  max_size = std::max(16, max_size);
+  if (!fit.any_visible) return max_size;
   const double extent = std::max(fit.hi.x - fit.lo.x, fit.hi.y - fit.lo.y);
-  const double needed = extent * view_bounds::pixels_per_world_unit(
-                                     camera.fov_y_degrees, height_pixels,
-                                     std::max<double>(fit.nearest_depth, camera.near_plane));
-  const double rounded = std::ceil(std::min(needed, 1e6) / 16.0) * 16.0;
-  return std::clamp(static_cast<int>(rounded), 16, std::max(16, max_size));
+  return footprint_texels(extent, camera, height_pixels, fit.nearest_depth, 16, max_size);
 }
 
 // The light's view-projection fitted to the receivers in view, for a `map_size` map. Shadow
@@ -177,12 +198,10 @@ inline int shadow_size_for_view(const ViewFit& fit, const aq_camera& camera, int
 // until the window's size changes step.
 inline glm::mat4 light_view_projection(const aq_scene& scene, const ViewFit& fit, int map_size) {
   if (!fit.any_visible || map_size < 2) return light_view_projection(scene);
-  glm::vec3 vmin, vmax;
-  float radius = 0.0f;
-  light_space_bounds(scene, vmin, vmax, radius);
-  const double pad = 1e-3 * radius;
-  const glm::dvec2 scene_lo = glm::dvec2(vmin.x, vmin.y) - pad;
-  const glm::dvec2 scene_hi = glm::dvec2(vmax.x, vmax.y) + pad;
+  const LightFrame f = light_frame(scene);
+  const double pad = 1e-3 * f.radius;
+  const glm::dvec2 scene_lo = glm::dvec2(f.vmin.x, f.vmin.y) - pad;
+  const glm::dvec2 scene_hi = glm::dvec2(f.vmax.x, f.vmax.y) + pad;
   glm::dvec2 lo = scene_lo, hi = scene_hi;
   const double size = static_cast<double>(map_size);
   for (int axis = 0; axis < 2; ++axis) {
@@ -196,10 +215,10 @@ inline glm::mat4 light_view_projection(const aq_scene& scene, const ViewFit& fit
     lo[axis] = std::floor((fit.lo[axis] - pad) / texel) * texel;
     hi[axis] = lo[axis] + extent;
   }
-  glm::mat4 projection =
-      glm::ortho(static_cast<float>(lo.x), static_cast<float>(hi.x), static_cast<float>(lo.y),
-                 static_cast<float>(hi.y), -vmax.z - 0.01f * radius, -vmin.z + 0.01f * radius);
-  return projection * light_view(scene);
+  glm::mat4 projection = glm::ortho(static_cast<float>(lo.x), static_cast<float>(hi.x),
+                                    static_cast<float>(lo.y), static_cast<float>(hi.y),
+                                    -f.vmax.z - 0.01f * f.radius, -f.vmin.z + 0.01f * f.radius);
+  return projection * f.view;
 }
 
 }  // namespace aq::scene_math
