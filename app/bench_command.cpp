@@ -42,6 +42,9 @@ reference render.
   --no-sweep              timing only, no sweeps
   --pipeline-only         of the sweeps, only the quality presets of the whole graph
   --precision half|float  working precision (default: the graph's settings.precision)
+  --quality draft|preview|final
+                          quality preset to time (default: the graph's settings.quality);
+                          the preset sweep still measures all three
   --csv OUT.csv           write every measurement as CSV
   --plot OUT.png          plot time against mean abs error, one curve per sweep
   --json                  print the report as JSON instead of the table
@@ -62,6 +65,7 @@ struct Arguments {
   bool sweep = true;
   bool pipeline_only = false;
   std::string precision;
+  std::string quality;
   std::string csv;
   std::string plot;
   bool json = false;
@@ -126,6 +130,15 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments* args) {
         return kExitBadInput;
       }
       args->precision = *v;
+    } else if (arg == "--quality") {
+      auto v = value();
+      if (!v) return kExitBadInput;
+      if (*v != "draft" && *v != "preview" && *v != "final") {
+        std::fprintf(stderr, "aquarelle bench: --quality '%s': must be draft, preview or final\n",
+                     v->c_str());
+        return kExitBadInput;
+      }
+      args->quality = *v;
     } else if (arg == "--csv") {
       auto v = value();
       if (!v) return kExitBadInput;
@@ -205,6 +218,7 @@ int run_bench(int argc, char** argv) {
     return kExitBadInput;
   }
   if (!args.precision.empty()) graph.settings.precision = args.precision;
+  if (!args.quality.empty()) graph.settings.quality = args.quality;
 
   auto context = create_headless_context(*backend, args.gl_device);
   if (!context.ok()) {
@@ -219,6 +233,7 @@ int run_bench(int argc, char** argv) {
   report.width = graph.settings.width;
   report.height = graph.settings.height;
   report.precision = graph.settings.precision;
+  report.quality = graph.settings.quality;
   report.frames = args.frames;
   report.warmup = args.warmup;
   report.cpu_references = have_cpu_references();

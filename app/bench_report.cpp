@@ -104,6 +104,7 @@ json report_json(const BenchReport& r) {
       {"gl", r.gl},
       {"size", {r.width, r.height}},
       {"precision", r.precision},
+      {"quality", r.quality},
       {"frames", r.frames},
       {"warmup", r.warmup},
       {"copy_pass_ms", number(copy_ms)},
@@ -125,8 +126,10 @@ json report_json(const BenchReport& r) {
 
 void print_report(const BenchReport& r, std::FILE* out) {
   const double copy_ms = r.copy_pass.wall_ms.median;
-  std::fprintf(out, "graph %s at %dx%d, %s precision, %d timed frames after %d warm-up\n",
-               r.graph.c_str(), r.width, r.height, r.precision.c_str(), r.frames, r.warmup);
+  std::fprintf(out,
+               "graph %s at %dx%d, quality %s, %s precision, %d timed frames after %d warm-up\n",
+               r.graph.c_str(), r.width, r.height, r.quality.c_str(), r.precision.c_str(), r.frames,
+               r.warmup);
   std::fprintf(out, "%s\n\n", r.gl.c_str());
   std::fprintf(out,
                "copy pass (%s): %.3f ms median [%.3f .. %.3f] (wall, glFinish-bounded batches; "

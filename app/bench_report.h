@@ -22,6 +22,7 @@ struct BenchReport {
   int width = 0;
   int height = 0;
   std::string precision;
+  std::string quality;  // the preset timed (settings.quality, or --quality)
   int frames = 0;
   int warmup = 0;
   CopyPassTiming copy_pass;

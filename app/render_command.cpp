@@ -47,6 +47,9 @@ Renders the graph's output for each frame and writes it to OUT.
   --bits 8|16             bit depth of PNG/TIFF (default 8)
   --float                 write EXR as 32-bit float instead of half
   --stats                 print a table of per-node GPU and CPU time
+  --plan                  print the evaluation plan (passes, the nodes each computes, sizes,
+                          formats, reads per pixel, what is cached) and render nothing; -o is
+                          then not needed
   --resume                skip frames whose output file already exists
   -q, --quiet             no progress output
 
@@ -77,7 +80,7 @@ int run_render(int argc, char** argv) {
   std::string graph_path, output, frames, size, backend_name = "auto", gl_device = "auto",
                                                 precision, quality, view;
   std::vector<std::string> sets;
-  bool stats = false, resume = false, quiet = false, float_exr = false;
+  bool stats = false, resume = false, quiet = false, float_exr = false, print_plan = false;
   int bits = 8;
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
@@ -121,6 +124,8 @@ int run_render(int argc, char** argv) {
       float_exr = true;
     } else if (arg == "--stats") {
       stats = true;
+    } else if (arg == "--plan") {
+      print_plan = true;
     } else if (arg == "--resume") {
       resume = true;
     } else if (arg == "-q" || arg == "--quiet") {
@@ -135,7 +140,7 @@ int run_render(int argc, char** argv) {
       return kExitBadInput;
     }
   }
-  if (graph_path.empty() || output.empty()) {
+  if (graph_path.empty() || (output.empty() && !print_plan)) {
     std::fprintf(stderr, "aquarelle render: %s\n%s",
                  graph_path.empty() ? "no graph file given" : "no output given (-o OUT)",
                  kRenderHelp);
@@ -199,6 +204,15 @@ int run_render(int argc, char** argv) {
     for (auto& p : problems) p.file = graph_path;
     std::fprintf(stderr, "%s\n", format_problems(problems).c_str());
     return kExitBadInput;
+  }
+  if (print_plan) {
+    auto plan = compile_plan(graph, registry, PlanOptions{});
+    if (!plan.ok()) {
+      std::fprintf(stderr, "aquarelle render: %s\n", plan.message().c_str());
+      return kExitBadInput;
+    }
+    std::fputs(format_plan(*plan).c_str(), stdout);
+    return kExitOk;
   }
   if (frames.empty() && output.find('#') == std::string::npos && last > first) {
     // One output file and no explicit range: a still of the first frame, like a viewer.

@@ -65,7 +65,8 @@ def err(value):
 lines = []
 w, h = report["size"]
 lines.append(f"Measured by `{command}`: graph `{report['graph']}` at "
-             f"{w}x{h}, {report['precision']} precision, {report['frames']} timed frames after "
+             f"{w}x{h}, quality {report.get('quality', '?')}, {report['precision']} precision, "
+             f"{report['frames']} timed frames after "
              f"{report['warmup']} warm-up; {report['gl']}.")
 lines.append("")
 copy = report["copy_pass"]["wall_ms"]

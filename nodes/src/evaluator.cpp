@@ -1,68 +1,24 @@
-// Evaluator: pull-based evaluation with per-node cache keys, texture release after the last
-// reader, and GPU timing. The host services a plugin sees (aq_host) are implemented here too,
-// because each of them acts on the node being processed.
+// Evaluator: execution of an evaluation plan (plan.h: cull, sort, readers, fusion, sizes),
+// with per-node cache keys, texture release after the last reader, and GPU timing. The host
+// services a plugin calls live in host_services.cpp; pointwise fusion's shader in
+// pointwise_fusion.cpp.
 #include <aquarelle/core/evaluator.h>
 
 #include <aquarelle/core/graph_io.h>
+#include <aquarelle/core/plan.h>
 #include <aquarelle/core/quality.h>
 
 #include <chrono>
 #include <cstring>
 #include <filesystem>
-#include <functional>
-#include <set>
 
 #include "builtin_nodes.h"
 #include "hash.h"
+#include "host_services.h"
 #include "pointwise_fusion.h"
 #include "shader_cache.h"
 
 namespace aq {
-
-namespace {
-
-uint32_t working_format(const std::string& precision) {
-  return precision == "float" ? AQ_FORMAT_RGBA32F : AQ_FORMAT_RGBA16F;
-}
-
-}  // namespace
-
-struct NodeState {
-  const NodeType* type = nullptr;
-  void* instance = nullptr;
-  uint64_t key = 0;
-  bool valid = false;  // outputs hold the result for `key`
-  std::vector<TextureRef> images;
-  std::vector<const aq_scene*> scenes;
-  gl::Query timer_start;  // GL_TIMESTAMP pairs: llvmpipe's GL_TIME_ELAPSED reads garbage when
-  gl::Query timer_end;    // a query spans shader compilation, timestamps do not
-  BuiltinState builtin;
-
-  // GL_TIMESTAMP pair around this node's work.
-  void mark_start() {
-    if (!timer_start) {
-      timer_start = gl::make_query();
-      timer_end = gl::make_query();
-    }
-    glQueryCounter(timer_start.get(), GL_TIMESTAMP);
-  }
-  void mark_end() { glQueryCounter(timer_end.get(), GL_TIMESTAMP); }
-  double marked_gpu_ms() const {
-    GLuint64 begin_ns = 0, end_ns = 0;
-    glGetQueryObjectui64v(timer_start.get(), GL_QUERY_RESULT, &begin_ns);
-    glGetQueryObjectui64v(timer_end.get(), GL_QUERY_RESULT, &end_ns);
-    return end_ns > begin_ns ? static_cast<double>(end_ns - begin_ns) * 1e-6 : 0.0;
-  }
-};
-
-struct CallState {
-  Evaluator::Impl* impl = nullptr;
-  NodeState* state = nullptr;
-  std::string node_id;
-  std::string error;
-  std::vector<TextureRef> scratch;
-  const std::vector<TextureRef>* input_refs = nullptr;
-};
 
 // The deferred stages of a fused chain of pointwise nodes, kept until the node that ends the
 // chain runs them in one pass (pointwise_fusion.h). Each stage keeps the parameters and context
@@ -80,6 +36,8 @@ struct FusedChain {
   TextureRef input;  // the image the first stage reads
   std::vector<std::unique_ptr<Stage>> stages;
 };
+
+namespace {
 
 // The context process() (or a fused stage's set_uniforms) sees for one node.
 void fill_process_ctx(aq_process_ctx& ctx, const aq_host* host, uint32_t gl_generation,
@@ -106,56 +64,131 @@ void fill_process_ctx(aq_process_ctx& ctx, const aq_host* host, uint32_t gl_gene
   ctx.render_scale = render_scale(settings.quality);
 }
 
-// Pointwise nodes whose function runs inside their reader's pass instead of a pass of their
-// own: they give a fusable function, are not the output, and their only reader is another
-// such node reading them on its image input.
-std::set<std::string> deferred_nodes(const Graph& graph, const Registry& registry,
-                                     const std::vector<std::string>& order,
-                                     std::map<std::string, int>& readers,
-                                     const std::string& target) {
-  std::set<std::string> deferred;
-  auto fusable = [&](const std::string& id) {
-    const NodeType* type = registry.find(graph.nodes.at(id).type);
-    return type != nullptr && type->fusable != nullptr;
-  };
-  for (const auto& reader_id : order) {
-    if (!fusable(reader_id)) continue;
-    const NodeType* reader_type = registry.find(graph.nodes.at(reader_id).type);
-    const Node& reader = graph.nodes.at(reader_id);
-    auto link = reader.inputs.find(reader_type->inputs[0].name);
-    if (link == reader.inputs.end()) continue;
-    const std::string& source = link->second.node;
-    if (source != target && readers[source] == 1 && fusable(source)) deferred.insert(source);
+// A node's parameters as the ABI passes them; `strings` owns what params[i].s points to.
+struct ParamValues {
+  std::vector<aq_param_value> params;
+  std::vector<std::string> strings;
+};
+
+// Converts the node's parameters (defaults for missing ones) and hashes them into `key`.
+ParamValues convert_params(const Node& node, const NodeType& type,
+                           const std::filesystem::path& graph_dir, uint64_t* key) {
+  ParamValues values;
+  values.params.resize(type.params.size());
+  values.strings.resize(type.params.size());
+  for (size_t p = 0; p < type.params.size(); ++p) {
+    const ParamInfo& info = type.params[p];
+    nlohmann::json value = param_value_or_default(node, info);
+    // replace, not throw, on invalid UTF-8 from --set or the editor
+    *key = hash_string(*key, value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+    aq_param_value& out = values.params[p];
+    out = aq_param_value{{0, 0, 0}, 0, nullptr};
+    switch (info.type) {
+      case AQ_PARAM_FLOAT:
+        out.f[0] = value.is_number() ? value.get<double>() : info.default_value[0];
+        break;
+      case AQ_PARAM_INT:
+        out.i =
+            value.is_number() ? value.get<int64_t>() : static_cast<int64_t>(info.default_value[0]);
+        out.f[0] = static_cast<double>(out.i);
+        break;
+      case AQ_PARAM_BOOL:
+        out.i = value.is_boolean() ? (value.get<bool>() ? 1 : 0) : (info.default_value[0] != 0);
+        break;
+      case AQ_PARAM_ENUM: {
+        out.i = static_cast<int64_t>(info.default_value[0]);
+        if (value.is_string()) {
+          for (size_t e = 0; e < info.enum_values.size(); ++e) {
+            if (info.enum_values[e] == value.get<std::string>()) out.i = static_cast<int64_t>(e);
+          }
+        } else if (value.is_number_integer()) {
+          out.i = value.get<int64_t>();
+        }
+        break;
+      }
+      case AQ_PARAM_COLOR:
+      case AQ_PARAM_VEC3:
+        for (int c = 0; c < 3; ++c) {
+          out.f[c] = value.is_array() && value.size() == 3 && value[c].is_number()
+                         ? value[c].get<double>()
+                         : info.default_value[c];
+        }
+        break;
+      case AQ_PARAM_STRING:
+      case AQ_PARAM_PATH: {
+        std::string& text = values.strings[p];
+        text = value.is_string() ? value.get<std::string>() : info.default_string;
+        if (info.type == AQ_PARAM_PATH && !text.empty() &&
+            std::filesystem::path(text).is_relative() && !graph_dir.empty()) {
+          text = (graph_dir / text).lexically_normal().string();
+        }
+        out.s = text.c_str();
+        break;
+      }
+    }
   }
-  return deferred;
+  return values;
 }
+
+// A node's inputs as the ABI passes them, and the textures behind its image inputs.
+struct GatheredInputs {
+  std::vector<aq_input_value> values;
+  std::vector<TextureRef> images;  // per input; empty for scenes and unconnected inputs
+};
+
+// The one place that turns a node's links into its inputs (checking that each names an output
+// of the right type) and hashes its sources' keys into `key`.
+Result<GatheredInputs> gather_inputs(const std::string& id, const Node& node, const NodeType& type,
+                                     std::map<std::string, NodeState>& states, uint64_t* key) {
+  GatheredInputs gathered;
+  gathered.values.resize(type.inputs.size());
+  gathered.images.resize(type.inputs.size());
+  for (size_t i = 0; i < type.inputs.size(); ++i) {
+    const PortInfo& port = type.inputs[i];
+    aq_input_value& in = gathered.values[i];
+    in = aq_input_value{static_cast<uint32_t>(port.type), 0, {0, 0, 0, 0}, nullptr};
+    auto link = node.inputs.find(port.name);
+    if (link == node.inputs.end()) {
+      if (!port.optional) {
+        return make_error("node '" + id + "' (" + type.name + "): required input '" + port.name +
+                          "' is not connected");
+      }
+      *key = hash_string(*key, "-");
+      continue;
+    }
+    NodeState& source = states[link->second.node];
+    int index = source.type != nullptr ? source.type->output_index(link->second.port) : -1;
+    if (index < 0) {
+      return make_error("node '" + id + "', input '" + port.name + "': '" + link->second.str() +
+                        "' is not an output port");
+    }
+    if (source.type->outputs[index].type != port.type) {
+      return make_error("node '" + id + "', input '" + port.name + "': expects " +
+                        port_type_name(port.type) + " but '" + link->second.str() + "' gives " +
+                        port_type_name(source.type->outputs[index].type));
+    }
+    *key = hash_value(*key, source.key);
+    *key = hash_string(*key, link->second.port);
+    in.connected = 1;
+    if (port.type == AQ_PORT_IMAGE) {
+      gathered.images[i] = source.images[index];
+      if (gathered.images[i]) in.image = gathered.images[i]->image;
+    } else {
+      in.scene = source.scenes[index];
+    }
+  }
+  return gathered;
+}
+
+}  // namespace
 
 struct Evaluator::Impl {
   GlContext& context;
-  TexturePool& pool;
-  ShaderCache shaders;
+  HostServices host;
   PointwiseFuser fuser;
   std::map<std::string, NodeState> states;
-  gl::VertexArray empty_vao;
-  gl::Framebuffer framebuffer;
-  GLuint attached_colors = 0;
-  aq_host host{};
 
-  Impl(GlContext& c, TexturePool& p) : context(c), pool(p) {
-    host.abi_version = AQ_ABI_VERSION;
-    host.struct_size = sizeof(aq_host);
-    host.get_proc_address = &Impl::get_proc_address;
-    host.fail = &Impl::fail;
-    host.log = &Impl::log;
-    host.program = &Impl::program;
-    host.output_image = &Impl::output_image;
-    host.pass_through = &Impl::pass_through;
-    host.output_scene = &Impl::output_scene;
-    host.scratch_image = &Impl::scratch_image;
-    host.bind_targets = &Impl::bind_targets;
-    host.draw_fullscreen = &Impl::draw_fullscreen;
-  }
-
+  Impl(GlContext& c, TexturePool& p) : context(c), host(c, p) {}
   ~Impl() { destroy_all(); }
 
   void destroy_state(NodeState& state) {
@@ -172,160 +205,12 @@ struct Evaluator::Impl {
     for (auto& [id, state] : states) destroy_state(state);
     states.clear();
   }
-
-  static Impl* current_impl;
-  static void* get_proc_address(const char* name) {
-    return current_impl != nullptr ? current_impl->context.get_proc_address(name) : nullptr;
-  }
-  static void fail(void* data, const char* message) {
-    auto* call = static_cast<CallState*>(data);
-    if (!call->error.empty()) call->error += "\n";
-    call->error += message != nullptr ? message : "(no message)";
-  }
-  static void log(void* data, int level, const char* message) {
-    auto* call = static_cast<CallState*>(data);
-    std::fprintf(stderr, "%s: node '%s': %s\n", level > 0 ? "warning" : "info",
-                 call->node_id.c_str(), message);
-  }
-  static uint32_t program(void* data, const aq_shader_source* vertex,
-                          const aq_shader_source* fragment) {
-    auto* call = static_cast<CallState*>(data);
-    auto result = call->impl->shaders.program(vertex, fragment);
-    if (!result.ok()) {
-      fail(data, result.message().c_str());
-      return 0;
-    }
-    return *result;
-  }
-  static bool valid_size(CallState* call, int32_t width, int32_t height) {
-    GLint limit = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limit);
-    if (width < 1 || height < 1 || width > limit || height > limit) {
-      fail(call, ("cannot make a " + std::to_string(width) + "x" + std::to_string(height) +
-                  " texture: sizes run from 1x1 to " + std::to_string(limit) + "x" +
-                  std::to_string(limit) + " on this GL implementation")
-                     .c_str());
-      return false;
-    }
-    return true;
-  }
-  static int output_image(void* data, uint32_t index, int32_t width, int32_t height,
-                          uint32_t format, aq_image* out) {
-    auto* call = static_cast<CallState*>(data);
-    NodeState& state = *call->state;
-    if (index >= state.images.size() || state.type->outputs[index].type != AQ_PORT_IMAGE) {
-      fail(data, ("output_image: no image output with index " + std::to_string(index)).c_str());
-      return AQ_ERROR;
-    }
-    if (!valid_size(call, width, height)) return AQ_ERROR;
-    state.images[index] = call->impl->pool.acquire(width, height, format);
-    *out = state.images[index]->image;
-    return AQ_OK;
-  }
-  static int pass_through(void* data, uint32_t index, uint32_t input_index) {
-    auto* call = static_cast<CallState*>(data);
-    NodeState& state = *call->state;
-    if (index >= state.images.size() || call->input_refs == nullptr ||
-        input_index >= call->input_refs->size() || !(*call->input_refs)[input_index]) {
-      fail(data, "pass_through: no such image output or connected image input");
-      return AQ_ERROR;
-    }
-    state.images[index] = (*call->input_refs)[input_index];
-    return AQ_OK;
-  }
-  static int output_scene(void* data, uint32_t index, const aq_scene* scene) {
-    auto* call = static_cast<CallState*>(data);
-    NodeState& state = *call->state;
-    if (index >= state.scenes.size() || state.type->outputs[index].type != AQ_PORT_SCENE) {
-      fail(data, ("output_scene: no scene output with index " + std::to_string(index)).c_str());
-      return AQ_ERROR;
-    }
-    state.scenes[index] = scene;
-    return AQ_OK;
-  }
-  static int scratch_image(void* data, int32_t width, int32_t height, uint32_t format,
-                           aq_image* out) {
-    auto* call = static_cast<CallState*>(data);
-    if (!valid_size(call, width, height)) return AQ_ERROR;
-    call->scratch.push_back(call->impl->pool.acquire(width, height, format));
-    *out = call->scratch.back()->image;
-    return AQ_OK;
-  }
-  static int bind_targets(void* data, const aq_image* colors, uint32_t count,
-                          const aq_image* depth) {
-    auto* call = static_cast<CallState*>(data);
-    Impl& impl = *call->impl;
-    GLuint fbo = impl.framebuffer.get();
-    GLint max_attachments = 8;
-    glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &max_attachments);
-    if (count > static_cast<uint32_t>(max_attachments)) {
-      fail(data, "bind_targets: too many colour targets");
-      return AQ_ERROR;
-    }
-    std::vector<GLenum> buffers;
-    for (uint32_t i = 0; i < count; ++i) {
-      glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + i, colors[i].texture, 0);
-      buffers.push_back(GL_COLOR_ATTACHMENT0 + i);
-    }
-    for (GLuint i = count; i < impl.attached_colors; ++i) {
-      glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + i, 0, 0);
-    }
-    impl.attached_colors = count;
-    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth != nullptr ? depth->texture : 0, 0);
-    if (count > 0) {
-      glNamedFramebufferDrawBuffers(fbo, static_cast<GLsizei>(count), buffers.data());
-    } else {
-      glNamedFramebufferDrawBuffer(fbo, GL_NONE);
-    }
-    GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE) {
-      char text[96];
-      std::snprintf(text, sizeof(text), "bind_targets: framebuffer incomplete (0x%04X)", status);
-      fail(data, text);
-      return AQ_ERROR;
-    }
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    const aq_image& size_of = count > 0 ? colors[0] : *depth;
-    glViewport(0, 0, size_of.width, size_of.height);
-    return AQ_OK;
-  }
-  static void draw_fullscreen(void* data) {
-    auto* call = static_cast<CallState*>(data);
-    glBindVertexArray(call->impl->empty_vao.get());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-  }
-
-  // Leaves GL as the next node expects to find it, whatever this node left bound.
-  void reset_gl_state() {
-    glUseProgram(0);
-    glBindVertexArray(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    glDepthMask(GL_TRUE);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    for (GLuint unit = 0; unit < 8; ++unit) {
-      glActiveTexture(GL_TEXTURE0 + unit);
-      glBindTexture(GL_TEXTURE_2D, 0);
-    }
-    glActiveTexture(GL_TEXTURE0);
-  }
 };
-
-Evaluator::Impl* Evaluator::Impl::current_impl = nullptr;
 
 Evaluator::Evaluator(GlContext& context, const Registry& registry)
     : context_(context), registry_(registry), pool_(std::make_unique<TexturePool>()) {
   context_.activate();
   impl_ = std::make_unique<Impl>(context_, *pool_);
-  impl_->empty_vao = gl::make_vertex_array();
-  glCreateFramebuffers(1, reinterpret_cast<GLuint*>(&impl_->attached_colors));
-  impl_->framebuffer = gl::Framebuffer(impl_->attached_colors);
-  impl_->attached_colors = 0;
 }
 
 Evaluator::~Evaluator() {
@@ -340,7 +225,7 @@ void Evaluator::clear() {
 }
 
 void Evaluator::set_shader_hot_reload(bool enabled) {
-  impl_->shaders.set_hot_reload(enabled);
+  impl_->host.shaders().set_hot_reload(enabled);
 }
 
 Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format) {
@@ -376,21 +261,19 @@ Result<ImageF> Evaluator::read_back(const TextureRef& texture) {
   return read_texture(image.texture, image.width, image.height, image.format);
 }
 
+Result<Plan> Evaluator::plan(const Graph& graph, const EvalOptions& options,
+                             const std::optional<PortRef>& output) const {
+  PlanOptions plan_options;
+  plan_options.fuse_pointwise = options.fuse_pointwise;
+  plan_options.retain_static_outputs = options.retain_outputs || options.retain_static_outputs;
+  return compile_plan(graph, registry_, plan_options, output);
+}
+
 Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& options,
                                        const std::optional<PortRef>& requested) {
   timings_.clear();
   if (!context_.activate()) return make_error("the OpenGL context cannot be made current");
-  Impl::current_impl = impl_.get();
-  std::optional<PortRef> target = requested ? requested : graph.output;
-  if (!target)
-    return make_error(
-        "the graph has no `output`: name the port to render, e.g. "
-        "\"output\": \"tint.image\"");
-  if (graph.nodes.find(target->node) == graph.nodes.end()) {
-    return make_error("output '" + target->str() + "' names node '" + target->node +
-                      "', which is not in the graph");
-  }
-
+  impl_->host.make_current();
   // Drop state of nodes that left the graph or changed type.
   for (auto it = impl_->states.begin(); it != impl_->states.end();) {
     auto node = graph.nodes.find(it->first);
@@ -403,66 +286,33 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
     }
   }
 
-  // Cull to what the output depends on and sort (depth-first, inputs before readers).
-  std::vector<std::string> order;
-  std::map<std::string, int> mark;  // 1 visiting, 2 done
-  std::function<Status(const std::string&, std::vector<std::string>&)> visit =
-      [&](const std::string& id, std::vector<std::string>& path) -> Status {
-    if (mark[id] == 2) return Ok{};
-    path.push_back(id);
-    if (mark[id] == 1) {
-      std::string cycle;
-      auto start = std::find(path.begin(), path.end(), id);
-      for (auto it = start; it != path.end(); ++it) cycle += (cycle.empty() ? "" : " -> ") + *it;
-      return make_error("the graph has a cycle: " + cycle);
-    }
-    mark[id] = 1;
-    auto node = graph.nodes.find(id);
-    if (node == graph.nodes.end()) return make_error("node '" + id + "' is not in the graph");
-    for (const auto& [port, source] : node->second.inputs) {
-      if (graph.nodes.find(source.node) == graph.nodes.end()) {
-        return make_error("node '" + id + "', input '" + port + "': source node '" + source.node +
-                          "' is not in the graph");
-      }
-      if (auto s = visit(source.node, path); !s.ok()) return s;
-    }
-    mark[id] = 2;
-    path.pop_back();
-    order.push_back(id);
-    return Ok{};
-  };
-  std::vector<std::string> path;
-  if (auto s = visit(target->node, path); !s.ok()) return s.error();
+  auto compiled = plan(graph, options, requested);
+  if (!compiled.ok()) return compiled.error();
+  const Plan& plan = *compiled;
+  const PortRef& target = plan.output;
 
-  // Readers per producer, so outputs can go back to the pool after their last use.
+  // Readers left per producer, so outputs go back to the pool after their last use.
   std::map<std::string, int> readers;
-  for (const auto& id : order) {
-    for (const auto& [port, source] : graph.nodes.at(id).inputs) ++readers[source.node];
-  }
-  readers[target->node] += 1;
-
   std::map<std::string, bool> varies;
-
-  const std::set<std::string> deferred =
-      options.fuse_pointwise ? deferred_nodes(graph, registry_, order, readers, target->node)
-                             : std::set<std::string>{};
+  for (const auto& planned : plan.nodes) {
+    readers[planned.id] = planned.readers;
+    varies[planned.id] = planned.varies;
+  }
   // The stages of each fused chain so far, by the id of its last deferred node.
   std::map<std::string, std::shared_ptr<FusedChain>> chains;
   const Settings& settings = graph.settings;
-  const uint32_t format = working_format(settings.precision);
+  const uint32_t format = plan.format;
   const double time = (options.frame - settings.first_frame) / std::max(settings.fps, 1e-6);
-  const PixelSize working = working_size(settings);
+  const PixelSize working = plan.working;
   std::filesystem::path graph_dir = graph.source_path.empty()
                                         ? std::filesystem::path()
                                         : std::filesystem::path(graph.source_path).parent_path();
+  const aq_host* host = impl_->host.table();
 
-  for (const auto& id : order) {
+  for (const PlannedNode& planned : plan.nodes) {
+    const std::string& id = planned.id;
     const Node& node = graph.nodes.at(id);
-    const NodeType* type = registry_.find(node.type);
-    if (type == nullptr) {
-      return make_error("node '" + id + "': unknown node type '" + node.type +
-                        "' (run `aquarelle nodes` to list the installed types)");
-    }
+    const NodeType* type = planned.type;
     NodeState& state = impl_->states[id];
     state.type = type;
     if (state.images.size() != type->outputs.size()) {
@@ -471,99 +321,14 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       state.valid = false;
     }
 
-    // Parameters, as the ABI passes them.
-    std::vector<aq_param_value> params(type->params.size());
-    std::vector<std::string> strings(type->params.size());
     uint64_t key = kHashSeed;
     key = hash_string(key, type->name);
-    for (size_t p = 0; p < type->params.size(); ++p) {
-      const ParamInfo& info = type->params[p];
-      nlohmann::json value = param_value_or_default(node, info);
-      // replace, not throw, on invalid UTF-8 from --set or the editor
-      key = hash_string(key, value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
-      aq_param_value& out = params[p];
-      out = aq_param_value{{0, 0, 0}, 0, nullptr};
-      switch (info.type) {
-        case AQ_PARAM_FLOAT:
-          out.f[0] = value.is_number() ? value.get<double>() : info.default_value[0];
-          break;
-        case AQ_PARAM_INT:
-          out.i = value.is_number() ? value.get<int64_t>()
-                                    : static_cast<int64_t>(info.default_value[0]);
-          out.f[0] = static_cast<double>(out.i);
-          break;
-        case AQ_PARAM_BOOL:
-          out.i = value.is_boolean() ? (value.get<bool>() ? 1 : 0) : (info.default_value[0] != 0);
-          break;
-        case AQ_PARAM_ENUM: {
-          out.i = static_cast<int64_t>(info.default_value[0]);
-          if (value.is_string()) {
-            for (size_t e = 0; e < info.enum_values.size(); ++e) {
-              if (info.enum_values[e] == value.get<std::string>()) out.i = static_cast<int64_t>(e);
-            }
-          } else if (value.is_number_integer()) {
-            out.i = value.get<int64_t>();
-          }
-          break;
-        }
-        case AQ_PARAM_COLOR:
-        case AQ_PARAM_VEC3:
-          for (int c = 0; c < 3; ++c) {
-            out.f[c] = value.is_array() && value.size() == 3 && value[c].is_number()
-                           ? value[c].get<double>()
-                           : info.default_value[c];
-          }
-          break;
-        case AQ_PARAM_STRING:
-        case AQ_PARAM_PATH: {
-          strings[p] = value.is_string() ? value.get<std::string>() : info.default_string;
-          if (info.type == AQ_PARAM_PATH && !strings[p].empty() &&
-              std::filesystem::path(strings[p]).is_relative() && !graph_dir.empty()) {
-            strings[p] = (graph_dir / strings[p]).lexically_normal().string();
-          }
-          out.s = strings[p].c_str();
-          break;
-        }
-      }
-    }
-
-    // Inputs, and the key they contribute.
-    std::vector<aq_input_value> inputs(type->inputs.size());
-    std::vector<TextureRef> input_refs(type->inputs.size());
-    for (size_t i = 0; i < type->inputs.size(); ++i) {
-      const PortInfo& port = type->inputs[i];
-      aq_input_value& in = inputs[i];
-      in = aq_input_value{static_cast<uint32_t>(port.type), 0, {0, 0, 0, 0}, nullptr};
-      auto link = node.inputs.find(port.name);
-      if (link == node.inputs.end()) {
-        if (!port.optional) {
-          return make_error("node '" + id + "' (" + type->name + "): required input '" + port.name +
-                            "' is not connected");
-        }
-        key = hash_string(key, "-");
-        continue;
-      }
-      NodeState& source = impl_->states[link->second.node];
-      int index = source.type != nullptr ? source.type->output_index(link->second.port) : -1;
-      if (index < 0) {
-        return make_error("node '" + id + "', input '" + port.name + "': '" + link->second.str() +
-                          "' is not an output port");
-      }
-      if (source.type->outputs[index].type != port.type) {
-        return make_error("node '" + id + "', input '" + port.name + "': expects " +
-                          port_type_name(port.type) + " but '" + link->second.str() + "' gives " +
-                          port_type_name(source.type->outputs[index].type));
-      }
-      key = hash_value(key, source.key);
-      key = hash_string(key, link->second.port);
-      in.connected = 1;
-      if (port.type == AQ_PORT_IMAGE) {
-        input_refs[i] = source.images[index];
-        if (input_refs[i]) in.image = input_refs[i]->image;
-      } else {
-        in.scene = source.scenes[index];
-      }
-    }
+    ParamValues param_values = convert_params(node, *type, graph_dir, &key);
+    std::vector<aq_param_value>& params = param_values.params;
+    auto gathered = gather_inputs(id, node, *type, impl_->states, &key);
+    if (!gathered.ok()) return gathered.error();
+    std::vector<aq_input_value>& inputs = gathered->values;
+    std::vector<TextureRef>& input_refs = gathered->images;
     key = hash_value(key, settings.width);
     key = hash_value(key, settings.height);
     key = hash_value(key, format);
@@ -580,15 +345,15 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
         chains.erase(found);
       }
     }
-    const bool is_deferred = deferred.count(id) != 0;
+    const bool is_deferred = planned.deferred;
     // The output's pointwise tail runs in the pass that resamples a proxy render's output.
     // Nodes without inputs (image_input, generators) have no input_refs[0].
     const TextureRef chain_input =
         chain ? chain->input : (input_refs.empty() ? TextureRef() : input_refs[0]);
-    const bool tail_into_resample =
-        !is_deferred && options.fuse_pointwise && type->fusable != nullptr && id == target->node &&
-        (working.width != settings.width || working.height != settings.height) && chain_input &&
-        chain_input->image.width == working.width && chain_input->image.height == working.height;
+    const PlannedPass* pass = is_deferred ? nullptr : plan.pass_of(id);
+    const bool tail_into_resample = pass != nullptr && pass->resamples && chain_input &&
+                                    chain_input->image.width == working.width &&
+                                    chain_input->image.height == working.height;
     if (is_deferred || ((chain || tail_into_resample) && !(state.valid && state.key == key))) {
       if (!chain) {
         chain = std::make_shared<FusedChain>();
@@ -599,7 +364,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
         }
       }
       if (state.instance == nullptr) {
-        state.instance = type->desc->create(&impl_->host);
+        state.instance = type->desc->create(host);
         if (state.instance == nullptr) {
           return make_error("node '" + id + "' (" + type->name +
                             "): the plugin could not create the node (out of memory?)");
@@ -609,12 +374,12 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       stage->type = type;
       stage->instance = state.instance;
       stage->params = std::move(params);
-      stage->strings = std::move(strings);
+      stage->strings = std::move(param_values.strings);
       stage->inputs = std::move(inputs);
-      stage->call.impl = impl_.get();
+      stage->call.host = &impl_->host;
       stage->call.state = &state;
       stage->call.node_id = id;
-      fill_process_ctx(stage->ctx, &impl_->host, context_.generation(), stage->call, stage->inputs,
+      fill_process_ctx(stage->ctx, host, context_.generation(), stage->call, stage->inputs,
                        stage->params, settings, format, time, options.frame, working);
       chain->stages.push_back(std::move(stage));
     }
@@ -638,12 +403,12 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       for (auto& stage : chain->stages) {
         stages.push_back(FusedStage{stage->type->fusable, stage->instance, &stage->ctx});
       }
-      auto fused = impl_->fuser.run(impl_->shaders, impl_->pool, stages, chain->input, width,
-                                    height, format);
+      auto fused = impl_->fuser.run(impl_->host.shaders(), impl_->host.pool(), stages, chain->input,
+                                    width, height, format);
       if (options.finish_each_node) glFinish();
       auto end = std::chrono::steady_clock::now();
       if (options.measure_gpu_time) state.mark_end();
-      impl_->reset_gl_state();
+      HostServices::reset_gl_state();
       ++run_counts_[id];
       std::string errors;
       for (auto& stage : chain->stages) {
@@ -668,13 +433,13 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       timings_.push_back(timing);
     } else {
       CallState call;
-      call.impl = impl_.get();
+      call.host = &impl_->host;
       call.state = &state;
       call.node_id = id;
       call.input_refs = &input_refs;
       aq_process_ctx ctx{};
-      fill_process_ctx(ctx, &impl_->host, context_.generation(), call, inputs, params, settings,
-                       format, time, options.frame, working);
+      fill_process_ctx(ctx, host, context_.generation(), call, inputs, params, settings, format,
+                       time, options.frame, working);
 
       for (auto& image : state.images) image.reset();
       for (auto& scene : state.scenes) scene = nullptr;
@@ -683,11 +448,11 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       auto start = std::chrono::steady_clock::now();
       int status = AQ_OK;
       if (type->desc == nullptr) {
-        status = run_builtin(*type, state.builtin, ctx, options, impl_->pool, &state.images,
+        status = run_builtin(*type, state.builtin, ctx, options, impl_->host.pool(), &state.images,
                              &call.error);
       } else {
         if (state.instance == nullptr) {
-          state.instance = type->desc->create(&impl_->host);
+          state.instance = type->desc->create(host);
           if (state.instance == nullptr) {
             return make_error("node '" + id + "' (" + type->name +
                               "): the plugin could not create the node (out of memory?)");
@@ -698,7 +463,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       if (options.finish_each_node) glFinish();
       auto end = std::chrono::steady_clock::now();
       if (options.measure_gpu_time) state.mark_end();
-      impl_->reset_gl_state();
+      HostServices::reset_gl_state();
       call.scratch.clear();
       NodeTiming timing{id, type->name, 0,
                         std::chrono::duration<double, std::milli>(end - start).count(), false};
@@ -724,11 +489,6 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       state.valid = true;
     }
 
-    // A node varies over time when it or anything upstream is time-dependent.
-    bool node_varies = type->time_dependent();
-    for (const auto& [port, source] : node.inputs) node_varies = node_varies || varies[source.node];
-    varies[id] = node_varies;
-
     // Inputs read for the last time go back to the pool, except static results that the next
     // frame will reuse.
     if (!options.retain_outputs) {
@@ -743,19 +503,19 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
     }
   }
 
-  NodeState& last = impl_->states[target->node];
-  int index = last.type->output_index(target->port);
+  NodeState& last = impl_->states[target.node];
+  int index = last.type->output_index(target.port);
   if (index < 0) {
-    return make_error("output '" + target->str() + "': node '" + target->node + "' (" +
-                      last.type->name + ") has no output port '" + target->port + "'");
+    return make_error("output '" + target.str() + "': node '" + target.node + "' (" +
+                      last.type->name + ") has no output port '" + target.port + "'");
   }
   if (last.type->outputs[index].type != AQ_PORT_IMAGE) {
-    return make_error("output '" + target->str() +
+    return make_error("output '" + target.str() +
                       "' is a scene, not an image: render an "
                       "image port, e.g. a gbuffer or cel_light output");
   }
   TextureRef result = last.images[index];
-  if (!options.retain_outputs && !(options.retain_static_outputs && !varies[target->node])) {
+  if (!options.retain_outputs && !(options.retain_static_outputs && !varies[target.node])) {
     for (auto& image : last.images) image.reset();
     last.valid = false;
   }
@@ -767,9 +527,9 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
     if (!filterable || (working.width == settings.width && working.height == settings.height)) {
       return result;  // ids and depth stay at the working size: they cannot be filtered
     }
-    auto resampled = impl_->fuser.run(impl_->shaders, impl_->pool, {}, result, settings.width,
-                                      settings.height, out_format);
-    impl_->reset_gl_state();
+    auto resampled = impl_->fuser.run(impl_->host.shaders(), impl_->host.pool(), {}, result,
+                                      settings.width, settings.height, out_format);
+    HostServices::reset_gl_state();
     if (!resampled.ok())
       return make_error("resampling the output to the graph's size: " + resampled.message());
     return *resampled;

@@ -228,6 +228,18 @@ TEST(Bench, RefusesBadInputWithExitCode1) {
   EXPECT_NE(unknown.output.find("no such node type"), std::string::npos) << unknown.output;
 }
 
+TEST(Bench, TimesTheQualityPresetAsked) {
+  auto run = bench_json("tint", "--size 64x64 --frames 1 --warmup 0 --no-sweep --quality draft",
+                        "bench_quality");
+  ASSERT_EQ(run.exit_code, 0) << run.errors;
+  ASSERT_TRUE(run.report.is_object()) << run.errors;
+  EXPECT_EQ(run.report["quality"], "draft");
+  auto bad =
+      aq::test::aquarelle("bench " + aq::test::source_path("graphs/tint.json") + " --quality best");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.output.find("draft, preview or final"), std::string::npos) << bad.output;
+}
+
 TEST(Bench, HelpDescribesTheCommand) {
   auto help = aq::test::aquarelle("bench --help");
   EXPECT_EQ(help.exit_code, 0);

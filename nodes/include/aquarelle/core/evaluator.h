@@ -1,6 +1,7 @@
 // Evaluates a graph for one frame by pulling from the requested output.
 //
-//   compile: cull to the nodes the output depends on, sort them, count readers per output
+//   compile: the plan (plan.h): cull to the nodes the output depends on, sort them, count
+//            readers per output, mark static nodes, choose fused chains, size each pass
 //   execute: for each node, compute its cache key = hash(type, params, input keys, settings,
 //            time if time-dependent); equal to last run → reuse its outputs, else process()
 //   release: after a node's last reader ran, its outputs go back to the texture pool unless
@@ -12,6 +13,7 @@
 #include <aquarelle/core/gl_context.h>
 #include <aquarelle/core/graph.h>
 #include <aquarelle/core/image.h>
+#include <aquarelle/core/plan.h>
 #include <aquarelle/core/registry.h>
 #include <aquarelle/core/result.h>
 #include <aquarelle/core/texture_pool.h>
@@ -69,6 +71,10 @@ class Evaluator {
   // next evaluate() or until released. Errors name the node, e.g. "node 'blur' (blur): ...".
   Result<TextureRef> evaluate(const Graph& graph, const EvalOptions& options,
                               const std::optional<PortRef>& output = std::nullopt);
+
+  // The plan evaluate() would execute for these options (nothing runs, no GL needed).
+  Result<Plan> plan(const Graph& graph, const EvalOptions& options,
+                    const std::optional<PortRef>& output = std::nullopt) const;
 
   // Reads a texture back as float pixels (RGBA, or 1 channel for R32F).
   Result<ImageF> read_back(const TextureRef& texture);

@@ -1,0 +1,203 @@
+// The aq_host services (see host_services.h), moved out of the evaluator so that evaluation
+// (plan, then execution) and what plugins may ask of the host read as separate things.
+#include "host_services.h"
+
+#include <aquarelle/core/gl_context.h>
+
+#include <cstdio>
+
+namespace aq {
+
+void NodeState::mark_start() {
+  if (!timer_start) {
+    timer_start = gl::make_query();
+    timer_end = gl::make_query();
+  }
+  glQueryCounter(timer_start.get(), GL_TIMESTAMP);
+}
+
+void NodeState::mark_end() {
+  glQueryCounter(timer_end.get(), GL_TIMESTAMP);
+}
+
+double NodeState::marked_gpu_ms() const {
+  GLuint64 begin_ns = 0, end_ns = 0;
+  glGetQueryObjectui64v(timer_start.get(), GL_QUERY_RESULT, &begin_ns);
+  glGetQueryObjectui64v(timer_end.get(), GL_QUERY_RESULT, &end_ns);
+  return end_ns > begin_ns ? static_cast<double>(end_ns - begin_ns) * 1e-6 : 0.0;
+}
+
+HostServices* HostServices::current_ = nullptr;
+
+HostServices::HostServices(GlContext& context, TexturePool& pool) : context_(context), pool_(pool) {
+  host_.abi_version = AQ_ABI_VERSION;
+  host_.struct_size = sizeof(aq_host);
+  host_.get_proc_address = &HostServices::get_proc_address;
+  host_.fail = &HostServices::fail;
+  host_.log = &HostServices::log;
+  host_.program = &HostServices::program;
+  host_.output_image = &HostServices::output_image;
+  host_.pass_through = &HostServices::pass_through;
+  host_.output_scene = &HostServices::output_scene;
+  host_.scratch_image = &HostServices::scratch_image;
+  host_.bind_targets = &HostServices::bind_targets;
+  host_.draw_fullscreen = &HostServices::draw_fullscreen;
+  empty_vao_ = gl::make_vertex_array();
+  GLuint framebuffer = 0;
+  glCreateFramebuffers(1, &framebuffer);  // created, not just named: DSA calls need that
+  framebuffer_ = gl::Framebuffer(framebuffer);
+}
+
+void* HostServices::get_proc_address(const char* name) {
+  return current_ != nullptr ? current_->context_.get_proc_address(name) : nullptr;
+}
+
+void HostServices::fail(void* data, const char* message) {
+  fail_call(*static_cast<CallState*>(data), message != nullptr ? message : "(no message)");
+}
+
+void fail_call(CallState& call, const std::string& message) {
+  if (!call.error.empty()) call.error += "\n";
+  call.error += message;
+}
+
+void HostServices::log(void* data, int level, const char* message) {
+  auto* call = static_cast<CallState*>(data);
+  std::fprintf(stderr, "%s: node '%s': %s\n", level > 0 ? "warning" : "info", call->node_id.c_str(),
+               message);
+}
+
+uint32_t HostServices::program(void* data, const aq_shader_source* vertex,
+                               const aq_shader_source* fragment) {
+  auto* call = static_cast<CallState*>(data);
+  auto result = call->host->shaders_.program(vertex, fragment);
+  if (!result.ok()) {
+    fail(data, result.message().c_str());
+    return 0;
+  }
+  return *result;
+}
+
+bool HostServices::valid_size(CallState* call, int32_t width, int32_t height) {
+  GLint limit = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limit);
+  if (width < 1 || height < 1 || width > limit || height > limit) {
+    fail_call(*call, "cannot make a " + std::to_string(width) + "x" + std::to_string(height) +
+                         " texture: sizes run from 1x1 to " + std::to_string(limit) + "x" +
+                         std::to_string(limit) + " on this GL implementation");
+    return false;
+  }
+  return true;
+}
+
+int HostServices::output_image(void* data, uint32_t index, int32_t width, int32_t height,
+                               uint32_t format, aq_image* out) {
+  auto* call = static_cast<CallState*>(data);
+  NodeState& state = *call->state;
+  if (index >= state.images.size() || state.type->outputs[index].type != AQ_PORT_IMAGE) {
+    fail_call(*call, "output_image: no image output with index " + std::to_string(index));
+    return AQ_ERROR;
+  }
+  if (!valid_size(call, width, height)) return AQ_ERROR;
+  state.images[index] = call->host->pool_.acquire(width, height, format);
+  *out = state.images[index]->image;
+  return AQ_OK;
+}
+
+int HostServices::pass_through(void* data, uint32_t index, uint32_t input_index) {
+  auto* call = static_cast<CallState*>(data);
+  NodeState& state = *call->state;
+  if (index >= state.images.size() || call->input_refs == nullptr ||
+      input_index >= call->input_refs->size() || !(*call->input_refs)[input_index]) {
+    fail_call(*call, "pass_through: no such image output or connected image input");
+    return AQ_ERROR;
+  }
+  state.images[index] = (*call->input_refs)[input_index];
+  return AQ_OK;
+}
+
+int HostServices::output_scene(void* data, uint32_t index, const aq_scene* scene) {
+  auto* call = static_cast<CallState*>(data);
+  NodeState& state = *call->state;
+  if (index >= state.scenes.size() || state.type->outputs[index].type != AQ_PORT_SCENE) {
+    fail_call(*call, "output_scene: no scene output with index " + std::to_string(index));
+    return AQ_ERROR;
+  }
+  state.scenes[index] = scene;
+  return AQ_OK;
+}
+
+int HostServices::scratch_image(void* data, int32_t width, int32_t height, uint32_t format,
+                                aq_image* out) {
+  auto* call = static_cast<CallState*>(data);
+  if (!valid_size(call, width, height)) return AQ_ERROR;
+  call->scratch.push_back(call->host->pool_.acquire(width, height, format));
+  *out = call->scratch.back()->image;
+  return AQ_OK;
+}
+
+int HostServices::bind_targets(void* data, const aq_image* colors, uint32_t count,
+                               const aq_image* depth) {
+  auto* call = static_cast<CallState*>(data);
+  HostServices& host = *call->host;
+  GLuint fbo = host.framebuffer_.get();
+  GLint max_attachments = 8;
+  glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &max_attachments);
+  if (count > static_cast<uint32_t>(max_attachments)) {
+    fail_call(*call, "bind_targets: too many colour targets");
+    return AQ_ERROR;
+  }
+  std::vector<GLenum> buffers;
+  for (uint32_t i = 0; i < count; ++i) {
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + i, colors[i].texture, 0);
+    buffers.push_back(GL_COLOR_ATTACHMENT0 + i);
+  }
+  for (GLuint i = count; i < host.attached_colors_; ++i) {
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + i, 0, 0);
+  }
+  host.attached_colors_ = count;
+  glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth != nullptr ? depth->texture : 0, 0);
+  if (count > 0) {
+    glNamedFramebufferDrawBuffers(fbo, static_cast<GLsizei>(count), buffers.data());
+  } else {
+    glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+  }
+  GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    char text[96];
+    std::snprintf(text, sizeof(text), "bind_targets: framebuffer incomplete (0x%04X)", status);
+    fail_call(*call, text);
+    return AQ_ERROR;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  const aq_image& size_of = count > 0 ? colors[0] : *depth;
+  glViewport(0, 0, size_of.width, size_of.height);
+  return AQ_OK;
+}
+
+void HostServices::draw_fullscreen(void* data) {
+  auto* call = static_cast<CallState*>(data);
+  glBindVertexArray(call->host->empty_vao_.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+}
+
+void HostServices::reset_gl_state() {
+  glUseProgram(0);
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  for (GLuint unit = 0; unit < 8; ++unit) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
+  glActiveTexture(GL_TEXTURE0);
+}
+
+}  // namespace aq

@@ -1,0 +1,234 @@
+// Compiling the evaluation plan (see plan.h).
+#include <aquarelle/core/plan.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <functional>
+#include <set>
+
+namespace aq {
+
+namespace {
+
+// Depth-first from the output: only what it depends on, inputs before their readers.
+Status cull_and_sort(const Graph& graph, const std::string& target,
+                     std::vector<std::string>* order) {
+  std::map<std::string, int> mark;  // 1 visiting, 2 done
+  std::vector<std::string> path;
+  std::function<Status(const std::string&)> visit = [&](const std::string& id) -> Status {
+    if (mark[id] == 2) return Ok{};
+    path.push_back(id);
+    if (mark[id] == 1) {
+      std::string cycle;
+      auto start = std::find(path.begin(), path.end(), id);
+      for (auto it = start; it != path.end(); ++it) cycle += (cycle.empty() ? "" : " -> ") + *it;
+      return make_error("the graph has a cycle: " + cycle);
+    }
+    mark[id] = 1;
+    auto node = graph.nodes.find(id);
+    if (node == graph.nodes.end()) return make_error("node '" + id + "' is not in the graph");
+    for (const auto& [port, source] : node->second.inputs) {
+      if (graph.nodes.find(source.node) == graph.nodes.end()) {
+        return make_error("node '" + id + "', input '" + port + "': source node '" + source.node +
+                          "' is not in the graph");
+      }
+      if (auto s = visit(source.node); !s.ok()) return s;
+    }
+    mark[id] = 2;
+    path.pop_back();
+    order->push_back(id);
+    return Ok{};
+  };
+  return visit(target);
+}
+
+// The node linked to a node's first input (the image a pointwise node transforms), if any.
+const std::string* first_input_source(const Node& node, const NodeType& type) {
+  if (type.inputs.empty()) return nullptr;
+  auto link = node.inputs.find(type.inputs[0].name);
+  return link == node.inputs.end() ? nullptr : &link->second.node;
+}
+
+// Pointwise nodes whose function runs inside their reader's pass instead of a pass of their
+// own: they give a fusable function, are not the output, and their only reader is another
+// such node reading them on its image input.
+std::set<std::string> deferred_nodes(const Graph& graph, const Registry& registry,
+                                     const std::vector<std::string>& order,
+                                     const std::map<std::string, int>& readers,
+                                     const std::string& target) {
+  std::set<std::string> deferred;
+  auto fusable = [&](const std::string& id) {
+    const NodeType* type = registry.find(graph.nodes.at(id).type);
+    return type != nullptr && type->fusable != nullptr;
+  };
+  for (const auto& reader_id : order) {
+    if (!fusable(reader_id)) continue;
+    const NodeType* reader_type = registry.find(graph.nodes.at(reader_id).type);
+    const std::string* source = first_input_source(graph.nodes.at(reader_id), *reader_type);
+    if (source == nullptr) continue;
+    if (*source != target && readers.at(*source) == 1 && fusable(*source)) deferred.insert(*source);
+  }
+  return deferred;
+}
+
+const char* format_name(uint32_t format) {
+  switch (format) {
+    case AQ_FORMAT_RGBA16F:
+      return "RGBA16F";
+    case AQ_FORMAT_RGBA32F:
+      return "RGBA32F";
+    case AQ_FORMAT_R32F:
+      return "R32F";
+    case AQ_FORMAT_DEPTH32F:
+      return "DEPTH32F";
+    case AQ_FORMAT_R32UI:
+      return "R32UI";
+    default:
+      return "?";
+  }
+}
+
+}  // namespace
+
+const PlannedNode* Plan::find(const std::string& id) const {
+  for (const auto& node : nodes)
+    if (node.id == id) return &node;
+  return nullptr;
+}
+
+const PlannedPass* Plan::pass_of(const std::string& id) const {
+  for (const auto& pass : passes)
+    if (std::find(pass.chain.begin(), pass.chain.end(), id) != pass.chain.end()) return &pass;
+  return nullptr;
+}
+
+Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const PlanOptions& options,
+                          const std::optional<PortRef>& requested) {
+  Plan plan;
+  std::optional<PortRef> target = requested ? requested : graph.output;
+  if (!target)
+    return make_error(
+        "the graph has no `output`: name the port to render, e.g. "
+        "\"output\": \"tint.image\"");
+  if (graph.nodes.find(target->node) == graph.nodes.end()) {
+    return make_error("output '" + target->str() + "' names node '" + target->node +
+                      "', which is not in the graph");
+  }
+  plan.output = *target;
+  plan.working = working_size(graph.settings);
+  plan.output_size = PixelSize{graph.settings.width, graph.settings.height};
+  plan.format = graph.settings.precision == "float" ? AQ_FORMAT_RGBA32F : AQ_FORMAT_RGBA16F;
+
+  std::vector<std::string> order;
+  if (auto s = cull_and_sort(graph, target->node, &order); !s.ok()) return s.error();
+  for (const auto& id : order) {
+    const Node& node = graph.nodes.at(id);
+    if (registry.find(node.type) == nullptr) {
+      return make_error("node '" + id + "': unknown node type '" + node.type +
+                        "' (run `aquarelle nodes` to list the installed types)");
+    }
+  }
+
+  std::map<std::string, int> readers;
+  for (const auto& id : order) readers[id] += 0;
+  for (const auto& id : order) {
+    for (const auto& [port, source] : graph.nodes.at(id).inputs) ++readers[source.node];
+  }
+  readers[target->node] += 1;
+  const std::set<std::string> deferred =
+      options.fuse_pointwise ? deferred_nodes(graph, registry, order, readers, target->node)
+                             : std::set<std::string>{};
+
+  std::map<std::string, bool> varies;
+  std::map<std::string, std::vector<std::string>> chain_of;  // deferred stages ending at a node
+  const bool proxy = plan.working.width != plan.output_size.width ||
+                     plan.working.height != plan.output_size.height;
+  for (const auto& id : order) {
+    const Node& node = graph.nodes.at(id);
+    const NodeType* type = registry.find(node.type);
+    PlannedNode planned;
+    planned.id = id;
+    planned.type = type;
+    planned.readers = readers[id];
+    planned.varies = type->time_dependent();
+    for (const auto& [port, source] : node.inputs)
+      planned.varies = planned.varies || varies[source.node];
+    varies[id] = planned.varies;
+    planned.deferred = deferred.count(id) != 0;
+    plan.nodes.push_back(planned);
+
+    // The chain of deferred nodes feeding this one through its first input.
+    std::vector<std::string> chain;
+    if (type->fusable != nullptr) {
+      if (const std::string* source = first_input_source(node, *type)) {
+        if (auto found = chain_of.find(*source); found != chain_of.end()) {
+          chain = std::move(found->second);
+          chain_of.erase(found);
+        }
+      }
+    }
+    chain.push_back(id);
+    if (planned.deferred) {
+      chain_of[id] = std::move(chain);
+      continue;
+    }
+    PlannedPass pass;
+    pass.node = id;
+    pass.chain = std::move(chain);
+    pass.size = plan.working;
+    pass.format = plan.format;
+    pass.resamples = options.fuse_pointwise && type->fusable != nullptr && id == target->node &&
+                     proxy && first_input_source(node, *type) != nullptr;
+    if (pass.resamples) pass.size = plan.output_size;
+    pass.fused = pass.chain.size() > 1 || pass.resamples;
+    pass.reads_per_pixel = pass.fused ? 1 : -1;
+    pass.intermediates_saved = static_cast<int>(pass.chain.size()) - 1;
+    pass.cached = !planned.varies && options.retain_static_outputs;
+    plan.passes.push_back(std::move(pass));
+  }
+  const PlannedPass* last = plan.pass_of(target->node);
+  plan.upscale = proxy && !(last != nullptr && last->resamples);
+  return plan;
+}
+
+std::string format_plan(const Plan& plan) {
+  std::string text;
+  char line[256];
+  std::snprintf(line, sizeof(line),
+                "plan for %s: working size %dx%d, output %dx%d, %s; %zu node(s) in %zu pass(es)\n",
+                plan.output.str().c_str(), plan.working.width, plan.working.height,
+                plan.output_size.width, plan.output_size.height, format_name(plan.format),
+                plan.nodes.size(), plan.passes.size() + (plan.upscale ? 1 : 0));
+  text += line;
+  std::snprintf(line, sizeof(line), "%-4s %-16s %-12s %-11s %-8s %-7s %-6s %s\n", "pass", "node",
+                "type", "size", "format", "reads", "static", "computes");
+  text += line;
+  int index = 0;
+  for (const auto& pass : plan.passes) {
+    const PlannedNode* node = plan.find(pass.node);
+    std::string chain;
+    for (const auto& id : pass.chain) chain += (chain.empty() ? "" : " -> ") + id;
+    if (pass.fused) chain = "fused: " + chain;
+    if (pass.resamples) chain += " (inside the upscale)";
+    char size[32];
+    std::snprintf(size, sizeof(size), "%dx%d", pass.size.width, pass.size.height);
+    const std::string reads =
+        pass.reads_per_pixel < 0 ? std::string("node") : std::to_string(pass.reads_per_pixel);
+    std::snprintf(line, sizeof(line), "%-4d %-16s %-12s %-11s %-8s %-7s %-6s %s\n", ++index,
+                  pass.node.c_str(), node->type->name.c_str(), size, format_name(pass.format),
+                  reads.c_str(), pass.cached ? "yes" : "no", chain.c_str());
+    text += line;
+  }
+  if (plan.upscale) {
+    std::snprintf(line, sizeof(line), "%-4d %-16s %-12s %dx%d bilinear upscale of %s\n", ++index,
+                  "(host)", "resample", plan.output_size.width, plan.output_size.height,
+                  plan.output.str().c_str());
+    text += line;
+  }
+  text +=
+      "reads: image reads per output pixel of a host-fused pass; 'node': the node's own "
+      "process() decides (sizes of shadow maps and caustic textures too)\n";
+  return text;
+}
+
+}  // namespace aq
