@@ -6,7 +6,10 @@
 #include <aquarelle/core/graph_io.h>
 #include <aquarelle/core/quality.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <limits>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -209,6 +212,15 @@ struct Evaluator::Impl {
     }
     return true;
   }
+  // An unknown format would get an all-zero texture of some default kind: refuse it by name.
+  static bool valid_format(CallState* call, const char* function, uint32_t format) {
+    if (format >= AQ_FORMAT_RGBA16F && format <= AQ_FORMAT_R32UI) return true;
+    fail(call, (std::string(function) + ": unknown image format " + std::to_string(format) +
+                " (aq_format in plugin.h: 1 RGBA16F, 2 RGBA32F, 3 R32F, 4 DEPTH32F, 5 R32UI; "
+                "use ctx.working_format for the graph's precision)")
+                   .c_str());
+    return false;
+  }
   static int output_image(void* data, uint32_t index, int32_t width, int32_t height,
                           uint32_t format, aq_image* out) {
     auto* call = static_cast<CallState*>(data);
@@ -217,6 +229,7 @@ struct Evaluator::Impl {
       fail(data, ("output_image: no image output with index " + std::to_string(index)).c_str());
       return AQ_ERROR;
     }
+    if (!valid_format(call, "output_image", format)) return AQ_ERROR;
     if (!valid_size(call, width, height)) return AQ_ERROR;
     state.images[index] = call->impl->pool.acquire(width, height, format);
     *out = state.images[index]->image;
@@ -246,6 +259,7 @@ struct Evaluator::Impl {
   static int scratch_image(void* data, int32_t width, int32_t height, uint32_t format,
                            aq_image* out) {
     auto* call = static_cast<CallState*>(data);
+    if (!valid_format(call, "scratch_image", format)) return AQ_ERROR;
     if (!valid_size(call, width, height)) return AQ_ERROR;
     call->scratch.push_back(call->impl->pool.acquire(width, height, format));
     *out = call->scratch.back()->image;
@@ -343,24 +357,46 @@ void Evaluator::set_shader_hot_reload(bool enabled) {
   impl_->shaders.set_hot_reload(enabled);
 }
 
-Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format) {
-  bool single = format == AQ_FORMAT_R32F || format == AQ_FORMAT_DEPTH32F;
-  ImageF out(width, height, single ? 1 : 4);
+int readback_rows_per_band(int width, int bytes_per_pixel, int64_t max_bytes) {
+  const int64_t row = static_cast<int64_t>(std::max(width, 1)) * std::max(bytes_per_pixel, 1);
+  return static_cast<int>(std::clamp<int64_t>(max_bytes / row, 1, std::numeric_limits<int>::max()));
+}
+
+Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format,
+                            int64_t max_bytes_per_read) {
+  bool single = format == AQ_FORMAT_R32F || format == AQ_FORMAT_DEPTH32F ||
+                format == AQ_FORMAT_R32UI;
+  const int channels = single ? 1 : 4;
+  ImageF out(width, height, channels);
   while (glGetError() != GL_NO_ERROR) {
   }  // only this read's error counts below
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  if (format == AQ_FORMAT_R32UI) {
-    std::vector<uint32_t> ids(static_cast<size_t>(width) * height);
-    glGetTextureImage(texture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                      static_cast<GLsizei>(ids.size() * 4), ids.data());
-    out = ImageF(width, height, 1);
-    for (size_t i = 0; i < ids.size(); ++i) out.pixels[i] = static_cast<float>(ids[i]);
-    return out;
+  const bool ids = format == AQ_FORMAT_R32UI;
+  const GLenum gl_format = ids ? GL_RED_INTEGER
+                               : (format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT
+                                                               : (single ? GL_RED : GL_RGBA));
+  const GLenum gl_type = ids ? GL_UNSIGNED_INT : GL_FLOAT;
+  // The buffer size of one read is a GLsizei: a 16384x16384 RGBA float image (4 GiB) does not
+  // fit, so large textures are read in bands of rows, each well under 2 GiB.
+  const int pixel_bytes = channels * 4;
+  const int band = readback_rows_per_band(width, pixel_bytes, max_bytes_per_read);
+  std::vector<uint32_t> id_rows;
+  for (int y = 0; y < height; y += band) {
+    const int rows = std::min(band, height - y);
+    const size_t offset = static_cast<size_t>(y) * width * channels;
+    const auto bytes = static_cast<GLsizei>(static_cast<int64_t>(rows) * width * pixel_bytes);
+    void* target = out.pixels.data() + offset;
+    if (ids) {
+      id_rows.resize(static_cast<size_t>(rows) * width);
+      target = id_rows.data();
+    }
+    glGetTextureSubImage(texture, 0, 0, y, 0, width, rows, 1, gl_format, gl_type, bytes, target);
+    if (ids) {
+      for (size_t i = 0; i < id_rows.size(); ++i) {
+        out.pixels[offset + i] = static_cast<float>(id_rows[i]);
+      }
+    }
   }
-  GLenum gl_format =
-      format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : (single ? GL_RED : GL_RGBA);
-  glGetTextureImage(texture, 0, gl_format, GL_FLOAT,
-                    static_cast<GLsizei>(out.pixels.size() * sizeof(float)), out.pixels.data());
   if (GLenum error = glGetError(); error != GL_NO_ERROR) {
     char text[96];
     std::snprintf(text, sizeof(text), "reading the texture back failed (GL error 0x%04X)", error);
@@ -517,6 +553,11 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
         case AQ_PARAM_STRING:
         case AQ_PARAM_PATH: {
           strings[p] = value.is_string() ? value.get<std::string>() : info.default_string;
+          if (strings[p].find('\0') != std::string::npos) {
+            // The ABI passes C strings: the part before the NUL would be used silently.
+            return make_error("node '" + id + "' (" + type->name + "), parameter '" + info.name +
+                              "': the value contains a NUL character; remove it");
+          }
           if (info.type == AQ_PARAM_PATH && !strings[p].empty() &&
               std::filesystem::path(strings[p]).is_relative() && !graph_dir.empty()) {
             strings[p] = (graph_dir / strings[p]).lexically_normal().string();
