@@ -8,8 +8,8 @@
 #include <aquarelle/core/image_io.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 
@@ -44,7 +44,7 @@ Renders the graph's output for each frame and writes it to OUT.
   --float                 write EXR as 32-bit float instead of half
   --stats                 print a table of per-node GPU and CPU time
   --resume                skip frames whose output file already exists and reads completely;
-                          removes temporaries that killed renders left (.NAME.aqtmp-PID)
+                          removes temporaries that killed renders left (.NAME.tmp-PID)
   -q, --quiet             no progress output
 
 Exit codes: 0 ok, 1 bad input, 2 no usable GL or plugins, 130 interrupted.
@@ -259,7 +259,8 @@ int run_render(int argc, char** argv) {
         std::fprintf(stderr, "aquarelle render: --view: %s\n", t.message().c_str());
         return kExitBadInput;
       }
-      std::fprintf(stderr, "aquarelle render: the OpenColorIO config %s%s is unusable: %s (fix it%s)\n",
+      std::fprintf(stderr,
+                   "aquarelle render: the OpenColorIO config %s%s is unusable: %s (fix it%s)\n",
                    color->path().c_str(), std::getenv("OCIO") != nullptr ? " (from $OCIO)" : "",
                    t.message().c_str(),
                    std::getenv("OCIO") != nullptr ? ", or unset $OCIO to use Aquarelle's own" : "");

@@ -1,6 +1,7 @@
 #include "render_guards.h"
 
 #include <aquarelle/core/graph_io.h>
+#include <aquarelle/core/image_io.h>
 
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -57,8 +58,8 @@ Status probe_gl_in_child(GlBackend backend, const std::string& device) {
     if (std::chrono::steady_clock::now() > deadline) {
       ::kill(child, SIGKILL);
       ::waitpid(child, &status, 0);
-      return make_error(std::string("creating a ") + backend_name(backend) +
-                        " GL context hung for 30 s; the GL driver is broken (" +
+      return make_error(std::string("creating an OpenGL context (") + backend_name(backend) +
+                        " backend) hung for 30 s; the GL driver is broken (" +
                         driver_environment() + "); try --gl egl or --gl osmesa");
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -66,8 +67,9 @@ Status probe_gl_in_child(GlBackend backend, const std::string& device) {
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
     return make_error(std::string("the GL driver crashed (signal ") + std::to_string(signal) +
-                      ", " + strsignal(signal) + ") while creating a " + backend_name(backend) +
-                      " context; check the driver environment (" + driver_environment() +
+                      ", " + strsignal(signal) + ") while creating an OpenGL context (" +
+                      backend_name(backend) + " backend); check the driver environment (" +
+                      driver_environment() +
                       "; e.g. GALLIUM_DRIVER must be llvmpipe or softpipe, or unset) or choose "
                       "another backend with --gl egl|osmesa");
   }
@@ -128,6 +130,7 @@ void write_text(const char* text) {
 }
 
 void forced_stop(int) {
+  remove_temporary_in_progress();
   write_text(
       "\naquarelle render: interrupted inside a frame; complete frames are kept, run again "
       "with --resume to finish\n");
@@ -145,11 +148,13 @@ void on_stop_signal(int) {
 void install_stop_handlers() {
   struct sigaction action {};
   action.sa_handler = on_stop_signal;
+  action.sa_flags = SA_RESTART;  // a read interrupted by the signal must not fail as bad input
   sigemptyset(&action.sa_mask);
   ::sigaction(SIGINT, &action, nullptr);
   ::sigaction(SIGTERM, &action, nullptr);
   struct sigaction alarm_action {};
   alarm_action.sa_handler = forced_stop;
+  alarm_action.sa_flags = SA_RESTART;
   sigemptyset(&alarm_action.sa_mask);
   ::sigaction(SIGALRM, &alarm_action, nullptr);
 }

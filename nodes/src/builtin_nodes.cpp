@@ -79,8 +79,8 @@ TextureRef upload_image(TexturePool& pool, const ImageF& image) {
     data = rgba.data();
   }
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage2D(texture->image.texture, 0, 0, 0, image.width, image.height, GL_RGBA,
-                      GL_FLOAT, data);
+  glTextureSubImage2D(texture->image.texture, 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT,
+                      data);
   return texture;
 }
 

@@ -9,10 +9,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
-#include <limits>
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <set>
 
 #include "builtin_nodes.h"
@@ -364,17 +364,17 @@ int readback_rows_per_band(int width, int bytes_per_pixel, int64_t max_bytes) {
 
 Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format,
                             int64_t max_bytes_per_read) {
-  bool single = format == AQ_FORMAT_R32F || format == AQ_FORMAT_DEPTH32F ||
-                format == AQ_FORMAT_R32UI;
+  bool single =
+      format == AQ_FORMAT_R32F || format == AQ_FORMAT_DEPTH32F || format == AQ_FORMAT_R32UI;
   const int channels = single ? 1 : 4;
   ImageF out(width, height, channels);
   while (glGetError() != GL_NO_ERROR) {
   }  // only this read's error counts below
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   const bool ids = format == AQ_FORMAT_R32UI;
-  const GLenum gl_format = ids ? GL_RED_INTEGER
-                               : (format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT
-                                                               : (single ? GL_RED : GL_RGBA));
+  const GLenum gl_format =
+      ids ? GL_RED_INTEGER
+          : (format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : (single ? GL_RED : GL_RGBA));
   const GLenum gl_type = ids ? GL_UNSIGNED_INT : GL_FLOAT;
   // The buffer size of one read is a GLsizei: a 16384x16384 RGBA float image (4 GiB) does not
   // fit, so large textures are read in bands of rows, each well under 2 GiB.

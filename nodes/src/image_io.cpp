@@ -19,8 +19,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <string_view>
@@ -32,8 +32,8 @@ namespace {
 
 constexpr int kMaxChannels = 64;
 
-// Temporaries are hidden (.NAME.aqtmp-PID): they never match NAME*.exr or *.exr globs.
-constexpr const char* kTemporaryMark = ".aqtmp-";
+// Temporaries are hidden (.NAME.tmp-PID): they never match NAME*.exr or *.exr globs.
+constexpr const char* kTemporaryMark = ".tmp-";
 
 std::string lowercase_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -137,8 +137,9 @@ Result<std::unique_ptr<OIIO::ImageInput>> open_input(const std::string& path,
                                                      const OIIO::ImageSpec* hints) {
   // Only regular files: OIIO's format probe spins on /dev/zero and blocks on a FIFO.
   if (std::string why = files::regular_file_problem(path); !why.empty()) {
-    std::string hint = " (check the path; a relative path in a graph is relative to the graph "
-                       "file's folder)";
+    std::string hint =
+        " (check the path; a relative path in a graph is relative to the graph "
+        "file's folder)";
     if (why.find("regular files") != std::string::npos) hint = "; give the path of an image file";
     return make_error("cannot read image " + path + ": " + why + hint);
   }
@@ -180,7 +181,7 @@ Status check_spec(const std::string& path, const OIIO::ImageSpec& spec) {
                       size_text(spec.width, spec.height) +
                       "); re-export it with at least one pixel");
   }
-  for (const auto& [what, w, h] : {std::tuple{"", spec.width, spec.height},
+  for (const auto& [what, w, h] : {std::tuple{"size ", spec.width, spec.height},
                                    std::tuple{"display window ", shown.width, shown.height}}) {
     if (w > kMaxImageSide || h > kMaxImageSide) {
       return make_error("cannot read image " + path + ": its " + what + size_text(w, h) +
@@ -364,8 +365,25 @@ Status write_to_special_file(const std::string& path, const std::vector<unsigned
   return status;
 }
 
+// The temporary being written, for remove_temporary_in_progress (a signal handler): a fixed
+// buffer, since a handler may not allocate.
+char g_temporary_in_progress[4096] = {};
+
+class TemporaryInProgress {
+ public:
+  explicit TemporaryInProgress(const std::string& path) {
+    if (path.size() < sizeof(g_temporary_in_progress)) {
+      std::memcpy(g_temporary_in_progress, path.c_str(), path.size() + 1);
+    }
+  }
+  ~TemporaryInProgress() { g_temporary_in_progress[0] = '\0'; }
+  TemporaryInProgress(const TemporaryInProgress&) = delete;
+  TemporaryInProgress& operator=(const TemporaryInProgress&) = delete;
+};
+
 Status write_atomically(const std::string& path, const std::vector<unsigned char>& bytes) {
   const std::string temp = temporary_write_path(path, ::getpid());
+  TemporaryInProgress in_progress(temp);
   int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) {
     const int error = errno;
@@ -408,6 +426,10 @@ Result<OIIO::TypeDesc> pixel_type_for(const std::string& path, const std::string
 
 }  // namespace
 
+void remove_temporary_in_progress() {
+  if (g_temporary_in_progress[0] != '\0') ::unlink(g_temporary_in_progress);
+}
+
 std::string temporary_write_path(const std::string& path, long pid) {
   const std::filesystem::path target(path);
   const std::string name = "." + target.filename().string() + kTemporaryMark + std::to_string(pid);
@@ -445,8 +467,8 @@ bool is_complete_image(const std::string& path) {
   if (!check_spec(path, spec)) return false;
   std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
   SilencedStderr quiet(lowercase_extension(path) == "png");
-  const bool read = (*input)->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
-                                         pixels.data());
+  const bool read =
+      (*input)->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
   (void)OIIO::geterror();
   return read;
 }

@@ -29,12 +29,13 @@ Status check_declared_size(const std::string& path, const std::string& ext, uint
   if (ext == "png") {
     // The least a PNG of this size can decompress to: one bit per pixel plus a filter byte
     // per row (1-bit greyscale or palette).
-    const uint64_t least_raw =
-        static_cast<uint64_t>(h) * (1 + (static_cast<uint64_t>(w) + 7) / 8);
+    const uint64_t least_raw = static_cast<uint64_t>(h) * (1 + (static_cast<uint64_t>(w) + 7) / 8);
     if (least_raw > file_bytes * kDeflateMaxRatio + 65536) {
-      return make_error("cannot read image " + path + ": its header declares " +
-                        std::to_string(w) + "x" + std::to_string(h) + " pixels, which cannot "
-                        "be stored in a file of " + std::to_string(file_bytes) +
+      return make_error("cannot read image " + path + ": its header declares " + std::to_string(w) +
+                        "x" + std::to_string(h) +
+                        " pixels, which cannot "
+                        "be stored in a file of " +
+                        std::to_string(file_bytes) +
                         " bytes (the header is corrupt or forged; re-export the image)");
     }
   }
@@ -42,9 +43,8 @@ Status check_declared_size(const std::string& path, const std::string& ext, uint
   const uint64_t budget = files::memory_budget_bytes();
   if (need > budget) {
     return make_error("cannot read image " + path + ": decoding its " + std::to_string(w) + "x" +
-                      std::to_string(h) + " pixels of " + std::to_string(n) +
-                      " channels needs " + megabytes(need) + ", more than the memory budget of " +
-                      megabytes(budget) +
+                      std::to_string(h) + " pixels of " + std::to_string(n) + " channels needs " +
+                      megabytes(need) + ", more than the memory budget of " + megabytes(budget) +
                       " (downscale the image, or raise AQUARELLE_MEMORY_BUDGET_MB)");
   }
   return Ok{};

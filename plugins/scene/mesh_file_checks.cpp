@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <optional>
@@ -216,7 +217,7 @@ std::string check_ply_header(std::string_view bytes, uint64_t file_size, uint64_
   if (end == std::string_view::npos) return "its header has no end_header line";
   size_t body = bytes.find('\n', end);
   body = body == std::string_view::npos ? bytes.size() : body + 1;
-  const uint64_t data_bytes = file_size > body ? file_size - body : 0;
+  uint64_t data_bytes = file_size > body ? file_size - body : 0;
 
   bool ascii = true;
   struct Element {
@@ -249,6 +250,7 @@ std::string check_ply_header(std::string_view bytes, uint64_t file_size, uint64_
       elements.back().least_bytes += least;
     }
   }
+  if (ascii) ++data_bytes;  // the last value may go without its line break
   uint64_t least_total = 0, memory = 0;
   for (const Element& e : elements) {
     // An ASCII element takes at least a line even without properties.
@@ -368,8 +370,8 @@ std::string check_gltf_json(std::string_view json, const std::string& folder,
       if (*count > 0 && plus(offset, times(*count, element)) > plus(view_bytes[*view], element)) {
         // Interleaved strides make the exact end smaller; count x element bounds it below.
         if (plus(offset, times(*count - 1, element)) > view_bytes[*view]) {
-          return name + " declares " + std::to_string(*count) +
-                 " elements, more than bufferView " + std::to_string(*view) + " holds";
+          return name + " declares " + std::to_string(*count) + " elements, more than bufferView " +
+                 std::to_string(*view) + " holds";
         }
       }
     }
@@ -423,8 +425,7 @@ std::string check_glb(std::string_view bytes, const std::string& folder, uint64_
 }
 
 std::string check_mesh_file_bytes(const std::string& ext, std::string_view bytes,
-                                  uint64_t file_size, const std::string& folder,
-                                  uint64_t budget) {
+                                  uint64_t file_size, const std::string& folder, uint64_t budget) {
   if (ext == "ply") return check_ply_header(bytes, file_size, budget);
   if (ext == "gltf") return check_gltf_json(bytes, folder, -1, budget);
   if (ext == "glb") return check_glb(bytes, folder, budget);

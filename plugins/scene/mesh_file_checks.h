@@ -41,7 +41,6 @@ std::string check_glb(std::string_view bytes, const std::string& folder, uint64_
 
 // Dispatches on the extension (lower case, without dot): ply, gltf, glb; others pass.
 std::string check_mesh_file_bytes(const std::string& ext, std::string_view bytes,
-                                  uint64_t file_size, const std::string& folder,
-                                  uint64_t budget);
+                                  uint64_t file_size, const std::string& folder, uint64_t budget);
 
 }  // namespace scene

@@ -5,12 +5,12 @@
 #include <aquarelle/regular_file.hpp>
 
 #include <assimp/DefaultIOSystem.h>
-#include <assimp/IOStream.hpp>
 #include <assimp/scene.h>
+#include <assimp/IOStream.hpp>
 
-#include <glm/glm.hpp>
 #include <pthread.h>
 #include <unistd.h>
+#include <glm/glm.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -64,8 +64,9 @@ class FileStream final : public Assimp::IOStream {
   }
   size_t Write(const void*, size_t, size_t) override { return 0; }
   aiReturn Seek(size_t offset, aiOrigin origin) override {
-    const int whence = origin == aiOrigin_SET ? SEEK_SET : origin == aiOrigin_CUR ? SEEK_CUR
-                                                                                   : SEEK_END;
+    const int whence = origin == aiOrigin_SET   ? SEEK_SET
+                       : origin == aiOrigin_CUR ? SEEK_CUR
+                                                : SEEK_END;
     return std::fseek(file_, static_cast<long>(offset), whence) == 0 ? aiReturn_SUCCESS
                                                                      : aiReturn_FAILURE;
   }
@@ -185,7 +186,8 @@ int hierarchy_depth(const aiNode* root) {
     if (node == nullptr) continue;
     deepest = std::max(deepest, depth);
     if (deepest > kMaxMeshHierarchyDepth) return deepest;
-    for (unsigned i = 0; i < node->mNumChildren; ++i) pending.push_back({node->mChildren[i], depth + 1});
+    for (unsigned i = 0; i < node->mNumChildren; ++i)
+      pending.push_back({node->mChildren[i], depth + 1});
   }
   return deepest;
 }
@@ -200,8 +202,8 @@ bool is_convex(const aiMesh& mesh, const aiFace& face) {
   glm::dvec3 normal(0.0);
   for (unsigned i = 0; i < n; ++i) {
     const glm::dvec3 a = at(i), b = at(i + 1);
-    normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x),
-                         (a.x - b.x) * (a.y + b.y));
+    normal +=
+        glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
   }
   const double length = glm::length(normal);
   if (!(length > 0.0)) return false;
@@ -258,7 +260,8 @@ std::string triangulate_large_polygons(aiScene& scene) {
       }
       for (unsigned i = 1; i + 1 < face.mNumIndices; ++i) {
         faces[out].mNumIndices = 3;
-        faces[out].mIndices = new unsigned[3]{face.mIndices[0], face.mIndices[i], face.mIndices[i + 1]};
+        faces[out].mIndices =
+            new unsigned[3]{face.mIndices[0], face.mIndices[i], face.mIndices[i + 1]};
         ++out;
       }
     }
@@ -302,8 +305,10 @@ const aiScene* read_mesh_file(Assimp::Importer& importer, const std::string& pat
     return fail(why + " (a relative path is relative to the graph file's folder)");
   }
   std::error_code ec;
+  // The folder the path names (Assimp resolves references from it), links resolved.
   const std::string folder =
-      std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec).parent_path().string();
+      std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec).parent_path(), ec)
+          .string();
   if (std::string why = header_problem(path, folder); !why.empty()) return fail(why);
 
   auto* io = new ConfinedIOSystem(folder);

@@ -30,11 +30,11 @@ std::string load_model_file(const std::string& path, Preset* preset) {
   if (path.empty()) return "no file given: set the `path` parameter to an OBJ or glTF file";
   Assimp::Importer importer;
   std::string error;  // mesh_import.h: regular files in the mesh's folder, checked headers
-  const aiScene* scene = read_mesh_file(
-      importer, path,
-      aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_GenNormals |
-          aiProcess_SortByPType | aiProcess_FindInvalidData,
-      &error);
+  const aiScene* scene =
+      read_mesh_file(importer, path,
+                     aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_GenNormals |
+                         aiProcess_SortByPType | aiProcess_FindInvalidData,
+                     &error);
   if (scene == nullptr) return error;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* in = scene->mMeshes[m];

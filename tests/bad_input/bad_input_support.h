@@ -72,21 +72,20 @@ inline std::string gltf_chain(int depth, const std::string& buffer_uri) {
     if (i + 1 == depth) node["mesh"] = 0;
     nodes.push_back(node);
   }
-  nlohmann::json gltf = {
-      {"asset", {{"version", "2.0"}}},
-      {"scene", 0},
-      {"scenes", {{{"nodes", {0}}}}},
-      {"nodes", nodes},
-      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}}}},
-      {"buffers", {{{"byteLength", 36}, {"uri", buffer_uri}}}},
-      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}}}},
-      {"accessors",
-       {{{"bufferView", 0},
-         {"componentType", 5126},
-         {"count", 3},
-         {"type", "VEC3"},
-         {"min", {-1, -1, 0}},
-         {"max", {1, 1, 0}}}}}};
+  nlohmann::json gltf = {{"asset", {{"version", "2.0"}}},
+                         {"scene", 0},
+                         {"scenes", {{{"nodes", {0}}}}},
+                         {"nodes", nodes},
+                         {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}}}},
+                         {"buffers", {{{"byteLength", 36}, {"uri", buffer_uri}}}},
+                         {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}}}},
+                         {"accessors",
+                          {{{"bufferView", 0},
+                            {"componentType", 5126},
+                            {"count", 3},
+                            {"type", "VEC3"},
+                            {"min", {-1, -1, 0}},
+                            {"max", {1, 1, 0}}}}}};
   return gltf.dump();
 }
 

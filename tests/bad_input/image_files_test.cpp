@@ -98,7 +98,9 @@ TEST(ImageValues, NanAndInfAreReplacedOnReadAndDoNotSpread) {
       {"nodes",
        {{"source", {{"type", "read"}, {"params", {{"path", path}}}}},
         {"blur",
-         {{"type", "blur"}, {"params", {{"sigma", 3.0}}}, {"inputs", {{"image", "source.image"}}}}}}},
+         {{"type", "blur"},
+          {"params", {{"sigma", 3.0}}},
+          {"inputs", {{"image", "source.image"}}}}}}},
       {"output", "blur.image"}};
   auto blurred = render_graph(graph.dump());
   ASSERT_TRUE(blurred.ok()) << blurred.message();
@@ -113,9 +115,10 @@ double srgb_to_linear(double v) {
 TEST(ImageValues, CmykAlphaTiffIsConvertedToRgb) {
   const fs::path dir = scratch_dir("bad_input_cmyka");
   const std::string path = (dir / "cmyka.tif").string();
-  auto made = run_command("oiiotool --pattern constant:color=0.2,0.4,0.6,0.1,1.0 4x4 5 "
-                          "--chnames C,M,Y,K,A --attrib tiff:ColorSpace CMYK -d uint8 -o " +
-                          path);
+  auto made = run_command(
+      "oiiotool --pattern constant:color=0.2,0.4,0.6,0.1,1.0 4x4 5 "
+      "--chnames C,M,Y,K,A --attrib tiff:ColorSpace CMYK -d uint8 -o " +
+      path);
   ASSERT_EQ(made.exit_code, 0) << made.output;
   auto read = read_image(path, config());
   ASSERT_TRUE(read.ok()) << read.message();
@@ -131,8 +134,10 @@ TEST(ImageValues, CmykAlphaTiffIsConvertedToRgb) {
 TEST(ImageValues, ExrDataWindowIsPlacedInItsDisplayWindow) {
   const fs::path dir = scratch_dir("bad_input_datawindow");
   const std::string path = (dir / "window.exr").string();
-  auto made = run_command("oiiotool --pattern constant:color=1,0.5,0.25,1 10x10 4 "
-                          "--origin +20+30 --fullsize 64x64+0+0 -d half -o " + path);
+  auto made = run_command(
+      "oiiotool --pattern constant:color=1,0.5,0.25,1 10x10 4 "
+      "--origin +20+30 --fullsize 64x64+0+0 -d half -o " +
+      path);
   ASSERT_EQ(made.exit_code, 0) << made.output;
   auto read = read_image(path, config());
   ASSERT_TRUE(read.ok()) << read.message();
@@ -156,7 +161,8 @@ TEST(ImageValues, PathWithANulCharacterIsRefused) {
       {"settings", {{"width", 4}, {"height", 4}, {"frames", {1, 1}}}},
       {"nodes",
        {{"source",
-         {{"type", "read"}, {"params", {{"path", (dir / "in.exr").string() + std::string("\0x", 2)}}}}}}},
+         {{"type", "read"},
+          {"params", {{"path", (dir / "in.exr").string() + std::string("\0x", 2)}}}}}}},
       {"output", "source.image"}};
   auto image = render_graph(graph.dump());
   ASSERT_FALSE(image.ok()) << "the part before the NUL was read";
@@ -198,8 +204,8 @@ TEST(ImageMessages, LibpngPrintsNoLineOfItsOwn) {
   "settings": {"width": 16, "height": 16, "frames": [1, 1]},
   "nodes": {"source": {"type": "read", "params": {"path": "broken.png"}}},
   "output": "source.image"})");
-  auto result = aquarelle_within(60, "render " + (dir / "g.json").string() + " -q -o " +
-                                         (dir / "out.exr").string());
+  auto result = aquarelle_within(
+      60, "render " + (dir / "g.json").string() + " -q -o " + (dir / "out.exr").string());
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_TRUE(mentions(result.output, "broken.png")) << result.output;
   EXPECT_FALSE(mentions(result.output, "libpng")) << result.output;

@@ -5,6 +5,7 @@
 #include <aquarelle/core/color.h>
 #include <aquarelle/core/graph_io.h>
 #include <aquarelle/core/image_io.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,6 +13,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <thread>
+#include <vector>
 
 #include "bad_input/bad_input_support.h"
 
@@ -74,8 +76,7 @@ TEST(SpecialFiles, OcioConfigMustBeRegular) {
     auto config = ColorConfig::load();
     ASSERT_FALSE(config.ok()) << path;
     EXPECT_NE(config.message().find("$OCIO"), std::string::npos) << config.message();
-    EXPECT_NE(config.message().find("only regular files"), std::string::npos)
-        << config.message();
+    EXPECT_NE(config.message().find("only regular files"), std::string::npos) << config.message();
   }
   if (saved != nullptr) {
     ::setenv("OCIO", restore.c_str(), 1);
@@ -87,8 +88,8 @@ TEST(SpecialFiles, OcioConfigMustBeRegular) {
 TEST(SpecialFiles, RenderOfAFifoGraphEndsWithExitOne) {
   const fs::path dir = scratch_dir("bad_input_special_cli");
   const fs::path fifo = make_fifo(dir / "graph.json");
-  auto render = aquarelle_within(60, "render " + fifo.string() + " -o " +
-                                         (dir / "out.png").string() + " -q");
+  auto render =
+      aquarelle_within(60, "render " + fifo.string() + " -o " + (dir / "out.png").string() + " -q");
   EXPECT_EQ(render.exit_code, 1) << render.output;
   EXPECT_NE(render.output.find("FIFO"), std::string::npos) << render.output;
 }
@@ -103,19 +104,29 @@ void expect_prompt_stop(int signal) {
   "output": "slow.image"
 })");
   const std::string log = (dir / "log.txt").string();
+  // Everything the child needs is made before fork: the test process has GL driver threads.
+  const std::string plugins =
+      "AQUARELLE_PLUGIN_PATH=" + std::string(AQ_TEST_PLUGIN_DIR) + ":" + AQ_PLUGIN_BUILD_DIR;
+  std::vector<char*> environment;
+  for (char** e = environ; *e != nullptr; ++e) {
+    if (std::string(*e).rfind("AQUARELLE_PLUGIN_PATH=", 0) != 0) environment.push_back(*e);
+  }
+  environment.push_back(const_cast<char*>(plugins.c_str()));
+  environment.push_back(nullptr);
+  const std::string graph = (dir / "slow.json").string(), out = (dir / "out.exr").string();
+  const char* argv[] = {AQ_APP_PATH, "render", graph.c_str(), "-o", out.c_str(), nullptr};
+  const int log_fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  ASSERT_GE(log_fd, 0);
   const pid_t child = ::fork();
   ASSERT_GE(child, 0);
   if (child == 0) {
-    const std::string plugins = std::string(AQ_TEST_PLUGIN_DIR) + ":" + AQ_PLUGIN_BUILD_DIR;
-    ::setenv("AQUARELLE_PLUGIN_PATH", plugins.c_str(), 1);
-    if (std::freopen(log.c_str(), "w", stderr) == nullptr) ::_exit(99);
-    ::execl(AQ_APP_PATH, AQ_APP_PATH, "render", (dir / "slow.json").c_str(), "-o",
-            (dir / "out.exr").c_str(), static_cast<char*>(nullptr));
+    ::dup2(log_fd, STDERR_FILENO);
+    ::execve(AQ_APP_PATH, const_cast<char* const*>(argv), environment.data());
     ::_exit(98);
   }
+  ::close(log_fd);
   // Wait until the render is inside the slow node (the context line is printed just before).
-  for (int i = 0; i < 600 && file_bytes(log).find("aquarelle: OpenGL") == std::string::npos;
-       ++i) {
+  for (int i = 0; i < 600 && file_bytes(log).find("aquarelle: OpenGL") == std::string::npos; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(300));

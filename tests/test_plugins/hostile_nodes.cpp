@@ -22,8 +22,8 @@ struct BadFormat {
 
 struct Slow {
   int process(aq::Context& ctx) {
-    const auto until = std::chrono::steady_clock::now() +
-                       std::chrono::duration<double>(ctx.param_float(0));
+    const auto until =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(ctx.param_float(0));
     while (std::chrono::steady_clock::now() < until) {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }

@@ -45,13 +45,17 @@ struct WriteOptions {
 // Writes `image` (row 0 at the bottom; 1, 3 or 4 channels). EXR/HDR keep linear data as given
 // (associated alpha); PNG/JPEG/TIFF expect display-referred pixels with straight alpha (the
 // output of DisplayTransform), which are clamped to [0,1], quantised and stored unchanged
-// (JPEG and HDR drop alpha). Atomic: the pixels go to
-// DIR/.NAME.aqtmp-<pid> first (hidden, so it matches no NAME*.exr glob) and are renamed over PATH; on any failure (disk full,
+// (JPEG and HDR drop alpha). Atomic: the pixels go to DIR/.NAME.tmp-<pid> first (hidden, so
+// it matches no NAME*.exr glob) and are renamed over PATH; on any failure (disk full,
 // unwritable directory) nothing is left behind and the error names the path and the reason.
 Status write_image(const std::string& path, const ImageF& image, const WriteOptions& options = {});
 
 // The temporary write_image uses for `path` in process `pid`.
 std::string temporary_write_path(const std::string& path, long pid);
+
+// Removes the temporary a write_image in progress is writing, if any. Async-signal-safe: for a
+// handler that ends the process in the middle of a write.
+void remove_temporary_in_progress();
 
 // Removes temporaries of `path` left by writers that died (SIGKILL, power loss); a running
 // writer's is kept. Returns how many were removed.
