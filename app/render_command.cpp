@@ -8,22 +8,18 @@
 #include <aquarelle/core/image_io.h>
 
 #include <algorithm>
-#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 
 #include "commands.h"
+#include "render_guards.h"
 #include "session.h"
 
 namespace aq::app {
 
 namespace {
-
-volatile std::sig_atomic_t g_stop_requested = 0;
-void request_stop(int) {
-  g_stop_requested = 1;
-}
 
 constexpr const char* kRenderHelp =
     R"(usage: aquarelle render GRAPH -o OUT [options]
@@ -50,7 +46,8 @@ Renders the graph's output for each frame and writes it to OUT.
   --plan                  print the evaluation plan (passes, the nodes each computes, sizes,
                           formats, reads per pixel, what is cached) and render nothing; -o is
                           then not needed
-  --resume                skip frames whose output file already exists
+  --resume                skip frames whose output file already exists and reads completely;
+                          removes temporaries that killed renders left (.NAME.tmp-PID)
   -q, --quiet             no progress output
 
 Exit codes: 0 ok, 1 bad input, 2 no usable GL or plugins, 130 interrupted.
@@ -163,6 +160,13 @@ int run_render(int argc, char** argv) {
     std::fprintf(stderr, "aquarelle render: --quality must be draft, preview or final\n");
     return kExitBadInput;
   }
+  install_stop_handlers();
+  // Still single-threaded: a driver that crashes takes down a child, not this process.
+  if (auto probe = probe_gl_in_child(*backend, gl_device); !probe.ok()) {
+    std::fprintf(stderr, "aquarelle render: --gl %s: %s\n", backend_name.c_str(),
+                 probe.message().c_str());
+    return kExitEnvironment;
+  }
 
   auto plugins = load_plugins(quiet);
   if (!plugins.ok()) {
@@ -201,7 +205,17 @@ int run_render(int argc, char** argv) {
     }
   }
   if (auto problems = validate_graph(graph, registry); !problems.empty()) {
-    for (auto& p : problems) p.file = graph_path;
+    for (auto& p : problems) {
+      p.file = graph_path;
+      // A value given with --set is the command line's, not the graph file's.
+      for (const auto& assignment : sets) {
+        if (!p.node.empty() && !p.field.empty() &&
+            assignment.rfind(p.node + "." + p.field + "=", 0) == 0) {
+          p.file = "--set " + assignment;
+          p.line = p.column = 0;
+        }
+      }
+    }
     std::fprintf(stderr, "%s\n", format_problems(problems).c_str());
     return kExitBadInput;
   }
@@ -238,6 +252,11 @@ int run_render(int argc, char** argv) {
                  out_dir.string().c_str());
     return kExitBadInput;
   }
+  const std::vector<std::string> inputs = graph_input_files(graph, registry);
+  if (auto s = check_output_is_not_input(frame_path(output, first), graph_path, inputs); !s.ok()) {
+    std::fprintf(stderr, "aquarelle render: %s\n", s.message().c_str());
+    return kExitBadInput;
+  }
   bool display = is_display_referred_format(frame_path(output, first));
 
   auto color = ColorConfig::load();
@@ -249,8 +268,17 @@ int run_render(int argc, char** argv) {
   if (display) {
     auto t = DisplayTransform::create(*color, "", view);
     if (!t.ok()) {
-      std::fprintf(stderr, "aquarelle render: --view: %s\n", t.message().c_str());
-      return kExitBadInput;
+      // An unknown --view is the user's; anything else is the config's (a broken LUT...).
+      if (!view.empty() && t.message().find("unknown view") != std::string::npos) {
+        std::fprintf(stderr, "aquarelle render: --view: %s\n", t.message().c_str());
+        return kExitBadInput;
+      }
+      std::fprintf(stderr,
+                   "aquarelle render: the OpenColorIO config %s%s is unusable: %s (fix it%s)\n",
+                   color->path().c_str(), std::getenv("OCIO") != nullptr ? " (from $OCIO)" : "",
+                   t.message().c_str(),
+                   std::getenv("OCIO") != nullptr ? ", or unset $OCIO to use Aquarelle's own" : "");
+      return kExitEnvironment;
     }
     transform = std::move(*t);
   }
@@ -262,8 +290,6 @@ int run_render(int argc, char** argv) {
   }
   if (!quiet) std::fprintf(stderr, "aquarelle: %s\n", (*context)->description().c_str());
 
-  std::signal(SIGINT, request_stop);
-  std::signal(SIGTERM, request_stop);
   const bool progress = !quiet && isatty(STDOUT_FILENO) && last > first;
   Evaluator evaluator(**context, registry);
   std::map<std::string, std::pair<NodeTiming, int>> totals;
@@ -272,14 +298,26 @@ int run_render(int argc, char** argv) {
   int written = 0, skipped = 0;
   int exit_code = kExitOk;
   for (int frame = first; frame <= last; ++frame) {
-    if (g_stop_requested) {
+    if (stop_requested()) {
+      cancel_forced_stop();
       exit_code = kExitInterrupted;
       break;
     }
     std::string path = frame_path(output, frame);
-    if (resume && std::filesystem::exists(path, ec)) {
-      ++skipped;
-      continue;
+    if (frame != first) {
+      if (auto s = check_output_is_not_input(path, graph_path, inputs); !s.ok()) {
+        if (progress) std::printf("\n");
+        std::fprintf(stderr, "aquarelle render: frame %d: %s\n", frame, s.message().c_str());
+        return kExitBadInput;
+      }
+    }
+    if (resume) {
+      remove_stale_temporaries(path);
+      // A truncated frame (a copy cut short, a full disk under another tool) is rendered again.
+      if (std::filesystem::exists(path, ec) && is_complete_image(path)) {
+        ++skipped;
+        continue;
+      }
     }
     EvalOptions options;
     options.frame = frame;
@@ -333,6 +371,7 @@ int run_render(int argc, char** argv) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (progress) print_progress(frame - first + 1, last - first + 1, seconds);
   }
+  cancel_forced_stop();
   if (transform) transform->release_gl();
   if (progress) std::printf("\n");
   if (!quiet) {

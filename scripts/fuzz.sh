@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
-# Fuzzes the graph reader and validator with libFuzzer for N seconds (default 60):
+# Fuzzes the graph reader and validator with libFuzzer for N seconds (default 60), then the
+# mesh header checks (PLY, glTF, GLB) and image reading (PNG, EXR, TIFF, JPEG, HDR, BMP) for
+# AQUARELLE_FUZZ_HEADER_SECONDS each (default 30), all under a memory limit:
 #   scripts/fuzz.sh [SECONDS] [extra libFuzzer flags...]
 # Builds tests/fuzz (a separate clang project) in build-fuzz, seeds a working corpus from
 # tests/fuzz/corpus and graphs/*.json, and loads the node types of build/plugins when that
 # exists (AQUARELLE_FUZZ_PLUGIN_DIR overrides). Installs clang and libclang-rt-14-dev if
 # missing. A crash leaves its input as build-fuzz/crash-*: add it as a regression test in
-# tests/core/bad_graph_test.cpp and to tests/fuzz/corpus.
+# tests/core/bad_graph_test.cpp (graphs) or tests/bad_input/ (meshes, images) and to the
+# corpus (tests/fuzz/corpus, tests/fuzz/mesh_corpus; image seeds are made here with oiiotool).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
@@ -52,6 +55,34 @@ fi
 # per input (-detect_leaks=1), not at exit.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+header_seconds="${AQUARELLE_FUZZ_HEADER_SECONDS:-30}"
+mesh_work="$build/mesh_corpus"
+mkdir -p "$mesh_work"
+cp -n tests/fuzz/mesh_corpus/* "$mesh_work"/ 2>/dev/null || true
+# Image seeds: one tiny file per format, behind the byte that picks its extension.
+image_work="$build/image_corpus"
+mkdir -p "$image_work"
+if command -v oiiotool >/dev/null; then
+  index=0
+  for ext in png exr tif jpg hdr bmp; do
+    seed="$image_work/seed_$ext"
+    if [ ! -f "$seed" ]; then
+      oiiotool --pattern checker:width=2:height=2 4x3 3 -o "$build/seed.$ext" 2>/dev/null &&
+        { printf "\\$(printf '%03o' "$index")"; cat "$build/seed.$ext"; } >"$seed"
+    fi
+    index=$((index + 1))
+  done
+fi
+
 cd "$build"
-exec ./graph_reader_fuzzer -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-  -max_len=65536 -print_final_stats=1 "$@" corpus
+status=0
+./graph_reader_fuzzer -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  -max_len=65536 -print_final_stats=1 "$@" corpus || status=$?
+# Hostile headers must be refused before they allocate: 1 GB is far above the 256 MB memory
+# budget the fuzzers read with, and far below what a forged size would reserve.
+./mesh_header_fuzzer -max_total_time="$header_seconds" -timeout=10 -rss_limit_mb=1024 \
+  -max_len=65536 -print_final_stats=1 "$@" mesh_corpus || status=$?
+AQUARELLE_MEMORY_BUDGET_MB=256 ./image_header_fuzzer -max_total_time="$header_seconds" \
+  -timeout=10 -rss_limit_mb=1024 -max_len=16384 -print_final_stats=1 "$@" image_corpus ||
+  status=$?
+exit "$status"

@@ -6,6 +6,7 @@
 #include <aquarelle/core/image_io.h>
 #include <aquarelle/core/plugin_loader.h>
 
+#include <cstdio>
 #include <cstring>
 
 namespace aq {
@@ -78,8 +79,8 @@ TextureRef upload_image(TexturePool& pool, const ImageF& image) {
     data = rgba.data();
   }
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage2D(texture->image.texture, 0, 0, 0, image.width, image.height, GL_RGBA,
-                      GL_FLOAT, data);
+  glTextureSubImage2D(texture->image.texture, 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT,
+                      data);
   return texture;
 }
 
@@ -136,10 +137,18 @@ int run_builtin(const NodeType& type, BuiltinState& state, const aq_process_ctx&
       *error = config.message();
       return AQ_ERROR;
     }
-    auto image = read_image(path, *config, colorspace);
+    ImageReadNotes notes;
+    auto image = read_image(path, *config, colorspace, &notes);
     if (!image.ok()) {
       *error = "parameter 'path': " + image.message();
       return AQ_ERROR;
+    }
+    if (notes.non_finite_values > 0) {
+      std::fprintf(stderr,
+                   "warning: node '%s': parameter 'path': %s holds %zu NaN or infinite "
+                   "value(s); replaced (NaN by 0, infinity by +-65504) so they cannot spread\n",
+                   ctx.node_id != nullptr ? ctx.node_id : "?", path.c_str(),
+                   notes.non_finite_values);
     }
     (*outputs)[0] = upload_image(pool, *image);
     state.loaded_path = path;

@@ -3,6 +3,8 @@
 // aq::Error values that name the config file and the colour space involved.
 #include <aquarelle/core/color.h>
 
+#include <aquarelle/regular_file.hpp>
+
 #include "color_config_data.h"
 
 #include <unistd.h>
@@ -100,6 +102,10 @@ Result<ColorConfig> ColorConfig::load() {
 }
 
 Result<ColorConfig> ColorConfig::load_file(const std::string& path) {
+  // Only a regular file: OCIO would block on a FIFO and read /dev/zero without end.
+  if (std::string why = files::regular_file_problem(path); !why.empty()) {
+    return make_error("cannot load OpenColorIO config " + path + ": " + why);
+  }
   auto data = std::make_shared<ColorConfigData>();
   data->path = path;
   try {

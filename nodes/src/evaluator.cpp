@@ -8,7 +8,9 @@
 #include <aquarelle/core/plan.h>
 #include <aquarelle/core/quality.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 
@@ -228,24 +230,46 @@ void Evaluator::set_shader_hot_reload(bool enabled) {
   impl_->host.shaders().set_hot_reload(enabled);
 }
 
-Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format) {
-  bool single = format == AQ_FORMAT_R32F || format == AQ_FORMAT_DEPTH32F;
-  ImageF out(width, height, single ? 1 : 4);
+int readback_rows_per_band(int width, int bytes_per_pixel, int64_t max_bytes) {
+  const int64_t row = static_cast<int64_t>(std::max(width, 1)) * std::max(bytes_per_pixel, 1);
+  return static_cast<int>(std::clamp<int64_t>(max_bytes / row, 1, std::numeric_limits<int>::max()));
+}
+
+Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format,
+                            int64_t max_bytes_per_read) {
+  bool single =
+      format == AQ_FORMAT_R32F || format == AQ_FORMAT_DEPTH32F || format == AQ_FORMAT_R32UI;
+  const int channels = single ? 1 : 4;
+  ImageF out(width, height, channels);
   while (glGetError() != GL_NO_ERROR) {
   }  // only this read's error counts below
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  if (format == AQ_FORMAT_R32UI) {
-    std::vector<uint32_t> ids(static_cast<size_t>(width) * height);
-    glGetTextureImage(texture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                      static_cast<GLsizei>(ids.size() * 4), ids.data());
-    out = ImageF(width, height, 1);
-    for (size_t i = 0; i < ids.size(); ++i) out.pixels[i] = static_cast<float>(ids[i]);
-    return out;
+  const bool ids = format == AQ_FORMAT_R32UI;
+  const GLenum gl_format =
+      ids ? GL_RED_INTEGER
+          : (format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : (single ? GL_RED : GL_RGBA));
+  const GLenum gl_type = ids ? GL_UNSIGNED_INT : GL_FLOAT;
+  // The buffer size of one read is a GLsizei: a 16384x16384 RGBA float image (4 GiB) does not
+  // fit, so large textures are read in bands of rows, each well under 2 GiB.
+  const int pixel_bytes = channels * 4;
+  const int band = readback_rows_per_band(width, pixel_bytes, max_bytes_per_read);
+  std::vector<uint32_t> id_rows;
+  for (int y = 0; y < height; y += band) {
+    const int rows = std::min(band, height - y);
+    const size_t offset = static_cast<size_t>(y) * width * channels;
+    const auto bytes = static_cast<GLsizei>(static_cast<int64_t>(rows) * width * pixel_bytes);
+    void* target = out.pixels.data() + offset;
+    if (ids) {
+      id_rows.resize(static_cast<size_t>(rows) * width);
+      target = id_rows.data();
+    }
+    glGetTextureSubImage(texture, 0, 0, y, 0, width, rows, 1, gl_format, gl_type, bytes, target);
+    if (ids) {
+      for (size_t i = 0; i < id_rows.size(); ++i) {
+        out.pixels[offset + i] = static_cast<float>(id_rows[i]);
+      }
+    }
   }
-  GLenum gl_format =
-      format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : (single ? GL_RED : GL_RGBA);
-  glGetTextureImage(texture, 0, gl_format, GL_FLOAT,
-                    static_cast<GLsizei>(out.pixels.size() * sizeof(float)), out.pixels.data());
   if (GLenum error = glGetError(); error != GL_NO_ERROR) {
     char text[96];
     std::snprintf(text, sizeof(text), "reading the texture back failed (GL error 0x%04X)", error);
@@ -324,6 +348,14 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
     uint64_t key = kHashSeed;
     key = hash_string(key, type->name);
     ParamValues param_values = convert_params(node, *type, graph_dir, &key);
+    for (size_t p = 0; p < type->params.size(); ++p) {
+      if (param_values.strings[p].find('\0') != std::string::npos) {
+        // The ABI passes C strings: the part before the NUL would be used silently.
+        return make_error("node '" + id + "' (" + type->name + "), parameter '" +
+                          type->params[p].name +
+                          "': the value contains a NUL character; remove it");
+      }
+    }
     std::vector<aq_param_value>& params = param_values.params;
     auto gathered = gather_inputs(id, node, *type, impl_->states, &key);
     if (!gathered.ok()) return gathered.error();

@@ -18,6 +18,8 @@
 #include <limits>
 #include <tuple>
 
+#include <aquarelle/regular_file.hpp>
+
 #include "graph_checks.h"
 #include "json_locator.h"
 
@@ -32,6 +34,9 @@ using json_text::TextPosition;
 // Far deeper than any graph file needs, far shallower than what would exhaust the stack of
 // code that walks JSON recursively.
 constexpr int kMaxNesting = 64;
+
+// Graph files are a few kilobytes; far larger is not a graph.
+constexpr uint64_t kMaxGraphFileBytes = 64ull << 20;
 
 // nlohmann's what() starts with "[json.exception.parse_error.101] parse error at line 2,
 // column 6: "; the place is reported separately, so keep only the explanation.
@@ -338,13 +343,9 @@ ReadResult read_graph_file(const std::string& path, const Registry& registry) {
     result.problems.push_back(std::move(problem));
     return result;
   };
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) return unreadable("it is a directory");
-  errno = 0;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return unreadable(errno != 0 ? std::strerror(errno) : "it cannot be opened");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return unreadable("reading failed");
+  // Only a regular file: a FIFO or /dev/zero would block or grow without end.
+  std::string text, why;
+  if (!files::read_regular_file(path, kMaxGraphFileBytes, &text, &why)) return unreadable(why);
   return read_graph_text(text, registry, path);
 }
 

@@ -90,6 +90,15 @@ bool HostServices::valid_size(CallState* call, int32_t width, int32_t height) {
   return true;
 }
 
+// An unknown format would get an all-zero texture of some default kind: refuse it by name.
+bool HostServices::valid_format(CallState* call, const char* function, uint32_t format) {
+  if (format >= AQ_FORMAT_RGBA16F && format <= AQ_FORMAT_R32UI) return true;
+  fail_call(*call, std::string(function) + ": unknown image format " + std::to_string(format) +
+                       " (aq_format in plugin.h: 1 RGBA16F, 2 RGBA32F, 3 R32F, 4 DEPTH32F, "
+                       "5 R32UI; use ctx.working_format for the graph's precision)");
+  return false;
+}
+
 int HostServices::output_image(void* data, uint32_t index, int32_t width, int32_t height,
                                uint32_t format, aq_image* out) {
   auto* call = static_cast<CallState*>(data);
@@ -98,6 +107,7 @@ int HostServices::output_image(void* data, uint32_t index, int32_t width, int32_
     fail_call(*call, "output_image: no image output with index " + std::to_string(index));
     return AQ_ERROR;
   }
+  if (!valid_format(call, "output_image", format)) return AQ_ERROR;
   if (!valid_size(call, width, height)) return AQ_ERROR;
   state.images[index] = call->host->pool_.acquire(width, height, format);
   *out = state.images[index]->image;
@@ -130,6 +140,7 @@ int HostServices::output_scene(void* data, uint32_t index, const aq_scene* scene
 int HostServices::scratch_image(void* data, int32_t width, int32_t height, uint32_t format,
                                 aq_image* out) {
   auto* call = static_cast<CallState*>(data);
+  if (!valid_format(call, "scratch_image", format)) return AQ_ERROR;
   if (!valid_size(call, width, height)) return AQ_ERROR;
   call->scratch.push_back(call->host->pool_.acquire(width, height, format));
   *out = call->scratch.back()->image;

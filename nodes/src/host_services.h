@@ -70,6 +70,7 @@ class HostServices {
   static void log(void* data, int level, const char* message);
   static uint32_t program(void* data, const aq_shader_source* vertex,
                           const aq_shader_source* fragment);
+  static bool valid_format(CallState* call, const char* function, uint32_t format);
   static bool valid_size(CallState* call, int32_t width, int32_t height);
   static int output_image(void* data, uint32_t index, int32_t width, int32_t height,
                           uint32_t format, aq_image* out);

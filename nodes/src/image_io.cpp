@@ -5,26 +5,35 @@
 // a failed write (disk full, unwritable directory) never leaves a partial or truncated image.
 #include <aquarelle/core/image_io.h>
 
+#include <aquarelle/regular_file.hpp>
+
 #include "color_config_data.h"
+#include "image_limits.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <string_view>
 #include <system_error>
+#include <tuple>
 
 namespace aq {
 namespace {
 
 constexpr int kMaxChannels = 64;
+
+// Temporaries are hidden (.NAME.tmp-PID): they never match NAME*.exr or *.exr globs.
+constexpr const char* kTemporaryMark = ".tmp-";
 
 std::string lowercase_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -97,22 +106,48 @@ std::string colorspace_from_spec(const OIIO::ImageSpec& spec, const ColorConfig&
   return config.has_colorspace("sRGB") ? "sRGB" : config.working_space();
 }
 
+// libpng prints its own "libpng warning/error: ..." line on stderr before OIIO hands us the
+// same reason; our message says it with the path, so the library's line is dropped.
+class SilencedStderr {
+ public:
+  explicit SilencedStderr(bool active) {
+    if (!active) return;
+    std::fflush(stderr);
+    saved_ = ::dup(STDERR_FILENO);
+    const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (saved_ < 0 || null < 0 || ::dup2(null, STDERR_FILENO) < 0) restore();
+    if (null >= 0) ::close(null);
+  }
+  ~SilencedStderr() { restore(); }
+  SilencedStderr(const SilencedStderr&) = delete;
+  SilencedStderr& operator=(const SilencedStderr&) = delete;
+
+ private:
+  void restore() {
+    if (saved_ < 0) return;
+    std::fflush(stderr);
+    ::dup2(saved_, STDERR_FILENO);
+    ::close(saved_);
+    saved_ = -1;
+  }
+  int saved_ = -1;
+};
+
 Result<std::unique_ptr<OIIO::ImageInput>> open_input(const std::string& path,
                                                      const OIIO::ImageSpec* hints) {
-  std::error_code ec;
-  auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) {
-    return make_error("cannot read image " + path +
-                      ": no such file (check the path; relative paths are relative to the "
-                      "current directory)");
+  // Only regular files: OIIO's format probe spins on /dev/zero and blocks on a FIFO.
+  if (std::string why = files::regular_file_problem(path); !why.empty()) {
+    std::string hint =
+        " (check the path; a relative path in a graph is relative to the graph "
+        "file's folder)";
+    if (why.find("regular files") != std::string::npos) hint = "; give the path of an image file";
+    return make_error("cannot read image " + path + ": " + why + hint);
   }
-  if (std::filesystem::is_directory(status)) {
-    return make_error("cannot read image " + path + ": it is a directory, not an image file");
-  }
-  if (std::filesystem::is_regular_file(status) && std::filesystem::file_size(path, ec) == 0) {
+  if (files::regular_file_size(path) == 0) {
     return make_error("cannot read image " + path +
                       ": the file is empty (0 bytes); re-export or re-download it");
   }
+  SilencedStderr quiet(lowercase_extension(path) == "png");
   auto input = OIIO::ImageInput::open(path, hints);
   if (!input) {
     return make_error("cannot read image " + path + ": " + trim(oiio_error()) +
@@ -122,16 +157,37 @@ Result<std::unique_ptr<OIIO::ImageInput>> open_input(const std::string& path,
   return input;
 }
 
+// The picture a file shows is its display window (EXR's may differ from the data window it
+// stores); other formats give the same rectangle for both.
+struct Window {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
+Window display_window(const OIIO::ImageSpec& spec) {
+  if (spec.full_width > 0 && spec.full_height > 0) {
+    return {spec.full_x, spec.full_y, spec.full_width, spec.full_height};
+  }
+  return {spec.x, spec.y, spec.width, spec.height};
+}
+
+std::string size_text(int w, int h) {
+  return std::to_string(w) + "x" + std::to_string(h);
+}
+
 Status check_spec(const std::string& path, const OIIO::ImageSpec& spec) {
-  if (spec.width <= 0 || spec.height <= 0) {
+  const Window shown = display_window(spec);
+  if (spec.width <= 0 || spec.height <= 0 || shown.width <= 0 || shown.height <= 0) {
     return make_error("cannot read image " + path + ": it has zero size (" +
-                      std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                      size_text(spec.width, spec.height) +
                       "); re-export it with at least one pixel");
   }
-  if (spec.width > kMaxImageSide || spec.height > kMaxImageSide) {
-    return make_error("cannot read image " + path + ": " + std::to_string(spec.width) + "x" +
-                      std::to_string(spec.height) + " is larger than " +
-                      std::to_string(kMaxImageSide) + " pixels on a side; downscale it first");
+  for (const auto& [what, w, h] : {std::tuple{"size ", spec.width, spec.height},
+                                   std::tuple{"display window ", shown.width, shown.height}}) {
+    if (w > kMaxImageSide || h > kMaxImageSide) {
+      return make_error("cannot read image " + path + ": its " + what + size_text(w, h) +
+                        " is larger than " + std::to_string(kMaxImageSide) +
+                        " pixels on a side; downscale it first");
+    }
   }
   if (spec.depth > 1) {
     return make_error("cannot read image " + path + ": it is a volume (depth " +
@@ -141,7 +197,8 @@ Status check_spec(const std::string& path, const OIIO::ImageSpec& spec) {
     return make_error("cannot read image " + path + ": it has " + std::to_string(spec.nchannels) +
                       " channels; 1 to " + std::to_string(kMaxChannels) + " are supported");
   }
-  return Ok{};
+  return check_declared_size(path, lowercase_extension(path), files::regular_file_size(path),
+                             spec.width, spec.height, spec.nchannels, shown.width, shown.height);
 }
 
 }  // namespace
@@ -152,8 +209,40 @@ Result<std::string> file_colorspace(const std::string& path, const ColorConfig& 
   return colorspace_from_spec((*input)->spec(), config);
 }
 
+namespace {
+
+// CMYK(+alpha) TIFFs: OIIO converts plain 4-channel CMYK to RGB itself but hands over
+// CMYK+alpha as raw inks ("ink0".."ink4"); those are converted here, never shown as RGB.
+bool has_raw_inks(const OIIO::ImageSpec& spec) {
+  const bool separated = spec.get_int_attribute("tiff:PhotometricInterpretation", -1) == 5 ||
+                         spec.get_string_attribute("oiio:ColorSpace") == "color separated";
+  return separated && spec.nchannels >= 4 && spec.channelindex("R") < 0;
+}
+
+void inks_to_rgb(const float* src, int n, float* dst) {
+  const float k = 1.0f - src[3];
+  dst[0] = (1.0f - src[0]) * k;
+  dst[1] = (1.0f - src[1]) * k;
+  dst[2] = (1.0f - src[2]) * k;
+  dst[3] = n >= 5 ? src[4] : 1.0f;
+}
+
+// NaN and Inf never leave the reader (a blur would spread one NaN over the whole picture):
+// NaN -> 0, +-Inf -> +-65504 (the largest half, so it stays finite in half textures too).
+size_t replace_non_finite(std::vector<float>& values) {
+  size_t replaced = 0;
+  for (float& v : values) {
+    if (std::isfinite(v)) continue;
+    v = std::isnan(v) ? 0.0f : std::copysign(65504.0f, v);
+    ++replaced;
+  }
+  return replaced;
+}
+
+}  // namespace
+
 Result<ImageF> read_image(const std::string& path, const ColorConfig& config,
-                          const std::string& colorspace_override) {
+                          const std::string& colorspace_override, ImageReadNotes* notes) {
   // Ask for straight alpha as stored, so colour is linearised before alpha is associated.
   OIIO::ImageSpec hints;
   hints.attribute("oiio:UnassociatedAlpha", 1);
@@ -174,40 +263,57 @@ Result<ImageF> read_image(const std::string& path, const ColorConfig& config,
                       " has no such space (known: " + list + ")");
   }
 
+  // The data window, top row first as stored.
   const int w = spec.width, h = spec.height, n = spec.nchannels;
-  const size_t row_floats = static_cast<size_t>(w) * n;
-  std::vector<float> file_pixels(row_floats * h);
-  // A negative row stride starting at the last row stores the file's top row last: row 0 of
-  // the result is the bottom of the picture, as GL expects.
-  const auto row_bytes = static_cast<OIIO::stride_t>(row_floats * sizeof(float));
-  float* last_row = file_pixels.data() + row_floats * (h - 1);
-  if (!input->read_image(0, 0, 0, n, OIIO::TypeDesc::FLOAT, last_row, OIIO::AutoStride,
-                         -row_bytes)) {
-    std::string reason = trim(input->geterror());
-    if (reason.empty()) reason = trim(oiio_error());
-    return make_error("cannot read the pixels of image " + path + ": " + reason +
-                      " (the file is probably truncated or corrupt; re-export it)");
+  std::vector<float> file_pixels(static_cast<size_t>(w) * n * h);
+  {
+    SilencedStderr quiet(lowercase_extension(path) == "png");
+    if (!input->read_image(0, 0, 0, n, OIIO::TypeDesc::FLOAT, file_pixels.data())) {
+      std::string reason = trim(input->geterror());
+      if (reason.empty()) reason = trim(oiio_error());
+      return make_error("cannot read the pixels of image " + path + ": " + reason +
+                        " (the file is probably truncated or corrupt; re-export it)");
+    }
   }
   const bool straight_alpha = spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
   input->close();
+  const size_t non_finite = replace_non_finite(file_pixels);
+  if (notes != nullptr) notes->non_finite_values = non_finite;
 
+  // The display window is the picture; data outside it is dropped and display pixels the data
+  // window does not cover are transparent black (OpenEXR's convention). Row 0 of the result
+  // is the bottom of the picture, as GL expects.
+  const Window shown = display_window(spec);
+  const bool inks = has_raw_inks(spec);
   const ChannelMap map = map_channels(spec);
-  ImageF image(w, h, 4);
-  const size_t count = static_cast<size_t>(w) * h;
-  for (size_t i = 0; i < count; ++i) {
-    const float* src = file_pixels.data() + i * n;
-    float* dst = image.pixels.data() + i * 4;
-    dst[0] = src[map.red];
-    dst[1] = src[map.green];
-    dst[2] = src[map.blue];
-    dst[3] = map.alpha >= 0 ? src[map.alpha] : 1.0f;
+  const bool has_alpha = inks ? n >= 5 : map.alpha >= 0;
+  ImageF image(shown.width, shown.height, 4);
+  for (int row = 0; row < h; ++row) {
+    const int y_top = spec.y + row - shown.y;
+    if (y_top < 0 || y_top >= shown.height) continue;
+    const int y = shown.height - 1 - y_top;
+    for (int col = 0; col < w; ++col) {
+      const int x = spec.x + col - shown.x;
+      if (x < 0 || x >= shown.width) continue;
+      const float* src = file_pixels.data() + (static_cast<size_t>(row) * w + col) * n;
+      float* dst = &image.at(x, y, 0);
+      if (inks) {
+        inks_to_rgb(src, n, dst);
+        continue;
+      }
+      dst[0] = src[map.red];
+      dst[1] = src[map.green];
+      dst[2] = src[map.blue];
+      dst[3] = map.alpha >= 0 ? src[map.alpha] : 1.0f;
+    }
   }
   file_pixels = {};
 
   if (auto ok = config.to_working(image, colorspace); !ok) {
     return make_error("cannot read image " + path + ": " + ok.message());
   }
-  if (straight_alpha && map.alpha >= 0) {
+  const size_t count = static_cast<size_t>(shown.width) * shown.height;
+  if (straight_alpha && has_alpha) {
     for (size_t i = 0; i < count; ++i) {
       float* px = image.pixels.data() + i * 4;
       px[0] *= px[3];
@@ -215,6 +321,8 @@ Result<ImageF> read_image(const std::string& path, const ColorConfig& config,
       px[2] *= px[3];
     }
   }
+  // A colour transform of huge values can overflow again.
+  replace_non_finite(image.pixels);
   return image;
 }
 
@@ -257,9 +365,25 @@ Status write_to_special_file(const std::string& path, const std::vector<unsigned
   return status;
 }
 
-Status write_atomically(const std::string& path, const std::string& ext,
-                        const std::vector<unsigned char>& bytes) {
-  const std::string temp = path + ".tmp-" + std::to_string(::getpid()) + "." + ext;
+// The temporary being written, for remove_temporary_in_progress (a signal handler): a fixed
+// buffer, since a handler may not allocate.
+char g_temporary_in_progress[4096] = {};
+
+class TemporaryInProgress {
+ public:
+  explicit TemporaryInProgress(const std::string& path) {
+    if (path.size() < sizeof(g_temporary_in_progress)) {
+      std::memcpy(g_temporary_in_progress, path.c_str(), path.size() + 1);
+    }
+  }
+  ~TemporaryInProgress() { g_temporary_in_progress[0] = '\0'; }
+  TemporaryInProgress(const TemporaryInProgress&) = delete;
+  TemporaryInProgress& operator=(const TemporaryInProgress&) = delete;
+};
+
+Status write_atomically(const std::string& path, const std::vector<unsigned char>& bytes) {
+  const std::string temp = temporary_write_path(path, ::getpid());
+  TemporaryInProgress in_progress(temp);
   int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) {
     const int error = errno;
@@ -301,6 +425,53 @@ Result<OIIO::TypeDesc> pixel_type_for(const std::string& path, const std::string
 }
 
 }  // namespace
+
+void remove_temporary_in_progress() {
+  if (g_temporary_in_progress[0] != '\0') ::unlink(g_temporary_in_progress);
+}
+
+std::string temporary_write_path(const std::string& path, long pid) {
+  const std::filesystem::path target(path);
+  const std::string name = "." + target.filename().string() + kTemporaryMark + std::to_string(pid);
+  return (target.parent_path() / name).string();
+}
+
+int remove_stale_temporaries(const std::string& path) {
+  const std::filesystem::path target(path);
+  const std::string prefix = "." + target.filename().string() + kTemporaryMark;
+  std::filesystem::path dir = target.parent_path();
+  if (dir.empty()) dir = ".";
+  std::error_code ec;
+  int removed = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.empty() || digits.size() > 9 ||
+        digits.find_first_not_of("0123456789") != std::string::npos) {
+      continue;
+    }
+    // A writer that is still running keeps its temporary; one that died left it behind.
+    const long pid = std::stol(digits);
+    if (pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) == 0) continue;
+    if (std::filesystem::remove(entry.path(), ec)) ++removed;
+  }
+  return removed;
+}
+
+bool is_complete_image(const std::string& path) {
+  OIIO::ImageSpec hints;
+  auto input = open_input(path, &hints);
+  if (!input) return false;
+  const OIIO::ImageSpec spec = (*input)->spec();
+  if (!check_spec(path, spec)) return false;
+  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  SilencedStderr quiet(lowercase_extension(path) == "png");
+  const bool read =
+      (*input)->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+  (void)OIIO::geterror();
+  return read;
+}
 
 Status write_image(const std::string& path, const ImageF& image, const WriteOptions& options) {
   if (image.width <= 0 || image.height <= 0 || image.empty()) {
@@ -366,7 +537,7 @@ Status write_image(const std::string& path, const ImageF& image, const WriteOpti
       !std::filesystem::is_regular_file(target_status)) {
     return write_to_special_file(path, bytes);
   }
-  return write_atomically(path, ext, bytes);
+  return write_atomically(path, bytes);
 }
 
 }  // namespace aq

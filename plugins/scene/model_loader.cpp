@@ -2,6 +2,7 @@
 // per Assimp mesh, node transforms baked, triangulated, flat normals generated where the file
 // has none (smoothing happens later, like for procedural meshes), colours from the material's
 // base colour (glTF) or diffuse colour (OBJ's Kd), times vertex colours when present.
+#include "mesh_import.h"
 #include "presets.h"
 
 #include <assimp/material.h>
@@ -28,13 +29,13 @@ std::string load_model_file(const std::string& path, Preset* preset) {
   *preset = Preset{};
   if (path.empty()) return "no file given: set the `path` parameter to an OBJ or glTF file";
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_GenNormals |
-                aiProcess_SortByPType | aiProcess_FindInvalidData);
-  if (scene == nullptr || scene->mRootNode == nullptr) {
-    return "could not read '" + path + "': " + importer.GetErrorString() +
-           " (check the path; OBJ, glTF/GLB, FBX and PLY are supported)";
-  }
+  std::string error;  // mesh_import.h: regular files in the mesh's folder, checked headers
+  const aiScene* scene =
+      read_mesh_file(importer, path,
+                     aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_GenNormals |
+                         aiProcess_SortByPType | aiProcess_FindInvalidData,
+                     &error);
+  if (scene == nullptr) return error;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* in = scene->mMeshes[m];
     if ((in->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0 || in->mNumVertices == 0) continue;

@@ -18,6 +18,7 @@
 #include <aquarelle/core/result.h>
 #include <aquarelle/core/texture_pool.h>
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -58,7 +59,13 @@ struct EvalOptions {
 
 // Reads a texture of the current context back as float pixels (RGBA, or 1 channel for R32F,
 // depth and ids).
-Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format);
+// Reads in bands of rows of at most `max_bytes_per_read` bytes each (a GL read's size is a
+// GLsizei, so one read of a 16384x16384 RGBA float image would overflow it).
+inline constexpr int64_t kMaxReadbackBytes = int64_t{1} << 30;
+Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format,
+                            int64_t max_bytes_per_read = kMaxReadbackBytes);
+// Rows per band for a width and pixel size (at least 1).
+int readback_rows_per_band(int width, int bytes_per_pixel, int64_t max_bytes);
 
 class Evaluator {
  public:

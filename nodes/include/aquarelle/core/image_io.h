@@ -7,6 +7,7 @@
 #include <aquarelle/core/image.h>
 #include <aquarelle/core/result.h>
 
+#include <cstddef>
 #include <string>
 
 namespace aq {
@@ -21,8 +22,17 @@ inline constexpr int kMaxImageSide = 16384;
 // sRGB for integer files (PNG, JPEG, TIFF...). Alpha comes back associated (premultiplied) in
 // the working space: straight-alpha files (PNG...) are linearised first, then premultiplied.
 // Errors name the path and say how to fix.
+// Only regular files are read; declared sizes are checked against the file's size and the
+// memory budget (AQUARELLE_MEMORY_BUDGET_MB) before pixels are allocated. The result has the
+// size of the display window (EXR data windows are placed in it). NaN and Inf are replaced
+// (NaN -> 0, Inf -> +-65504) and counted in `notes`, so the caller can warn. CMYK(+alpha)
+// TIFFs come back as RGB(A).
+struct ImageReadNotes {
+  size_t non_finite_values = 0;  // NaN/Inf values in the file, replaced
+};
 Result<ImageF> read_image(const std::string& path, const ColorConfig& config,
-                          const std::string& colorspace_override = "");
+                          const std::string& colorspace_override = "",
+                          ImageReadNotes* notes = nullptr);
 
 // The colour space read_image would assume for `path` without an override (opens the header).
 Result<std::string> file_colorspace(const std::string& path, const ColorConfig& config);
@@ -35,10 +45,24 @@ struct WriteOptions {
 // Writes `image` (row 0 at the bottom; 1, 3 or 4 channels). EXR/HDR keep linear data as given
 // (associated alpha); PNG/JPEG/TIFF expect display-referred pixels with straight alpha (the
 // output of DisplayTransform), which are clamped to [0,1], quantised and stored unchanged
-// (JPEG and HDR drop alpha). Atomic: the pixels go to
-// PATH.tmp-<pid>.<ext> first and are renamed over PATH; on any failure (disk full,
+// (JPEG and HDR drop alpha). Atomic: the pixels go to DIR/.NAME.tmp-<pid> first (hidden, so
+// it matches no NAME*.exr glob) and are renamed over PATH; on any failure (disk full,
 // unwritable directory) nothing is left behind and the error names the path and the reason.
 Status write_image(const std::string& path, const ImageF& image, const WriteOptions& options = {});
+
+// The temporary write_image uses for `path` in process `pid`.
+std::string temporary_write_path(const std::string& path, long pid);
+
+// Removes the temporary a write_image in progress is writing, if any. Async-signal-safe: for a
+// handler that ends the process in the middle of a write.
+void remove_temporary_in_progress();
+
+// Removes temporaries of `path` left by writers that died (SIGKILL, power loss); a running
+// writer's is kept. Returns how many were removed.
+int remove_stale_temporaries(const std::string& path);
+
+// Whether `path` is a regular image file whose pixels all read (false when truncated).
+bool is_complete_image(const std::string& path);
 
 // png, jpg, jpeg, tif, tiff -> true; exr, hdr and anything else -> false (case-insensitive).
 bool is_display_referred_format(const std::string& path);

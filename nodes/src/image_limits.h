@@ -1,0 +1,24 @@
+// What an image header may declare before any pixel memory is allocated: a tiny file cannot
+// hold a huge picture (deflate compresses at most ~1032:1, so a PNG's declared size bounds
+// its file size from below), and the decoded pixels must fit the memory budget
+// (files::memory_budget_bytes, AQUARELLE_MEMORY_BUDGET_MB). Pure: the fuzzer and the tests
+// call it on made-up headers.
+#pragma once
+
+#include <aquarelle/core/result.h>
+
+#include <cstdint>
+#include <string>
+
+namespace aq {
+
+// Bytes that decoding a w x h image of n channels (data window) shown in a full_w x full_h
+// display window allocates while reading: the file's float pixels plus the RGBA float result.
+uint64_t decoded_image_bytes(int w, int h, int n, int full_w, int full_h);
+
+// Refuses a header whose declared size does not fit `file_bytes` (by the format's best
+// compression ratio, where one is known) or the memory budget. `ext` is lower case.
+Status check_declared_size(const std::string& path, const std::string& ext, uint64_t file_bytes,
+                           int w, int h, int n, int full_w, int full_h);
+
+}  // namespace aq

@@ -1,0 +1,435 @@
+#include "mesh_file_checks.h"
+
+#include <aquarelle/regular_file.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+namespace scene {
+
+namespace {
+
+// Assimp keeps well under this per declared vertex or face of a PLY element.
+constexpr uint64_t kBytesPerElementInMemory = 64;
+
+std::string mib(uint64_t bytes) {
+  return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
+}
+
+// a * b, saturating at UINT64_MAX.
+uint64_t times(uint64_t a, uint64_t b) {
+  if (a != 0 && b > UINT64_MAX / a) return UINT64_MAX;
+  return a * b;
+}
+uint64_t plus(uint64_t a, uint64_t b) {
+  return b > UINT64_MAX - a ? UINT64_MAX : a + b;
+}
+
+// ---- PLY ------------------------------------------------------------------------------
+
+int ply_type_size(std::string_view type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" ||
+      type == "float32") {
+    return 4;
+  }
+  if (type == "double" || type == "float64") return 8;
+  return 0;
+}
+
+std::vector<std::string_view> words(std::string_view line) {
+  std::vector<std::string_view> out;
+  size_t at = 0;
+  while (at < line.size()) {
+    while (at < line.size() && (line[at] == ' ' || line[at] == '\t' || line[at] == '\r')) ++at;
+    size_t end = at;
+    while (end < line.size() && line[end] != ' ' && line[end] != '\t' && line[end] != '\r') ++end;
+    if (end > at) out.push_back(line.substr(at, end - at));
+    at = end;
+  }
+  return out;
+}
+
+std::optional<uint64_t> parse_count(std::string_view text) {
+  if (text.empty() || text.size() > 19) return std::nullopt;
+  uint64_t value = 0;
+  for (char c : text) {
+    if (c < '0' || c > '9') return std::nullopt;
+    value = value * 10 + static_cast<uint64_t>(c - '0');
+  }
+  return value;
+}
+
+// ---- glTF -----------------------------------------------------------------------------
+
+// Deepest nesting of JSON arrays and objects, strings skipped; no recursion.
+int json_nesting(std::string_view text) {
+  int depth = 0, deepest = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '{' || c == '[') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == '}' || c == ']') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+std::optional<uint64_t> unsigned_at(const nlohmann::json& object, const char* key) {
+  if (!object.is_object()) return std::nullopt;
+  auto it = object.find(key);
+  if (it == object.end() || !it->is_number_unsigned()) {
+    if (it != object.end() && it->is_number_integer() && it->get<int64_t>() >= 0) {
+      return static_cast<uint64_t>(it->get<int64_t>());
+    }
+    return std::nullopt;
+  }
+  return it->get<uint64_t>();
+}
+
+const nlohmann::json* array_at(const nlohmann::json& root, const char* key) {
+  auto it = root.find(key);
+  if (it == root.end() || !it->is_array()) return nullptr;
+  return &*it;
+}
+
+int components_of(const std::string& type) {
+  if (type == "SCALAR") return 1;
+  if (type == "VEC2") return 2;
+  if (type == "VEC3") return 3;
+  if (type == "VEC4" || type == "MAT2") return 4;
+  if (type == "MAT3") return 9;
+  if (type == "MAT4") return 16;
+  return 0;
+}
+
+int component_bytes(uint64_t type) {
+  switch (type) {
+    case 5120:
+    case 5121:
+      return 1;
+    case 5122:
+    case 5123:
+      return 2;
+    case 5125:
+    case 5126:
+      return 4;
+    default:
+      return 0;
+  }
+}
+
+// Node hierarchy: every index in range, no node with two parents or on a cycle, depth
+// bounded. Iterative, so a hostile depth cannot overflow this check's own stack.
+std::string check_hierarchy(const nlohmann::json& root) {
+  const nlohmann::json* nodes = array_at(root, "nodes");
+  if (nodes == nullptr) return "";
+  const size_t count = nodes->size();
+  std::vector<int64_t> parent(count, -1);
+  for (size_t i = 0; i < count; ++i) {
+    const nlohmann::json& node = (*nodes)[i];
+    if (!node.is_object()) continue;
+    auto children = node.find("children");
+    if (children == node.end() || !children->is_array()) continue;
+    for (const auto& child : *children) {
+      if (!child.is_number_integer() || child.get<int64_t>() < 0 ||
+          static_cast<uint64_t>(child.get<int64_t>()) >= count) {
+        return "node " + std::to_string(i) + " has a child index out of range";
+      }
+      const auto c = static_cast<size_t>(child.get<int64_t>());
+      if (parent[c] != -1 || c == i) {
+        return "node " + std::to_string(c) + " has two parents or is its own child";
+      }
+      parent[c] = static_cast<int64_t>(i);
+    }
+  }
+  // Depth of each node by walking up; cycles show up as walks longer than the node count.
+  std::vector<int> depth(count, 0);
+  for (size_t i = 0; i < count; ++i) {
+    if (depth[i] != 0) continue;
+    std::vector<size_t> chain;
+    int64_t at = static_cast<int64_t>(i);
+    while (at != -1 && depth[static_cast<size_t>(at)] == 0) {
+      chain.push_back(static_cast<size_t>(at));
+      if (chain.size() > count) return "the node hierarchy has a cycle";
+      at = parent[static_cast<size_t>(at)];
+    }
+    int d = at == -1 ? 0 : depth[static_cast<size_t>(at)];
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+      depth[*it] = ++d;
+      if (d > kMaxMeshHierarchyDepth) {
+        return "its node hierarchy is more than " + std::to_string(kMaxMeshHierarchyDepth) +
+               " levels deep (flatten it in your modelling tool)";
+      }
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+bool is_inside_folder(const std::string& folder_canonical, const std::string& canonical) {
+  if (folder_canonical.empty()) return false;
+  std::string folder = folder_canonical;
+  if (folder.back() != '/') folder += '/';
+  return canonical.size() > folder.size() && canonical.compare(0, folder.size(), folder) == 0;
+}
+
+std::string reference_problem(const std::string& folder, const std::string& reference) {
+  if (reference.find('\0') != std::string::npos) {
+    return "it refers to a file name with a NUL character";
+  }
+  std::error_code ec;
+  const std::filesystem::path base = std::filesystem::weakly_canonical(folder, ec);
+  if (ec) return "its folder " + folder + " cannot be resolved";
+  std::filesystem::path target = reference;
+  if (target.is_relative()) target = base / target;
+  const std::filesystem::path resolved = std::filesystem::weakly_canonical(target, ec);
+  if (ec || !is_inside_folder(base.string(), resolved.string())) {
+    return "it refers to '" + reference + "', which lies outside the mesh's folder " +
+           base.string() + " (files a mesh refers to must be inside its folder)";
+  }
+  if (std::string why = aq::files::regular_file_problem(resolved.string()); !why.empty()) {
+    return "it refers to '" + reference + "': " + why;
+  }
+  return "";
+}
+
+std::string check_ply_header(std::string_view bytes, uint64_t file_size, uint64_t budget) {
+  const size_t end = bytes.find("end_header");
+  if (bytes.substr(0, 3) != "ply") return "it does not start with 'ply'";
+  if (end == std::string_view::npos) return "its header has no end_header line";
+  size_t body = bytes.find('\n', end);
+  body = body == std::string_view::npos ? bytes.size() : body + 1;
+  uint64_t data_bytes = file_size > body ? file_size - body : 0;
+
+  bool ascii = true;
+  struct Element {
+    std::string name;
+    uint64_t count = 0;
+    uint64_t least_bytes = 0;  // per element: fixed properties, plus list counts
+  };
+  std::vector<Element> elements;
+  std::string_view header = bytes.substr(0, end);
+  size_t at = 0;
+  while (at < header.size()) {
+    size_t eol = header.find('\n', at);
+    if (eol == std::string_view::npos) eol = header.size();
+    const auto w = words(header.substr(at, eol - at));
+    at = eol + 1;
+    if (w.empty()) continue;
+    if (w[0] == "format" && w.size() >= 2) {
+      ascii = w[1] == "ascii";
+    } else if (w[0] == "element" && w.size() >= 3) {
+      auto count = parse_count(w[2]);
+      if (!count) return "its element '" + std::string(w[1]) + "' has no valid count";
+      elements.push_back({std::string(w[1]), *count, 0});
+    } else if (w[0] == "property" && !elements.empty()) {
+      uint64_t least = 0;
+      if (w.size() >= 5 && w[1] == "list") {
+        least = ascii ? 2 : static_cast<uint64_t>(std::max(ply_type_size(w[2]), 1));
+      } else if (w.size() >= 3) {
+        least = ascii ? 2 : static_cast<uint64_t>(std::max(ply_type_size(w[1]), 1));
+      }
+      elements.back().least_bytes += least;
+    }
+  }
+  if (ascii) ++data_bytes;  // the last value may go without its line break
+  uint64_t least_total = 0, memory = 0;
+  for (const Element& e : elements) {
+    // An ASCII element takes at least a line even without properties.
+    const uint64_t per = std::max<uint64_t>(e.least_bytes, ascii ? 1 : 0);
+    least_total = plus(least_total, times(e.count, per));
+    memory = plus(memory, times(e.count, kBytesPerElementInMemory));
+    if (times(e.count, per) > data_bytes) {
+      return "its header declares " + std::to_string(e.count) + " " + e.name +
+             " elements, which need at least " + std::to_string(times(e.count, per)) +
+             " bytes, but only " + std::to_string(data_bytes) +
+             " bytes follow the header (the file is truncated or its header is forged)";
+    }
+  }
+  if (least_total > data_bytes) {
+    return "its header declares elements needing at least " + std::to_string(least_total) +
+           " bytes, but only " + std::to_string(data_bytes) + " bytes follow the header";
+  }
+  if (memory > budget) {
+    return "reading its declared elements would need about " + mib(memory) +
+           ", more than the memory budget of " + mib(budget) +
+           " (simplify the mesh, or raise AQUARELLE_MEMORY_BUDGET_MB)";
+  }
+  return "";
+}
+
+std::string check_gltf_json(std::string_view json, const std::string& folder,
+                            int64_t bin_chunk_bytes, uint64_t budget) {
+  if (json_nesting(json) > kMaxGltfJsonNesting) {
+    return "its JSON is nested more than " + std::to_string(kMaxGltfJsonNesting) + " levels deep";
+  }
+  const nlohmann::json root = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
+  if (root.is_discarded() || !root.is_object()) return "its JSON cannot be parsed";
+  if (std::string problem = check_hierarchy(root); !problem.empty()) return problem;
+
+  std::vector<uint64_t> buffer_bytes;
+  if (const nlohmann::json* buffers = array_at(root, "buffers")) {
+    for (size_t i = 0; i < buffers->size(); ++i) {
+      const nlohmann::json& buffer = (*buffers)[i];
+      const std::string name = "buffer " + std::to_string(i);
+      auto length = unsigned_at(buffer, "byteLength");
+      if (!length) return name + " has no valid byteLength";
+      if (*length > budget) {
+        return name + " declares " + mib(*length) + ", more than the memory budget of " +
+               mib(budget) + " (raise AQUARELLE_MEMORY_BUDGET_MB if the file is genuine)";
+      }
+      auto uri = buffer.is_object() ? buffer.find("uri") : buffer.end();
+      if (!buffer.is_object() || uri == buffer.end()) {
+        if (bin_chunk_bytes < 0 || static_cast<uint64_t>(bin_chunk_bytes) < *length) {
+          return name + " declares " + std::to_string(*length) +
+                 " bytes but the file's binary chunk holds " +
+                 std::to_string(std::max<int64_t>(bin_chunk_bytes, 0));
+        }
+      } else if (!uri->is_string()) {
+        return name + " has a uri that is not a string";
+      } else {
+        const std::string text = uri->get<std::string>();
+        if (text.rfind("data:", 0) == 0) {
+          const size_t comma = text.find(',');
+          const uint64_t payload = comma == std::string::npos ? 0 : text.size() - comma - 1;
+          if (payload / 4 * 3 + 3 < *length) {
+            return name + " declares " + std::to_string(*length) +
+                   " bytes but its data URI holds fewer";
+          }
+        } else if (!folder.empty()) {
+          if (std::string why = reference_problem(folder, text); !why.empty()) {
+            return name + ": " + why;
+          }
+          std::filesystem::path file = text;
+          if (file.is_relative()) file = std::filesystem::path(folder) / file;
+          const uint64_t size = aq::files::regular_file_size(file.string());
+          if (size < *length) {
+            return name + " declares " + std::to_string(*length) + " bytes but '" + text +
+                   "' holds " + std::to_string(size);
+          }
+        }
+      }
+      buffer_bytes.push_back(*length);
+    }
+  }
+  std::vector<uint64_t> view_bytes;
+  if (const nlohmann::json* views = array_at(root, "bufferViews")) {
+    for (size_t i = 0; i < views->size(); ++i) {
+      const nlohmann::json& view = (*views)[i];
+      const std::string name = "bufferView " + std::to_string(i);
+      auto buffer = unsigned_at(view, "buffer");
+      auto length = unsigned_at(view, "byteLength");
+      const uint64_t offset = unsigned_at(view, "byteOffset").value_or(0);
+      if (!buffer || *buffer >= buffer_bytes.size()) return name + " names no buffer";
+      if (!length || plus(offset, *length) > buffer_bytes[*buffer]) {
+        return name + " reaches past the end of buffer " + std::to_string(*buffer);
+      }
+      view_bytes.push_back(*length);
+    }
+  }
+  if (const nlohmann::json* accessors = array_at(root, "accessors")) {
+    for (size_t i = 0; i < accessors->size(); ++i) {
+      const nlohmann::json& accessor = (*accessors)[i];
+      const std::string name = "accessor " + std::to_string(i);
+      auto count = unsigned_at(accessor, "count");
+      auto component = unsigned_at(accessor, "componentType");
+      auto type = accessor.is_object() ? accessor.find("type") : accessor.end();
+      if (!count || !component || !accessor.is_object() || type == accessor.end() ||
+          !type->is_string()) {
+        return name + " lacks count, componentType or type";
+      }
+      const uint64_t element = static_cast<uint64_t>(component_bytes(*component)) *
+                               static_cast<uint64_t>(components_of(type->get<std::string>()));
+      if (element == 0) return name + " has an unknown componentType or type";
+      if (times(*count, std::max<uint64_t>(element, 16)) > budget) {
+        return name + " declares " + std::to_string(*count) +
+               " elements, more than the memory budget of " + mib(budget) + " allows";
+      }
+      auto view = unsigned_at(accessor, "bufferView");
+      if (!view) continue;  // all zeros (or sparse): no data to check against
+      if (*view >= view_bytes.size()) return name + " names no bufferView";
+      const uint64_t offset = unsigned_at(accessor, "byteOffset").value_or(0);
+      if (*count > 0 && plus(offset, times(*count, element)) > plus(view_bytes[*view], element)) {
+        // Interleaved strides make the exact end smaller; count x element bounds it below.
+        if (plus(offset, times(*count - 1, element)) > view_bytes[*view]) {
+          return name + " declares " + std::to_string(*count) + " elements, more than bufferView " +
+                 std::to_string(*view) + " holds";
+        }
+      }
+    }
+  }
+  if (const nlohmann::json* images = array_at(root, "images"); images && !folder.empty()) {
+    for (size_t i = 0; i < images->size(); ++i) {
+      const nlohmann::json& image = (*images)[i];
+      if (!image.is_object()) continue;
+      auto uri = image.find("uri");
+      if (uri == image.end() || !uri->is_string()) continue;
+      const std::string text = uri->get<std::string>();
+      if (text.rfind("data:", 0) == 0) continue;
+      if (std::string why = reference_problem(folder, text); !why.empty()) {
+        return "image " + std::to_string(i) + ": " + why;
+      }
+    }
+  }
+  return "";
+}
+
+std::string check_glb(std::string_view bytes, const std::string& folder, uint64_t budget) {
+  auto u32 = [&](size_t at) {
+    uint32_t value = 0;
+    std::memcpy(&value, bytes.data() + at, 4);
+    return value;  // GLB is little-endian, as is every machine this builds on
+  };
+  if (bytes.size() < 12 || bytes.substr(0, 4) != "glTF") return "it has no GLB header";
+  const uint32_t version = u32(4);
+  const uint32_t length = u32(8);
+  if (length > bytes.size()) {
+    return "its header declares " + std::to_string(length) + " bytes but the file has " +
+           std::to_string(bytes.size()) + " (truncated or forged)";
+  }
+  if (version != 2) return "";  // glTF 1 binary: Assimp's own checks
+  std::string_view json;
+  int64_t bin = -1;
+  size_t at = 12;
+  while (at + 8 <= length) {
+    const uint32_t chunk = u32(at);
+    const uint32_t type = u32(at + 4);
+    if (chunk > length - at - 8) {
+      return "a chunk at byte " + std::to_string(at) + " declares " + std::to_string(chunk) +
+             " bytes but only " + std::to_string(length - at - 8) + " remain (truncated or forged)";
+    }
+    if (type == 0x4E4F534Au && json.empty()) json = bytes.substr(at + 8, chunk);  // "JSON"
+    if (type == 0x004E4942u && bin < 0) bin = chunk;                              // "BIN\0"
+    at += 8 + static_cast<size_t>(chunk);
+  }
+  if (json.empty()) return "it has no JSON chunk";
+  return check_gltf_json(json, folder, bin, budget);
+}
+
+std::string check_mesh_file_bytes(const std::string& ext, std::string_view bytes,
+                                  uint64_t file_size, const std::string& folder, uint64_t budget) {
+  if (ext == "ply") return check_ply_header(bytes, file_size, budget);
+  if (ext == "gltf") return check_gltf_json(bytes, folder, -1, budget);
+  if (ext == "glb") return check_glb(bytes, folder, budget);
+  return "";
+}
+
+}  // namespace scene

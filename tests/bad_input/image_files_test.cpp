@@ -1,0 +1,215 @@
+// Hostile and unusual image files (issue 17, items 2, 8 and 10): a 1 KB PNG whose header
+// says 16384x16384 (4.4 GB before failing), the memory budget, NaN and Inf that a blur would
+// spread over the whole picture, CMYK+alpha TIFFs (inks were used as RGB), an EXR whose data
+// window is offset in its display window (came out as a bare 10x10 image), a path with a NUL
+// character (the part before it was read), and messages for missing files, symlink loops
+// and names that are too long.
+#include <aquarelle/core/color.h>
+#include <aquarelle/core/image_io.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+#include "bad_input/bad_input_support.h"
+
+namespace aq::test::bad_input {
+namespace {
+
+bool mentions(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+const ColorConfig& config() {
+  static Result<ColorConfig> loaded = ColorConfig::load();
+  EXPECT_TRUE(loaded.ok()) << loaded.message();
+  return *loaded;
+}
+
+uint32_t crc32(const std::string& bytes) {
+  uint32_t crc = 0xFFFFFFFFu;
+  for (unsigned char byte : bytes) {
+    crc ^= byte;
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+std::string big_endian(uint32_t v) {
+  return {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+          static_cast<char>(v)};
+}
+
+std::string png_chunk(const std::string& type, const std::string& data) {
+  return big_endian(static_cast<uint32_t>(data.size())) + type + data +
+         big_endian(crc32(type + data));
+}
+
+// Item 2.
+TEST(ImageDeclaredSizes, KilobytePngDeclaring16384SquaredIsRefusedBeforeAllocating) {
+  const fs::path dir = scratch_dir("bad_input_png_huge");
+  std::string ihdr = big_endian(16384) + big_endian(16384) + std::string("\x08\x06\x00\x00\x00", 5);
+  std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + png_chunk("IHDR", ihdr) +
+                    png_chunk("IDAT", std::string(900, '\0')) + png_chunk("IEND", "");
+  write_bytes(dir / "huge.png", png);
+  ASSERT_LT(fs::file_size(dir / "huge.png"), 1100u);
+  auto image = read_image((dir / "huge.png").string(), config());
+  ASSERT_FALSE(image.ok());
+  EXPECT_TRUE(mentions(image.message(), "huge.png")) << image.message();
+  EXPECT_TRUE(mentions(image.message(), "16384x16384")) << image.message();
+  EXPECT_TRUE(mentions(image.message(), "cannot be stored")) << image.message();
+}
+
+TEST(ImageDeclaredSizes, MemoryBudgetRefusesLargeDecodes) {
+  const fs::path dir = scratch_dir("bad_input_budget");
+  ASSERT_TRUE(write_image((dir / "big.exr").string(), constant_image(512, 512, 0.5f, 0.5f, 0.5f),
+                          WriteOptions{false, 8})
+                  .ok());
+  ::setenv("AQUARELLE_MEMORY_BUDGET_MB", "1", 1);
+  auto refused = read_image((dir / "big.exr").string(), config());
+  ::unsetenv("AQUARELLE_MEMORY_BUDGET_MB");
+  ASSERT_FALSE(refused.ok());
+  EXPECT_TRUE(mentions(refused.message(), "memory budget")) << refused.message();
+  EXPECT_TRUE(mentions(refused.message(), "AQUARELLE_MEMORY_BUDGET_MB")) << refused.message();
+  auto read = read_image((dir / "big.exr").string(), config());
+  ASSERT_TRUE(read.ok()) << read.message();
+}
+
+// Item 8: one NaN and one Inf in the file: replaced on read, counted, and a blur of it stays
+// finite everywhere (before: every pixel NaN).
+TEST(ImageValues, NanAndInfAreReplacedOnReadAndDoNotSpread) {
+  const fs::path dir = scratch_dir("bad_input_nan");
+  ImageF input = constant_image(32, 32, 0.25f, 0.5f, 0.75f);
+  input.at(10, 12, 0) = std::numeric_limits<float>::quiet_NaN();
+  input.at(20, 5, 1) = std::numeric_limits<float>::infinity();
+  const std::string path = (dir / "nan.exr").string();
+  ASSERT_TRUE(write_image(path, input, WriteOptions{true, 8}).ok());
+  ImageReadNotes notes;
+  auto read = read_image(path, config(), "", &notes);
+  ASSERT_TRUE(read.ok()) << read.message();
+  EXPECT_EQ(notes.non_finite_values, 2u);
+  EXPECT_TRUE(all_finite(*read));
+  EXPECT_EQ(read->at(10, 12, 0), 0.0f);
+  EXPECT_FLOAT_EQ(read->at(0, 0, 2), 0.75f);
+
+  nlohmann::json graph = {
+      {"aquarelle", 1},
+      {"settings", {{"width", 32}, {"height", 32}, {"frames", {1, 1}}, {"precision", "float"}}},
+      {"nodes",
+       {{"source", {{"type", "read"}, {"params", {{"path", path}}}}},
+        {"blur",
+         {{"type", "blur"},
+          {"params", {{"sigma", 3.0}}},
+          {"inputs", {{"image", "source.image"}}}}}}},
+      {"output", "blur.image"}};
+  auto blurred = render_graph(graph.dump());
+  ASSERT_TRUE(blurred.ok()) << blurred.message();
+  EXPECT_TRUE(all_finite(*blurred));
+  EXPECT_NEAR(blurred->at(0, 31, 2), 0.75, 1e-3) << "far from the replaced pixels";
+}
+
+double srgb_to_linear(double v) {
+  return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+}
+
+TEST(ImageValues, CmykAlphaTiffIsConvertedToRgb) {
+  const fs::path dir = scratch_dir("bad_input_cmyka");
+  const std::string path = (dir / "cmyka.tif").string();
+  auto made = run_command(
+      "oiiotool --pattern constant:color=0.2,0.4,0.6,0.1,1.0 4x4 5 "
+      "--chnames C,M,Y,K,A --attrib tiff:ColorSpace CMYK -d uint8 -o " +
+      path);
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  auto read = read_image(path, config());
+  ASSERT_TRUE(read.ok()) << read.message();
+  // Quantised to 8 bits: C 51, M 102, Y 153, K 26 (of 255); RGB = (1 - ink)(1 - K), sRGB.
+  const double k = 1.0 - 26.0 / 255.0;
+  const double expected[3] = {srgb_to_linear((1.0 - 51.0 / 255.0) * k),
+                              srgb_to_linear((1.0 - 102.0 / 255.0) * k),
+                              srgb_to_linear((1.0 - 153.0 / 255.0) * k)};
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(read->at(1, 1, c), expected[c], 2e-3) << c;
+  EXPECT_NEAR(read->at(1, 1, 3), 1.0, 1e-6);
+}
+
+TEST(ImageValues, ExrDataWindowIsPlacedInItsDisplayWindow) {
+  const fs::path dir = scratch_dir("bad_input_datawindow");
+  const std::string path = (dir / "window.exr").string();
+  auto made = run_command(
+      "oiiotool --pattern constant:color=1,0.5,0.25,1 10x10 4 "
+      "--origin +20+30 --fullsize 64x64+0+0 -d half -o " +
+      path);
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  auto read = read_image(path, config());
+  ASSERT_TRUE(read.ok()) << read.message();
+  ASSERT_EQ(read->width, 64);
+  ASSERT_EQ(read->height, 64);
+  // Display pixel (x 25, y 35 from the top) is inside the data window; row 0 is the bottom.
+  EXPECT_FLOAT_EQ(read->at(25, 63 - 35, 0), 1.0f);
+  EXPECT_FLOAT_EQ(read->at(25, 63 - 35, 1), 0.5f);
+  EXPECT_FLOAT_EQ(read->at(25, 63 - 35, 3), 1.0f);
+  EXPECT_FLOAT_EQ(read->at(20, 63 - 30, 3), 1.0f) << "the data window's first pixel";
+  EXPECT_FLOAT_EQ(read->at(19, 63 - 30, 3), 0.0f) << "left of the data window";
+  EXPECT_FLOAT_EQ(read->at(0, 0, 3), 0.0f);
+  EXPECT_FLOAT_EQ(read->at(30, 63 - 40, 3), 0.0f) << "past the data window";
+}
+
+TEST(ImageValues, PathWithANulCharacterIsRefused) {
+  const fs::path dir = scratch_dir("bad_input_nul");
+  ASSERT_TRUE(write_image((dir / "in.exr").string(), constant_image(4, 4, 1, 1, 1)).ok());
+  nlohmann::json graph = {
+      {"aquarelle", 1},
+      {"settings", {{"width", 4}, {"height", 4}, {"frames", {1, 1}}}},
+      {"nodes",
+       {{"source",
+         {{"type", "read"},
+          {"params", {{"path", (dir / "in.exr").string() + std::string("\0x", 2)}}}}}}},
+      {"output", "source.image"}};
+  auto image = render_graph(graph.dump());
+  ASSERT_FALSE(image.ok()) << "the part before the NUL was read";
+  EXPECT_TRUE(mentions(image.message(), "NUL")) << image.message();
+  EXPECT_TRUE(mentions(image.message(), "'source'")) << image.message();
+  EXPECT_TRUE(mentions(image.message(), "'path'")) << image.message();
+}
+
+// Item 10: the reason in words, and relative paths explained as the graph file's.
+TEST(ImageMessages, MissingLoopAndTooLongSayWhat) {
+  const fs::path dir = scratch_dir("bad_input_messages");
+  auto missing = read_image((dir / "missing.png").string(), config());
+  ASSERT_FALSE(missing.ok());
+  EXPECT_TRUE(mentions(missing.message(), "no such file")) << missing.message();
+  EXPECT_TRUE(mentions(missing.message(), "graph file's folder")) << missing.message();
+  EXPECT_FALSE(mentions(missing.message(), "current directory")) << missing.message();
+
+  fs::create_symlink(dir / "b.png", dir / "a.png");
+  fs::create_symlink(dir / "a.png", dir / "b.png");
+  auto loop = read_image((dir / "a.png").string(), config());
+  ASSERT_FALSE(loop.ok());
+  EXPECT_TRUE(mentions(loop.message(), "loop of symbolic links")) << loop.message();
+
+  auto too_long = read_image((dir / (std::string(300, 'n') + ".png")).string(), config());
+  ASSERT_FALSE(too_long.ok());
+  EXPECT_TRUE(mentions(too_long.message(), "name is too long")) << too_long.message();
+}
+
+TEST(ImageMessages, LibpngPrintsNoLineOfItsOwn) {
+  const fs::path dir = scratch_dir("bad_input_libpng");
+  const fs::path png = dir / "broken.png";
+  ASSERT_TRUE(write_image(png.string(), gradient_image(16, 16)).ok());
+  std::string bytes = file_bytes(png);
+  const size_t idat = bytes.find("IDAT");
+  ASSERT_NE(idat, std::string::npos);
+  bytes[idat + 6] = static_cast<char>(bytes[idat + 6] ^ 0x5A);  // breaks the chunk's CRC
+  write_bytes(png, bytes);
+  write_bytes(dir / "g.json", R"({"aquarelle": 1,
+  "settings": {"width": 16, "height": 16, "frames": [1, 1]},
+  "nodes": {"source": {"type": "read", "params": {"path": "broken.png"}}},
+  "output": "source.image"})");
+  auto result = aquarelle_within(
+      60, "render " + (dir / "g.json").string() + " -q -o " + (dir / "out.exr").string());
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_TRUE(mentions(result.output, "broken.png")) << result.output;
+  EXPECT_FALSE(mentions(result.output, "libpng")) << result.output;
+}
+
+}  // namespace
+}  // namespace aq::test::bad_input
