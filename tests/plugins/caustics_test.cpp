@@ -385,6 +385,29 @@ TEST(Caustics, DraftQualityUsesAnEighthOfTheGridAndAQuarterOfTheTexture) {
   EXPECT_GT(mean_abs_red(*got, aq::reference::caustics_by_grid(quarter, 128)), 0.05);
 }
 
+// Coverage's error is set by the grid against the waves more than by the texture: draft keeps
+// half the grid and preview three quarters, while the texture shrinks with the render scale.
+TEST(Caustics, CoverageDraftAndPreviewKeepMostOfTheGrid) {
+  CausticsParams p = small(64, 128);
+  for (auto [quality, scale, grid] : {std::tuple{"draft", 4, 64}, std::tuple{"preview", 2, 96}}) {
+    aq::test::RenderOptions options;
+    options.quality = quality;
+    options.width = 100;  // not 64: an output at the working size would be resampled
+    options.height = 60;
+    auto got = aq::test::run_node("caustics", {}, to_json(p, false), options);
+    ASSERT_TRUE(got.ok()) << got.message();
+    ASSERT_EQ(got->width, 64 / scale) << quality;
+    CausticsParams scaled = p;
+    scaled.resolution = 64 / scale;
+    EXPECT_LT(aq::test::max_abs_diff(*got, aq::reference::caustics_by_coverage(scaled, grid), 1),
+              1e-4)
+        << quality;
+    EXPECT_GT(aq::test::max_abs_diff(*got, aq::reference::caustics_by_coverage(scaled, 128), 1),
+              1e-3)
+        << quality;
+  }
+}
+
 TEST(Caustics, SmallestSizesWork) {
   for (const char* estimator : kEstimators) {
     for (auto [resolution, grid] : {std::pair{1, 4}, std::pair{2, 4}, std::pair{16, 4}}) {
