@@ -112,9 +112,10 @@ struct Caustics {
                                         ctx.height(), resolution);
     }
     // The quality preset trades the grid for speed. Coverage's error is set by the grid against
-    // the waves far more than by the texture (about 33 dB at grid 192 for 64 to 256 texels at
-    // the default waves, 26 at 128): draft takes a half, preview three quarters. Point sampling
-    // (cost ~ grid^2 rasterised triangles, error ~ 1/grid): draft an eighth, preview a quarter.
+    // the waves far more than by the texture (default waves: 33 to 38 dB at grid 192 for 256 to
+    // 64 texels, 26 dB at grid 128 for 128 texels), so draft keeps a half and preview three
+    // quarters while the texture shrinks with the render scale. Point sampling (cost ~ grid^2
+    // rasterised triangles, error ~ 1/grid): draft an eighth, preview a quarter.
     const bool point = ctx.param_enum(kEstimator) == kPoint;
     const int quality = static_cast<int>(ctx.quality());
     const int grid_asked = static_cast<int>(ctx.param_int(kGrid));
@@ -178,7 +179,8 @@ struct Caustics {
     const double triangles = 2.0 * double(grid) * grid;
     const auto flux = static_cast<GLuint>(std::floor(double(0x7fffffff) / triangles));
     if (flux < 1) {
-      ctx.fail("caustics: grid " + std::to_string(grid) + " is too fine for 32-bit light counts");
+      ctx.fail("caustics: parameter 'grid' (" + std::to_string(grid) +
+               ") is too fine for 32-bit light counts; use at most 32768");
       return false;
     }
     aq_image counts, cells;
