@@ -79,19 +79,23 @@ float slope(vec2 p, vec2 q) {
 }
 
 // Shares u_flux counts of the triangle abc (texel units, relative to texel `base`) among the
-// texels it overlaps.
-void deposit(ivec2 base, vec2 a, vec2 b, vec2 c) {
+// texels it overlaps. A triangle within 2 x 2 texels returns true with its counts for the
+// texels origin + (0,0), (1,0), (0,1), (1,1), for the caller to add (the cell's two triangles
+// mostly share the window: one set of atomics for both); a larger one adds its own.
+bool deposit(ivec2 base, vec2 a, vec2 b, vec2 c, out ivec2 origin, out uvec4 counts) {
   vec2 lo_corner = floor(min(a, min(b, c)));
   ivec2 extent = ivec2(floor(max(a, max(b, c))) - lo_corner);
-  ivec2 origin = base + ivec2(lo_corner);
+  origin = base + ivec2(lo_corner);
+  counts = uvec4(0u);
   a -= lo_corner;
   b -= lo_corner;
   c -= lo_corner;
   vec2 ab = b - a, ac = c - a;
   float area = 0.5 * abs(ab.x * ac.y - ab.y * ac.x);
   if (extent == ivec2(0) || !(area > 0.0)) {
-    add_light(origin + ivec2(floor((a + b + c) / 3.0)), u_flux);
-    return;
+    origin += ivec2(floor((a + b + c) / 3.0));
+    counts.x = u_flux;
+    return true;
   }
   // Running total of the covered area: texel k gets round(Q · covered_k / area) minus what
   // the texels before it got, so the counts never go negative and add up to Q.
@@ -114,17 +118,13 @@ void deposit(ivec2 base, vec2 a, vec2 b, vec2 c) {
     vec4 running = vec4(overlap.x, overlap.x + overlap.y, overlap.x + overlap.y + overlap.z,
                         overlap.x + overlap.y + overlap.z + overlap.w);
     uvec4 upto = min(uvec4(round(running * share)), uvec4(u_flux));
-    uvec4 counts = upto - uvec4(0u, upto.xyz);
+    counts = upto - uvec4(0u, upto.xyz);
     // The rounding's remainder to the texel holding the centroid (inside the triangle, so
     // overlapped), selected without indexing by a variable (slow on SIMD lanes).
     ivec2 middle = ivec2(floor((a + b + c) / 3.0));
     uvec4 holds = uvec4(equal(ivec4(0, 1, 2, 3), ivec4(middle.x + 2 * middle.y)));
     counts += holds * (u_flux - upto.w);
-    add_light(origin, counts.x);
-    add_light(origin + ivec2(1, 0), counts.y);
-    add_light(origin + ivec2(0, 1), counts.z);
-    add_light(origin + ivec2(1, 1), counts.w);
-    return;
+    return true;
   }
   float covered = 0.0;
   uint given = 0u;
@@ -148,10 +148,19 @@ void deposit(ivec2 base, vec2 a, vec2 b, vec2 c) {
     }
   }
   if (!any) {
-    add_light(origin + ivec2(floor((a + b + c) / 3.0)), u_flux);
-    return;
+    origin += ivec2(floor((a + b + c) / 3.0));
+    counts.x = u_flux;
+    return true;
   }
   add_light(pending_texel, pending + (u_flux - given));  // rounding's remainder
+  return false;
+}
+
+void add_window(ivec2 origin, uvec4 counts) {
+  add_light(origin, counts.x);
+  add_light(origin + ivec2(1, 0), counts.y);
+  add_light(origin + ivec2(0, 1), counts.z);
+  add_light(origin + ivec2(1, 1), counts.w);
 }
 
 void main() {
@@ -172,7 +181,15 @@ void main() {
     o_color = vec4(0.0);
     return;
   }
-  deposit(base, p00, p10, p11);
-  deposit(base, p00, p11, p01);
+  ivec2 first_origin, second_origin;
+  uvec4 first, second;
+  bool first_windowed = deposit(base, p00, p10, p11, first_origin, first);
+  bool second_windowed = deposit(base, p00, p11, p01, second_origin, second);
+  if (first_windowed && second_windowed && first_origin == second_origin) {
+    add_window(first_origin, first + second);
+  } else {
+    if (first_windowed) add_window(first_origin, first);
+    if (second_windowed) add_window(second_origin, second);
+  }
   o_color = vec4(0.0);
 }
