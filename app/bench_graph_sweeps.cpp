@@ -25,11 +25,15 @@ struct QualityParam {
   int reference_value;
   const char* auto_param;
   const char* port;  // the output whose width the auto point reports
+  // The node's output tiles (the caustic texture): when the graph's output is that texture
+  // itself, its size follows the swept value and it is compared at the reference's size
+  // after resampling with wrap-around, as a light pass sampling it with GL_REPEAT sees it.
+  bool tileable;
 };
 
 const QualityParam kQualityParams[] = {
-    {"shadowmap", "size", {256, 512, 1024, 2048}, 4096, "auto_size", "depth"},
-    {"caustics", "resolution", {32, 64, 128, 256}, 512, "auto_resolution", "image"},
+    {"shadowmap", "size", {256, 512, 1024, 2048}, 4096, "auto_size", "depth", false},
+    {"caustics", "resolution", {32, 64, 128, 256}, 512, "auto_resolution", "image", true},
 };
 
 // The pipeline reference: float precision, final quality, and each approximating node at its
@@ -100,8 +104,20 @@ Result<Sweep> quality_param_sweep(GlContext& context, const Registry& registry, 
     auto measured =
         measure_node(evaluator, configure(configs[i]), node_id, nullptr, plan.frames, plan.warmup);
     if (!measured.ok()) return make_error("sweep of '" + node_id + "': " + measured.message());
-    auto error = compare_images(measured->output, reference->output);
+    // A graph whose output is the swept texture itself: compare at the reference's size.
+    const ImageF& got = measured->output;
+    const ImageF& want = reference->output;
+    const bool resize = got.width != want.width || got.height != want.height;
+    auto error = compare_images(
+        resize ? resample_bilinear(got, want.width, want.height, quality.tileable) : got, want);
     if (!error.ok()) return make_error("sweep of '" + node_id + "': " + error.message());
+    if (resize && sweep.note.empty()) {
+      sweep.note =
+          "the graph's output is the node's own texture, whose size follows the "
+          "setting: smaller ones are compared after bilinear resampling to the "
+          "reference's size" +
+          std::string(quality.tileable ? " with wrap-around (GL_REPEAT)" : "");
+    }
     SweepPoint point;
     if (value < 0) {
       auto picked = output_width(evaluator, configure(configs[i]), node_id, quality.port);

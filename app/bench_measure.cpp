@@ -8,6 +8,32 @@
 
 namespace aq::app {
 
+ImageF resample_bilinear(const ImageF& image, int width, int height, bool periodic) {
+  ImageF out(width, height, image.channels, 1.0f);
+  auto index = [periodic](int i, int n) {
+    return periodic ? ((i % n) + n) % n : std::clamp(i, 0, n - 1);
+  };
+  for (int y = 0; y < height; ++y) {
+    const double v = (y + 0.5) * image.height / height - 0.5;
+    const int y0 = static_cast<int>(std::floor(v));
+    const double ty = v - y0;
+    const int ya = index(y0, image.height), yb = index(y0 + 1, image.height);
+    for (int x = 0; x < width; ++x) {
+      const double u = (x + 0.5) * image.width / width - 0.5;
+      const int x0 = static_cast<int>(std::floor(u));
+      const double tx = u - x0;
+      const int xa = index(x0, image.width), xb = index(x0 + 1, image.width);
+      for (int c = 0; c < image.channels; ++c) {
+        const double bottom =
+            image.at(xa, ya, c) + (image.at(xb, ya, c) - image.at(xa, ya, c)) * tx;
+        const double top = image.at(xa, yb, c) + (image.at(xb, yb, c) - image.at(xa, yb, c)) * tx;
+        out.at(x, y, c) = static_cast<float>(bottom + (top - bottom) * ty);
+      }
+    }
+  }
+  return out;
+}
+
 Result<ErrorStats> compare_images(const ImageF& got, const ImageF& reference) {
   if (got.width != reference.width || got.height != reference.height) {
     return make_error("output is " + std::to_string(got.width) + "x" + std::to_string(got.height) +

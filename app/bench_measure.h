@@ -23,6 +23,11 @@ struct ErrorStats {
 // Compares the first min(channels, 3) channels (colour, not alpha) of same-sized images.
 Result<ErrorStats> compare_images(const ImageF& got, const ImageF& reference);
 
+// `image` resampled to width x height by bilinear interpolation at the new pixel centres, as a
+// shader sampling it with GL_LINEAR sees it: wrapping around (a tileable texture, GL_REPEAT) or
+// clamped at the borders.
+ImageF resample_bilinear(const ImageF& image, int width, int height, bool periodic);
+
 struct NodeMeasurement {
   Spread wall_ms;  // of `node_id`'s process(), glFinish before and after (holds its GPU work)
   Spread gpu_ms;   // its GL_TIMESTAMP pair (llvmpipe underestimates single draws)

@@ -10,6 +10,7 @@
 
 #ifdef AQ_HAVE_CPU_REFERENCES
 #include "reference/blur.h"
+#include "reference/caustics_flux_reference.h"
 #include "reference/caustics_reference.h"
 #include "reference/edge.h"
 #include "reference/morphology.h"
@@ -238,122 +239,104 @@ reference::CausticsParams caustics_params_of(const Graph& graph, const Registry&
   return p;
 }
 
-// Caustics: grid resolution at a fixed texture resolution against a converged grid in double.
-Result<Sweep> caustics_sweep(GlContext& context, const Registry& registry, const Graph& graph,
-                             const SweepPlan& plan) {
-  constexpr int kResolution = 128;
-  constexpr int kReferenceGrid = 1024;
-  reference::CausticsParams p = caustics_params_of(graph, registry, kResolution);
+// The caustic texture size the graph's caustics node renders at the sweep's size (its footprint
+// on screen when a scene is connected, after the quality preset's render scale), or
+// `fallback` when the graph has no caustics node.
+Result<int> graph_caustic_size(GlContext& context, const Registry& registry, const Graph& graph,
+                               const SweepPlan& plan, int fallback) {
+  const std::string id = first_node_of_type(graph, "caustics");
+  if (id.empty()) return fallback;
+  Graph sized = graph;
+  sized.settings.width = plan.width;
+  sized.settings.height = plan.height;
+  Evaluator evaluator(context, registry);
+  EvalOptions options;
+  options.frame = sized.settings.first_frame;
+  auto texture = evaluator.evaluate(sized, options, PortRef{id, "image"});
+  if (!texture.ok()) return make_error("caustic texture size: " + texture.message());
+  return (*texture)->image.width;
+}
+
+// The finest grid of the converged reference: at least 8 cells per texel (its error, printed,
+// is then far below the estimators'), a power of two between 1024 and 4096.
+int reference_grid(int resolution) {
+  int grid = 1024;
+  while (grid < 8 * resolution && grid < 4096) grid *= 2;
+  return grid;
+}
+
+// Caustics: the grid of both estimators (coverage, and Stam's point sampling) at the texture
+// size the graph renders, against the exact box-filtered flux per texel (converged in double,
+// with its own error estimated from three grids).
+Result<std::vector<Sweep>> caustics_sweeps(GlContext& context, const Registry& registry,
+                                           const Graph& graph, const SweepPlan& plan) {
+  constexpr int kWithoutCausticsNode = 128;
+  auto size = graph_caustic_size(context, registry, graph, plan, kWithoutCausticsNode);
+  if (!size.ok()) return size.error();
+  const int resolution = *size;
+  reference::CausticsParams p = caustics_params_of(graph, registry, resolution);
   p.time = 0.0;  // the graph's first frame
 
-  Sweep sweep = cpu_sweep("caustics", "caustics", "");
-  sweep.reference = "grid refraction on a " + std::to_string(kReferenceGrid) + "x" +
-                    std::to_string(kReferenceGrid) +
-                    " grid in double precision (reference::caustics_by_grid), texture " +
-                    std::to_string(kResolution) + "x" + std::to_string(kResolution) +
-                    ", energy normalisation off on both sides";
-  auto converged = timed_reference(&sweep.reference_ms,
-                                   [&] { return reference::caustics_by_grid(p, kReferenceGrid); });
-  // The reference's own error, estimated against half its grid.
-  const ImageF coarser = reference::caustics_by_grid(p, kReferenceGrid / 2);
-  if (auto own = compare_images(coarser, *converged); own.ok()) {
-    char note[160];
-    std::snprintf(note, sizeof(note),
-                  "reference grid %d vs %d differ by %.4f mean abs (%.3f max abs): a bound on "
-                  "the reference's own error",
-                  kReferenceGrid / 2, kReferenceGrid, own->mean_abs, own->max_abs);
-    sweep.note = note;
-  }
+  const int finest = reference_grid(resolution);
+  double reference_ms = 0.0;
+  reference::CausticConvergence convergence;
+  auto converged = timed_reference(&reference_ms, [&] {
+    convergence = reference::converge_caustic_flux(p, finest, 3);
+    return reference::to_caustic_image(convergence.texels, resolution);
+  });
+  char text[512];
+  std::snprintf(text, sizeof(text),
+                "exact box-filtered flux per texel (reference::converge_caustic_flux: each "
+                "refracted triangle's light shared by exact area of overlap) on a %dx%d grid in "
+                "double precision, texture %dx%d (the graph's caustic texture at %dx%d)",
+                finest, finest, resolution, resolution, plan.width, plan.height);
+  const std::string reference_text = text;
+  std::snprintf(text, sizeof(text),
+                "reference's own error: grids %d, %d, %d differ by RMS %.2e then %.2e (mean abs "
+                "%.2e, %.2e), order %.2f, so the %d grid is within RMS %.1e (PSNR %.1f dB) and "
+                "mean abs %.1e of the limit (Richardson)",
+                convergence.grids[0], convergence.grids[1], convergence.grids[2],
+                convergence.rms_steps[0], convergence.rms_steps[1], convergence.mean_abs_steps[0],
+                convergence.mean_abs_steps[1], convergence.order, finest, convergence.rms_error,
+                -20.0 * std::log10(convergence.rms_error), convergence.mean_abs_error);
+  const std::string note = text;
+
   const json base = {
-      {"resolution", kResolution},        {"depth", p.depth},         {"amplitude", p.amplitude},
-      {"wave_scale", p.wave_scale},       {"speed", p.speed},         {"eta", p.eta},
-      {"max_intensity", p.max_intensity}, {"normalize_energy", false}};
-  std::vector<Config> configs;
-  for (const char* precision : kPrecisions) {
-    for (int grid : {16, 32, 64, 128, 256, 512}) {
+      {"resolution", resolution},        {"depth", p.depth}, {"amplitude", p.amplitude},
+      {"wave_scale", p.wave_scale},      {"speed", p.speed}, {"eta", p.eta},
+      {"max_intensity", p.max_intensity}};
+  const std::string precision = graph.settings.precision;
+  struct Estimator {
+    const char* name;
+    std::vector<int> grids;
+    json params;
+  };
+  const json normalize = graph_param(graph, registry, "caustics", "normalize_energy");
+  const Estimator estimators[] = {
+      {"coverage", {32, 64, 96, 128, 192, 256, 384}, {{"estimator", "coverage"}}},
+      {"point",
+       {32, 64, 128, 256, 512},
+       {{"estimator", "point"},
+        {"normalize_energy", normalize.is_boolean() ? normalize.get<bool>() : true}}}};
+  std::vector<Sweep> sweeps;
+  for (const auto& estimator : estimators) {
+    Sweep sweep = cpu_sweep(std::string("caustics ") + estimator.name, "caustics", reference_text);
+    sweep.note = note;
+    sweep.reference_ms = reference_ms;
+    json params = base;
+    for (const auto& [name, value] : estimator.params.items()) params[name] = value;
+    std::vector<Config> configs;
+    for (int grid : estimator.grids) {
       configs.push_back({"grid=" + std::to_string(grid), {{"grid", grid}}, precision, converged});
     }
-  }
-  if (auto s = run_configs(context, registry, plan, "caustics", base, {}, {}, configs, plan.width,
-                           plan.height, &sweep);
-      !s.ok()) {
-    return s.error();
-  }
-  return sweep;
-}
-
-// A periodic texture of side `from` resampled to side `to` by bilinear interpolation with
-// wrap-around, as a shader sampling the tile with GL_REPEAT would see it at pixel centres.
-ImageF resample_periodic(const ImageF& tile, int to) {
-  ImageF out(to, to, tile.channels, 1.0f);
-  const int from = tile.width;
-  auto wrap = [from](int i) { return ((i % from) + from) % from; };
-  for (int y = 0; y < to; ++y) {
-    const double v = (y + 0.5) * from / to - 0.5;
-    const int y0 = static_cast<int>(std::floor(v));
-    const double ty = v - y0;
-    for (int x = 0; x < to; ++x) {
-      const double u = (x + 0.5) * from / to - 0.5;
-      const int x0 = static_cast<int>(std::floor(u));
-      const double tx = u - x0;
-      for (int c = 0; c < tile.channels; ++c) {
-        const double a = tile.at(wrap(x0), wrap(y0), c), b = tile.at(wrap(x0 + 1), wrap(y0), c);
-        const double d = tile.at(wrap(x0), wrap(y0 + 1), c);
-        const double e = tile.at(wrap(x0 + 1), wrap(y0 + 1), c);
-        const double bottom = a + (b - a) * tx, top = d + (e - d) * tx;
-        out.at(x, y, c) = static_cast<float>(bottom + (top - bottom) * ty);
-      }
+    if (auto s = run_configs(context, registry, plan, "caustics", params, {}, {}, configs,
+                             plan.width, plan.height, &sweep);
+        !s.ok()) {
+      return s.error();
     }
+    sweeps.push_back(sweep);
   }
-  return out;
-}
-
-// Caustics: texture resolution (grid = resolution, as the defaults) against a converged grid at
-// the largest resolution; smaller textures are compared after periodic bilinear upsampling.
-Result<Sweep> caustics_resolution_sweep(GlContext& context, const Registry& registry,
-                                        const Graph& graph, const SweepPlan& plan) {
-  constexpr int kReferenceResolution = 256;
-  constexpr int kReferenceGrid = 1024;
-  reference::CausticsParams p = caustics_params_of(graph, registry, kReferenceResolution);
-  Sweep sweep = cpu_sweep("caustics texture", "caustics", "");
-  sweep.reference = "grid refraction on a " + std::to_string(kReferenceGrid) + "x" +
-                    std::to_string(kReferenceGrid) + " grid in double precision at " +
-                    std::to_string(kReferenceResolution) + "x" +
-                    std::to_string(kReferenceResolution) +
-                    "; smaller textures upsampled (periodic bilinear) before comparing";
-  auto converged = timed_reference(&sweep.reference_ms,
-                                   [&] { return reference::caustics_by_grid(p, kReferenceGrid); });
-  const json base = {{"depth", p.depth},
-                     {"amplitude", p.amplitude},
-                     {"wave_scale", p.wave_scale},
-                     {"speed", p.speed},
-                     {"eta", p.eta},
-                     {"max_intensity", p.max_intensity},
-                     {"normalize_energy", false}};
-  Evaluator evaluator(context, registry);
-  for (int resolution : {32, 64, 128, 256}) {
-    json params = base;
-    params["resolution"] = resolution;
-    params["grid"] = resolution;
-    Graph g = single_node_graph(registry, "caustics", params, {}, plan.width, plan.height, "float");
-    auto measured = measure_node(evaluator, g, kNodeUnderTest, nullptr, plan.frames, plan.warmup);
-    if (!measured.ok()) {
-      return make_error("sweep of 'caustics' at resolution " + std::to_string(resolution) + ": " +
-                        measured.message());
-    }
-    auto error =
-        compare_images(resample_periodic(measured->output, kReferenceResolution), *converged);
-    if (!error.ok()) return make_error("sweep of 'caustics': " + error.message());
-    SweepPoint point;
-    point.setting = "resolution=grid=" + std::to_string(resolution);
-    point.params = {{"resolution", resolution}, {"grid", resolution}};
-    point.precision = "float";
-    point.time_ms = measured->wall_ms;
-    point.gpu_ms = measured->gpu_ms;
-    point.error = *error;
-    sweep.points.push_back(point);
-  }
-  return sweep;
+  return sweeps;
 }
 
 // Erode or dilate: window size and footprint against flat morphology by definition.
@@ -432,12 +415,9 @@ Result<std::vector<Sweep>> run_reference_sweeps(GlContext& context, const Regist
     sweeps.insert(sweeps.end(), blur->begin(), blur->end());
   }
   if (wanted("caustics")) {
-    auto caustics = caustics_sweep(context, registry, graph, plan);
+    auto caustics = caustics_sweeps(context, registry, graph, plan);
     if (!caustics.ok()) return caustics.error();
-    sweeps.push_back(*caustics);
-    auto resolution = caustics_resolution_sweep(context, registry, graph, plan);
-    if (!resolution.ok()) return resolution.error();
-    sweeps.push_back(*resolution);
+    sweeps.insert(sweeps.end(), caustics->begin(), caustics->end());
   }
   for (const char* type : {"erode", "dilate"}) {
     if (!wanted(type)) continue;

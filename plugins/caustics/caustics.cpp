@@ -1,7 +1,13 @@
 // caustics: a tileable, animated caustic texture by Stam's grid refraction ("Periodic Caustic
 // Textures", 2004), as the seed (Paré-Vogt & Chaid §4) uses it, with its physical mistakes
-// fixed: periodic water, analytic normals, wrap-around instead of a 1.2x oversized grid,
-// additive accumulation of folded triangles, bounded degenerate triangles. See README.md.
+// fixed: periodic water, analytic normals, light conserved through folds and wrap-around
+// instead of a 1.2x oversized grid. See README.md.
+//
+//   displacement (one fragment per grid vertex: water, Snell, where the ray meets the floor)
+//     ├─ coverage (default): each refracted triangle's light shared among the texels by exact
+//     │    area of overlap, integer atomics -> counts; counts minus flat water's -> intensity
+//     └─ point (Stam's): refracted triangles rasterised at texel centres with intensity
+//          original / refracted area, additive blend; optional read-back normalisation
 #include <aquarelle/gl_raii.hpp>
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/scene_math.hpp>
@@ -29,8 +35,10 @@ enum Param {
   kEta,
   kMaxIntensity,
   kNormalizeEnergy,
-  kAutoResolution
+  kAutoResolution,
+  kEstimator
 };
+enum Estimator { kCoverage, kPoint };
 constexpr aq_param_desc kParams[] = {
     aq::int_param("resolution", 256, 1, 4096,
                   "texture pixels per tile side (square output; the largest, with "
@@ -44,12 +52,19 @@ constexpr aq_param_desc kParams[] = {
     aq::float_param("eta", 1.0 / 1.333, 0.1, 1.0,
                     "refraction ratio n_air / n_water (1 = no refraction)"),
     aq::float_param("max_intensity", 32.0, 1.0, 10000.0,
-                    "clamp of one triangle's intensity (bounds degenerate triangles)", 0.0, "log"),
+                    "estimator point: clamp of one triangle's intensity (bounds degenerate "
+                    "triangles)",
+                    0.0, "log"),
     aq::bool_param("normalize_energy", true,
-                   "rescale so the tile's mean is exactly 1 (corrects clamp and sampling loss)"),
+                   "estimator point: rescale so the tile's mean is exactly 1 (corrects clamp and "
+                   "sampling loss; coverage conserves the light by construction)"),
     aq::bool_param("auto_resolution", true,
                    "with `scene` connected: about one texel per screen pixel at the nearest "
-                   "receiver in view under the water (at most `resolution`)")};
+                   "receiver in view under the water (at most `resolution`)"),
+    aq::enum_param("estimator", "coverage|point", kCoverage,
+                   "coverage: each refracted triangle's light shared among texels by exact area "
+                   "of overlap (box filter, converges as 1/grid^2); point: Stam's triangles "
+                   "sampled at texel centres (see README)")};
 
 // Texture pixels per tile side for about one texel per screen pixel where the tile is seen
 // largest: at the nearest point, under the water, of the meshes' boxes in view, where a tile is
@@ -96,11 +111,17 @@ struct Caustics {
       resolution = footprint_resolution(*scene, boxes, aq::scene_caustic_tile(*scene), ctx.width(),
                                         ctx.height(), resolution);
     }
-    // The quality preset trades the grid (cost ~ grid^2 triangles, error ~ 1/grid): draft an
-    // eighth, preview a quarter (the texture is already halved by the render scale, so about a
-    // cell per two texels), final the grid asked for.
-    const int quality_divisor = ctx.quality() == 0 ? 8 : ctx.quality() == 1 ? 4 : 1;
-    const int grid = std::max(4, static_cast<int>(ctx.param_int(kGrid)) / quality_divisor);
+    // The quality preset trades the grid for speed. Coverage's error is set by the grid against
+    // the waves more than by the texture (default waves, grid 192: 38 dB at 64 texels, 33 at
+    // 128, 28 at 256; grid 128 at 128 texels: 26 dB), so draft keeps a half and preview three
+    // quarters while the texture shrinks with the render scale. Point sampling (cost ~ grid^2
+    // rasterised triangles, error ~ 1/grid): draft an eighth, preview a quarter.
+    const bool point = ctx.param_enum(kEstimator) == kPoint;
+    const int quality = static_cast<int>(ctx.quality());
+    const int grid_asked = static_cast<int>(ctx.param_int(kGrid));
+    const int grid = std::max(4, quality >= 2 ? grid_asked
+                                 : point      ? grid_asked / (quality == 0 ? 8 : 4)
+                                              : grid_asked * (quality == 0 ? 2 : 3) / 4);
     const double depth = ctx.param_float(kDepth);
     const double amplitude = ctx.param_float(kAmplitude);
     const double eta = ctx.param_float(kEta);
@@ -113,21 +134,32 @@ struct Caustics {
                       std::to_string(eta));
     }
 
-    aq_image displacement, accumulated, out;
+    aq_image displacement, out;
     if (!ctx.scratch(grid, grid, AQ_FORMAT_RGBA32F, &displacement)) return AQ_ERROR;
-    if (!ctx.scratch(resolution, resolution, AQ_FORMAT_RGBA32F, &accumulated)) return AQ_ERROR;
     if (!ctx.output(0, resolution, resolution, ctx.working_format(), &out)) return AQ_ERROR;
-
     if (!refract_grid(ctx, displacement, grid, depth, amplitude, eta)) return AQ_ERROR;
+    if (point) {
+      return point_estimate(ctx, displacement, out, grid, depth, amplitude) ? AQ_OK : AQ_ERROR;
+    }
+    return coverage_estimate(ctx, displacement, out, grid) ? AQ_OK : AQ_ERROR;
+  }
+
+ private:
+  // Stam's estimator: refracted triangles rasterised at texel centres (see README).
+  bool point_estimate(aq::Context& ctx, const aq_image& displacement, const aq_image& out, int grid,
+                      double depth, double amplitude) {
+    aq_image accumulated;
+    if (!ctx.scratch(out.width, out.height, AQ_FORMAT_RGBA32F, &accumulated)) return false;
     // Measured rather than bounded: the analytic bound (grazing refraction) is ~20x too large
     // for ordinary waves and would make the wrap copies draw most of the grid several times.
     const double reach = largest_displacement(displacement);
     if (!std::isfinite(reach)) {
-      return ctx.fail("caustics: the refracted grid has non-finite positions (depth " +
-                      std::to_string(depth) + ", amplitude " + std::to_string(amplitude) +
-                      "); this is a bug, please report it with these parameters");
+      ctx.fail("caustics: the refracted grid has non-finite positions (depth " +
+               std::to_string(depth) + ", amplitude " + std::to_string(amplitude) +
+               "); this is a bug, please report it with these parameters");
+      return false;
     }
-    if (!accumulate(ctx, displacement, accumulated, grid, reach)) return AQ_ERROR;
+    if (!accumulate(ctx, displacement, accumulated, grid, reach)) return false;
     double scale = 1.0;
     if (ctx.param_bool(kNormalizeEnergy)) {
       const double mean = mean_intensity(accumulated);
@@ -135,10 +167,89 @@ struct Caustics {
       // (every pixel centre is covered) but would leave the image as it is rather than blow up.
       if (mean > 0.0 && std::isfinite(mean)) scale = 1.0 / mean;
     }
-    return resolve(ctx, accumulated, out, scale) ? AQ_OK : AQ_ERROR;
+    return resolve(ctx, accumulated, out, scale);
   }
 
- private:
+  // The exact box filter of the piecewise-linear refraction map (see README): light in whole
+  // counts, shared by area of overlap, minus the counts of flat water.
+  bool coverage_estimate(aq::Context& ctx, const aq_image& displacement, const aq_image& out,
+                         int grid) {
+    const int resolution = out.width;
+    // Every count of the tile fits in 31 bits, so a texel's difference from flat water does too.
+    const double triangles = 2.0 * double(grid) * grid;
+    const auto flux = static_cast<GLuint>(std::floor(double(0x7fffffff) / triangles));
+    if (flux < 1) {
+      ctx.fail("caustics: parameter 'grid' (" + std::to_string(grid) +
+               ") is too fine for 32-bit light counts; use at most 32768");
+      return false;
+    }
+    aq_image counts, cells;
+    if (!ctx.scratch(resolution, resolution, AQ_FORMAT_R32UI, &counts)) return false;
+    if (!ctx.scratch(grid, grid, AQ_FORMAT_R32F, &cells)) return false;  // draw target only
+    const FlatKey key{grid, resolution, flux, ctx.raw()->gl_generation};
+    if (!(key == flat_key) || !flat_counts) {
+      if (key.generation != flat_key.generation) flat_counts.forget();
+      flat_counts.create();
+      glTextureStorage2D(flat_counts.get(), 1, GL_R32UI, resolution, resolution);
+      glTextureParameteri(flat_counts.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTextureParameteri(flat_counts.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      const aq_image flat{flat_counts.get(), resolution, resolution, AQ_FORMAT_R32UI};
+      if (!deposit(ctx, displacement, flat, cells, grid, flux, true)) return false;
+      flat_key = key;
+    }
+    if (!deposit(ctx, displacement, counts, cells, grid, flux, false)) return false;
+
+    GLuint program = ctx.program(shaders::caustics_coverage_resolve_frag);
+    if (program == 0) return false;
+    glUseProgram(program);
+    aq::bind_texture(program, "u_counts", 0, counts);
+    aq::bind_texture(program, "u_flat_counts", 1,
+                     aq_image{flat_counts.get(), resolution, resolution, AQ_FORMAT_R32UI});
+    // One texel's worth of light: the tile's counts spread over its texels.
+    aq::set_float(program, "u_intensity_per_count",
+                  double(resolution) * resolution / (triangles * double(flux)));
+    const bool drawn = ctx.draw(out);
+    aq::unbind_textures(2);
+    return drawn;
+  }
+
+  // Adds every refracted triangle's light (or, with `flat`, the undisplaced one's) to `counts`.
+  static bool deposit(aq::Context& ctx, const aq_image& displacement, const aq_image& counts,
+                      const aq_image& cells, int grid, GLuint flux, bool flat) {
+    GLuint program = ctx.program(shaders::caustics_coverage_frag);
+    if (program == 0) return false;
+    const GLuint zero = 0;
+    glClearTexImage(counts.texture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glUseProgram(program);
+    aq::bind_texture(program, "u_displacement", 0, displacement);
+    aq::set_int(program, "u_grid", grid);
+    aq::set_int(program, "u_resolution", counts.width);
+    glUniform1ui(glGetUniformLocation(program, "u_flux"), flux);
+    aq::set_int(program, "u_identity", flat ? 1 : 0);
+    glBindImageTexture(0, counts.texture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    GLboolean mask[4];
+    glGetBooleanv(GL_COLOR_WRITEMASK, mask);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // the atomics are the output
+    const bool drawn = ctx.draw(cells);
+    glColorMask(mask[0], mask[1], mask[2], mask[3]);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    aq::unbind_textures(1);
+    return drawn;
+  }
+
+  // What the cached flat-water counts were made for.
+  struct FlatKey {
+    int grid = 0;
+    int resolution = 0;
+    GLuint flux = 0;
+    uint32_t generation = 0;
+    bool operator==(const FlatKey&) const = default;
+  };
+  FlatKey flat_key;
+  aq::gl::Texture flat_counts;  // counts of flat water (only grid, resolution, flux matter)
+
   bool refract_grid(aq::Context& ctx, const aq_image& target, int grid, double depth,
                     double amplitude, double eta) {
     GLuint program = ctx.program(shaders::caustics_displacement_frag);

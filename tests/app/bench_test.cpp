@@ -215,6 +215,44 @@ TEST(Bench, SmoothingSweepMeasuresTheFacetsAway) {
   EXPECT_LT(error.at("smoothing=7"), error.at("smoothing=0"));
 }
 
+// A graph whose output is the caustic texture itself (as graphs/caustics.json): the texture's
+// size follows the swept `resolution`, so the sweep compares at the reference's size instead of
+// failing; the CPU sweeps put both estimators against the converged reference at the graph's
+// texture size, with the reference's own error in the note.
+TEST(Bench, CausticsTextureAsTheOutputIsComparedAtACommonSize) {
+  const auto dir = aq::test::scratch_dir("bench_caustics");
+  const auto graph = dir / "caustics.json";
+  std::ofstream(graph) << R"({
+  "aquarelle": 1,
+  "settings": { "width": 32, "height": 32, "fps": 24, "frames": [1, 1], "precision": "half" },
+  "nodes": { "caustics": { "type": "caustics", "params": { "resolution": 32, "grid": 48 } } },
+  "output": "caustics.image"
+})";
+  auto result = aq::test::run_command(std::string(AQ_APP_PATH) + " bench " + graph.string() +
+                                      " --node caustics --frames 1 --warmup 0 -q --json 2>" +
+                                      (dir / "stderr.txt").string());
+  ASSERT_EQ(result.exit_code, 0) << std::ifstream(dir / "stderr.txt").rdbuf();
+  const json report = json::parse(result.output, nullptr, false);
+  ASSERT_FALSE(report.is_discarded());
+  std::map<std::string, const json*> sweeps;
+  for (const auto& s : report["sweeps"]) sweeps[s["series"].get<std::string>()] = &s;
+  ASSERT_TRUE(sweeps.count("caustics resolution"));
+  for (const auto& point : (*sweeps.at("caustics resolution"))["points"]) {
+    EXPECT_TRUE(finite_number(point["mean_abs"])) << point["setting"];
+  }
+  if (!report["cpu_references"].get<bool>()) GTEST_SKIP() << "no CPU references in this build";
+  ASSERT_TRUE(sweeps.count("caustics coverage") && sweeps.count("caustics point"));
+  const json& coverage = *sweeps.at("caustics coverage");
+  EXPECT_NE(coverage["note"].get<std::string>().find("Richardson"), std::string::npos);
+  EXPECT_NE(coverage["reference"].get<std::string>().find("texture 32x32"), std::string::npos);
+  // Coverage at its finest grid beats point sampling at any grid.
+  double best_point = 1e300;
+  for (const auto& point : (*sweeps.at("caustics point"))["points"]) {
+    best_point = std::min(best_point, point["mean_abs"].get<double>());
+  }
+  EXPECT_LT(coverage["points"].back()["mean_abs"].get<double>(), 0.5 * best_point);
+}
+
 TEST(Bench, RefusesBadInputWithExitCode1) {
   EXPECT_EQ(aq::test::aquarelle("bench --frobnicate").exit_code, 1);
   EXPECT_EQ(aq::test::aquarelle("bench /nonexistent/graph.json").exit_code, 1);
