@@ -12,7 +12,7 @@
 //                         over a background `under` (Curtis's composite of two layers)
 // Inputs are clamped to [0, 1] and NaN counts as 0, so every result is finite.
 
-#define AQ_KM_BLACK_RATIO 0.5
+#define AQ_KM_BLACK_RATIO 0.2
 #define AQ_KM_EPS 1.0e-4
 
 vec3 aq_pigment_sanitize(vec3 c) {

@@ -15,7 +15,7 @@ using Rgb = std::array<double, 3>;
 enum class MixMode { kRgb = 0, kCmyk = 1, kKubelkaMunk = 2 };
 
 // Over black a unit layer of a pigment reflects this fraction of what it reflects over white.
-constexpr double kKmBlackRatio = 0.5;
+constexpr double kKmBlackRatio = 0.2;
 
 // Components clamped to [0, 1], NaN to 0.
 Rgb sanitize(const Rgb& c);
