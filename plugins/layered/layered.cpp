@@ -231,9 +231,12 @@ struct Layered {
     const uint32_t f32 = AQ_FORMAT_RGBA32F;
     aq_image intensity, diffuse, depth, blur_intensity, blur_diffuse, blur_depth, edges, blur_edges,
         horizontal, under[2], out;
-    for (aq_image* t : {&intensity, &diffuse, &depth, &blur_intensity, &blur_diffuse, &blur_depth,
-                        &edges, &blur_edges, &horizontal, &under[0], &under[1]}) {
-      if (!ctx.scratch(w, h, f32, t)) return AQ_ERROR;
+    const size_t range_count = (layers.size() + kLayersPerRange - 1) / kLayersPerRange;
+    if (range_count > 0) {  // an empty frame is just the paper
+      for (aq_image* t : {&intensity, &diffuse, &depth, &blur_intensity, &blur_diffuse, &blur_depth,
+                          &edges, &blur_edges, &horizontal, &under[0], &under[1]}) {
+        if (!ctx.scratch(w, h, f32, t)) return AQ_ERROR;
+      }
     }
     if (!ctx.output_like(0, id, &out)) return AQ_ERROR;
 
@@ -258,7 +261,6 @@ struct Layered {
         ctx.program({"layered_composite.frag", composite_text.c_str(), nullptr});
     if (segment == 0 || edge == 0 || paper == 0 || composite == 0) return AQ_ERROR;
 
-    const size_t range_count = (layers.size() + kLayersPerRange - 1) / kLayersPerRange;
     bool ok = true;
     // The paper.
     glUseProgram(paper);

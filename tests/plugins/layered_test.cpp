@@ -347,6 +347,38 @@ TEST(Layered, NanAndInfinityStayFinite) {
   }
 }
 
+TEST(Layered, TinyAndOddSizesKeepTheirSizeUnderEglAndOsmesa) {
+  for (const char* gl : {"egl", "osmesa"}) {
+    for (auto [w, h] : {std::pair{1, 1}, {1, 9}, {9, 1}, {13, 7}}) {
+      GBuffer g(w, h);
+      g.set(0, 0, 1, 2.0f, 0.2f, 0.4f, 0.8f);
+      g.set(w - 1, h - 1, 2, 3.0f, 0.8f, 0.4f, 0.2f);
+      aq::test::RenderOptions options;
+      options.width = w;
+      options.height = h;
+      options.gl = gl;
+      auto out = aq::test::run_node(
+          "layered", {{"id", g.id}, {"normal", g.normal}, {"albedo", g.albedo}, {"depth", g.depth}},
+          to_json(comparable()), options);
+      ASSERT_TRUE(out.ok()) << gl << " " << w << "x" << h << ": " << out.message();
+      EXPECT_EQ(out->width, w);
+      EXPECT_EQ(out->height, h);
+      EXPECT_TRUE(aq::test::all_finite(*out));
+      EXPECT_LT(aq::test::max_abs_diff(*out, reference(g, comparable()), 3), 5e-3)
+          << gl << " " << w << "x" << h;
+    }
+  }
+}
+
+TEST(Layered, MismatchedInputSizesAreAClearError) {
+  GBuffer g(16, 16);
+  auto out = aq::test::run_node(
+      "layered",
+      {{"id", g.id}, {"normal", g.normal}, {"albedo", ImageF(8, 8, 4, 0.5f)}, {"depth", g.depth}});
+  ASSERT_FALSE(out.ok());
+  EXPECT_NE(out.message().find("'albedo' is 8x8"), std::string::npos) << out.message();
+}
+
 TEST(Layered, EveryViewRendersFinite) {
   const GBuffer g = scene(32, 32);
   for (const char* view : {"painting", "segments", "lighting", "abstraction", "edges"}) {

@@ -111,6 +111,24 @@ TEST(PigmentMix, WhiteLightensAndBlackDarkensWithoutLeavingTheRange) {
   }
 }
 
+TEST(PigmentMix, TinySizesAndBothBackends) {
+  for (const char* gl : {"egl", "osmesa"}) {
+    for (auto [w, h] : {std::pair{1, 1}, {1, 9}, {9, 1}, {13, 7}}) {
+      const ImageF a = aq::test::random_image(w, h, 7), b = aq::test::random_image(w, h, 8);
+      aq::test::RenderOptions options;
+      options.width = w;
+      options.height = h;
+      options.gl = gl;
+      auto out = aq::test::run_node("pigment_mix", {{"a", a}, {"b", b}}, {}, options);
+      ASSERT_TRUE(out.ok()) << out.message();
+      EXPECT_LT(aq::test::max_abs_diff(
+                    *out, aq::reference::pigment_mix(a, b, 0.5, MixMode::kKubelkaMunk), 3),
+                2e-3)
+          << gl << " " << w << "x" << h;
+    }
+  }
+}
+
 TEST(PigmentMix, NanAndInfinityStayFinite) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
