@@ -13,8 +13,9 @@ bool is_object_id(float value) {
 }
 
 std::vector<Layer> collect_layers(const float* id, const float* depth, const float* albedo,
-                                  size_t pixel_count) {
+                                  size_t pixel_count, int width) {
   struct Sum {
+    int x0 = 1 << 30, y0 = 1 << 30, x1 = -1, y1 = -1;
     int64_t pixels = 0;
     int64_t depth_pixels = 0;
     double depth = 0.0;
@@ -25,6 +26,12 @@ std::vector<Layer> collect_layers(const float* id, const float* depth, const flo
     if (!is_object_id(id[i])) continue;
     Sum& s = sums[id[i]];
     ++s.pixels;
+    const int x = static_cast<int>(i % static_cast<size_t>(width));
+    const int y = static_cast<int>(i / static_cast<size_t>(width));
+    s.x0 = std::min(s.x0, x);
+    s.x1 = std::max(s.x1, x);
+    s.y0 = std::min(s.y0, y);
+    s.y1 = std::max(s.y1, y);
     const double z = depth[i];
     if (z > 0.0 && z < 3.0e38) {
       s.depth += z;
@@ -40,6 +47,10 @@ std::vector<Layer> collect_layers(const float* id, const float* depth, const flo
     Layer layer;
     layer.id = key;
     layer.pixels = s.pixels;
+    layer.x0 = s.x0;
+    layer.y0 = s.y0;
+    layer.x1 = s.x1;
+    layer.y1 = s.y1;
     layer.mean_depth = s.depth_pixels > 0 ? s.depth / static_cast<double>(s.depth_pixels) : 0.0;
     for (int c = 0; c < 3; ++c) layer.mean_albedo[c] = s.albedo[c] / static_cast<double>(s.pixels);
     layers.push_back(layer);

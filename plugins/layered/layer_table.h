@@ -21,6 +21,8 @@ struct Layer {
   Rgb light{1.0, 1.0, 1.0};  // colour of the lit wash
   Rgb dark{0.0, 0.0, 0.0};   // colour of the unlit wash
   bool wet_in_wet = false;
+  // Pixel bounding box of the object (inclusive), so passes can skip the rest of the image.
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
 };
 
 // An id is a pixel value that is a whole number >= 1 (and finite, below 2^24); the rest is
@@ -28,9 +30,9 @@ struct Layer {
 bool is_object_id(float value);
 
 // Layers of every id present, far to near (mean depth descending, then id ascending).
-// `id` and `depth` hold one float per pixel, `albedo` four.
+// `id` and `depth` hold one float per pixel, `albedo` four; rows of `width` pixels.
 std::vector<Layer> collect_layers(const float* id, const float* depth, const float* albedo,
-                                  size_t pixel_count);
+                                  size_t pixel_count, int width);
 
 struct PaletteEntry {
   float id = 0.0f;

@@ -133,6 +133,17 @@ constexpr aq_param_desc kParams[] = {
 
 constexpr int kLayersPerRange = 4;
 
+// A pixel rectangle, inclusive; passes draw only inside it (scissor) where nothing else can
+// change (README: "Only where the range can paint").
+struct Rect {
+  int x0, y0, x1, y1;
+  Rect grown(int by, int width, int height) const {
+    return {std::max(0, x0 - by), std::max(0, y0 - by), std::min(width - 1, x1 + by),
+            std::min(height - 1, y1 + by)};
+  }
+  void scissor() const { glScissor(x0, y0, x1 - x0 + 1, y1 - y0 + 1); }
+};
+
 std::string define(const char* name, int64_t value) {
   return "#define " + std::string(name) + " " + std::to_string(value) + "\n";
 }
@@ -200,7 +211,7 @@ struct Layered {
     read_back(ctx.input_image(3), GL_RED, 1, depth_pixels);
     read_back(ctx.input_image(2), GL_RGBA, 4, albedo_pixels);
     std::vector<layered::Layer> layers = layered::collect_layers(
-        id_pixels.data(), depth_pixels.data(), albedo_pixels.data(), id_pixels.size());
+        id_pixels.data(), depth_pixels.data(), albedo_pixels.data(), id_pixels.size(), id.width);
     layered::ColourSettings colours;
     colours.light_density = ctx.param_float(kLightDensity);
     colours.dark_density = ctx.param_float(kDarkDensity);
@@ -268,7 +279,16 @@ struct Layered {
     aq::set_vec3(paper, "u_paper_color", ctx.param_vec3(kPaperColor));
     aq::set_float(paper, "u_paper_relief", ctx.param_float(kPaperRelief));
     aq::set_vec2(paper, "u_size", w, h);
-    ok = ctx.draw(range_count == 0 ? out : under[0]);
+    if (range_count == 0) {
+      ok = ctx.draw(out);
+    } else {
+      ok = ctx.bind_targets(under, 2);
+      if (ok) ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+    }
+    // The ping-pong textures agree everywhere but in the box the last range painted, which is
+    // copied across before the next range paints its own box (so only the last composite
+    // covers the whole image).
+    Rect last_paint{0, 0, -1, -1};
 
     const double sigma = ctx.param_float(kAbstractionSigma) * scale;
     const double edge_sigma = ctx.param_float(kEdgeWidth) * scale;
@@ -286,7 +306,32 @@ struct Layered {
         }
         wet[k] = layer.wet_in_wet ? 1.0f : 0.0f;
       }
+      // Where this range can paint: its objects' box grown by the abstraction's reach (R), and
+      // the larger boxes each earlier pass must fill for the next one to read only what it
+      // wrote this range (see README). Kernels wider than the image read its edge texels from
+      // everywhere: then every pass covers the image.
+      Rect box{w, h, -1, -1};
+      for (int k = 0; k < count; ++k) {
+        const layered::Layer& layer = layers[first + k];
+        box = {std::min(box.x0, layer.x0), std::min(box.y0, layer.y0), std::max(box.x1, layer.x1),
+               std::max(box.y1, layer.y1)};
+      }
+      const int reach_a = static_cast<int>(std::ceil(aq::gaussian::kTruncationSigmas * sigma)) + 1;
+      const int reach_e =
+          run_edges ? static_cast<int>(std::ceil(aq::gaussian::kTruncationSigmas * edge_sigma)) + 1
+                    : 0;
+      const bool whole = 2 * std::max(reach_a, reach_e) >= std::min(w, h) - 1;
+      const Rect full{0, 0, w - 1, h - 1};
+      const Rect paint = whole ? full : box.grown(reach_a, w, h);
+      const Rect blurred = whole ? full : paint.grown(2 * reach_e + 1, w, h);
+      const Rect blurred_rows = whole ? full : blurred.grown(reach_a, w, h);
+      const Rect segmented = whole ? full : blurred_rows.grown(reach_a, w, h);
+      const Rect edge_rect = whole ? full : paint.grown(2 * reach_e, w, h);
+      const Rect edge_rows = whole ? full : paint.grown(reach_e, w, h);
+      glEnable(GL_SCISSOR_TEST);
+
       // Segmentation and lighting, four objects at once.
+      segmented.scissor();
       glUseProgram(segment);
       aq::bind_texture(segment, "u_id", 0, id);
       aq::bind_texture(segment, "u_normal", 1, ctx.input_image(1));
@@ -302,9 +347,14 @@ struct Layered {
       aq::unbind_textures(3);
 
       // Abstraction: the shared Gaussian.
-      ok = aq::gaussian::blur(ctx, intensity, horizontal, blur_intensity, sigma) &&
-           aq::gaussian::blur(ctx, diffuse, horizontal, blur_diffuse, sigma) &&
-           aq::gaussian::blur(ctx, depth, horizontal, blur_depth, sigma);
+      for (auto [in, blurred_out] :
+           {std::pair{intensity, blur_intensity}, std::pair{diffuse, blur_diffuse},
+            std::pair{depth, blur_depth}}) {
+        blurred_rows.scissor();
+        ok = ok && aq::gaussian::blur_pass(ctx, in, horizontal, sigma, 0);
+        blurred.scissor();
+        ok = ok && aq::gaussian::blur_pass(ctx, horizontal, blurred_out, sigma, 1);
+      }
       if (!ok) break;
 
       // Wet edges: 3x3 Laplacian and threshold, widened by the Gaussian.
@@ -313,13 +363,32 @@ struct Layered {
         aq::bind_texture(edge, "u_blurred", 0, blur_intensity);
         set_common(ctx, edge);
         aq::set_float(edge, "u_edge_threshold", ctx.param_float(kEdgeThreshold));
-        ok = ctx.draw(edges) && aq::gaussian::blur(ctx, edges, horizontal, blur_edges, edge_sigma);
+        edge_rect.scissor();
+        ok = ctx.draw(edges);
+        edge_rows.scissor();
+        ok = ok && aq::gaussian::blur_pass(ctx, edges, horizontal, edge_sigma, 0);
+        paint.scissor();
+        ok = ok && aq::gaussian::blur_pass(ctx, horizontal, blur_edges, edge_sigma, 1);
         if (!ok) break;
       }
 
-      // Glaze the range over what lies under it.
+      // Glaze the range over what lies under it, inside `paint` (the last range: everywhere,
+      // into the output).
+      const bool last = r + 1 == range_count;
       const aq_image& below = under[r % 2];
-      const aq_image& target = r + 1 == range_count ? out : under[(r + 1) % 2];
+      const aq_image& target = last ? out : under[(r + 1) % 2];
+      if (last) {
+        glDisable(GL_SCISSOR_TEST);
+      } else {
+        if (last_paint.x1 >= last_paint.x0) {
+          glCopyImageSubData(below.texture, GL_TEXTURE_2D, 0, last_paint.x0, last_paint.y0, 0,
+                             target.texture, GL_TEXTURE_2D, 0, last_paint.x0, last_paint.y0, 0,
+                             last_paint.x1 - last_paint.x0 + 1, last_paint.y1 - last_paint.y0 + 1,
+                             1);
+        }
+        paint.scissor();
+        last_paint = paint;
+      }
       glUseProgram(composite);
       aq::bind_texture(composite, "u_under", 0, below);
       aq::bind_texture(composite, "u_intensity", 1, intensity);
@@ -333,6 +402,8 @@ struct Layered {
       set_common(ctx, composite);
       aq::set_vec2(composite, "u_size", w, h);
       aq::set_int(composite, "u_layer_count", count);
+      glUniform4i(glGetUniformLocation(composite, "u_region"), paint.x0, paint.y0, paint.x1,
+                  paint.y1);
       glUniform3fv(glGetUniformLocation(composite, "u_light_color"), 4, light_colors);
       glUniform3fv(glGetUniformLocation(composite, "u_dark_color"), 4, dark_colors);
       glUniform4fv(glGetUniformLocation(composite, "u_wet_in_wet"), 1, wet);
@@ -348,11 +419,13 @@ struct Layered {
       set_gooch(ctx, composite);
       ok = ctx.draw(target);
     }
+    glDisable(GL_SCISSOR_TEST);
     aq::unbind_textures(9);
     return ok ? AQ_OK : AQ_ERROR;
   }
 
   static int fail_cleanly() {
+    glDisable(GL_SCISSOR_TEST);
     aq::unbind_textures(9);
     return AQ_ERROR;
   }

@@ -24,6 +24,7 @@ uniform sampler2D u_paper;
 #endif
 uniform vec2 u_size;
 uniform int u_layer_count;
+uniform ivec4 u_region;  // x0, y0, x1, y1 (inclusive): the range paints only there
 uniform vec3 u_light_color[4];
 uniform vec3 u_dark_color[4];
 uniform vec4 u_wet_in_wet;
@@ -61,6 +62,10 @@ vec3 glaze(vec3 under, vec3 colour, float thickness) {
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec3 under = texelFetch(u_under, p, 0).rgb;
+  if (any(lessThan(p, u_region.xy)) || any(greaterThan(p, u_region.zw))) {
+    o_color = vec4(under, 1.0);
+    return;
+  }
   vec4 b = texelFetch(u_blur_intensity, p, 0);
   vec4 bd = texelFetch(u_blur_diffuse, p, 0);
   vec4 bz = texelFetch(u_blur_depth, p, 0);

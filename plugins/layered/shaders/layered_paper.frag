@@ -1,5 +1,7 @@
-// The paper the layers are glazed on: paper_color · (1 + paper_relief · (height − ½)).
+// The paper the layers are glazed on: paper_color · (1 + paper_relief · (height − ½)), into
+// both ping-pong textures at once (location 1 is ignored when only one target is bound).
 layout(location = 0) out vec4 o_color;
+layout(location = 1) out vec4 o_copy;
 uniform sampler2D u_paper;
 uniform vec3 u_paper_color;
 uniform float u_paper_relief;
@@ -13,4 +15,5 @@ void main() {
   float h = 0.5;
 #endif
   o_color = vec4(u_paper_color * (1.0 + u_paper_relief * (h - 0.5)), 1.0);
+  o_copy = o_color;
 }
