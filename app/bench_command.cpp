@@ -300,6 +300,12 @@ int run_bench(int argc, char** argv) {
       return kExitBadInput;
     }
     report.sweeps.insert(report.sweeps.end(), graph_sweeps->begin(), graph_sweeps->end());
+    auto layered_sweeps = run_layered_sweeps(**context, registry, graph, plan, types);
+    if (!layered_sweeps.ok()) {
+      std::fprintf(stderr, "aquarelle bench: %s\n", layered_sweeps.message().c_str());
+      return kExitBadInput;
+    }
+    report.sweeps.insert(report.sweeps.end(), layered_sweeps->begin(), layered_sweeps->end());
   }
 
   if (args.json) {

@@ -78,4 +78,11 @@ Result<std::vector<Sweep>> run_graph_sweeps(GlContext& context, const Registry& 
 // `graph_iterations` (the graph's setting) is added to the counts swept.
 Result<Sweep> smoothing_sweep(const SweepPlan& plan, int graph_iterations);
 
+// The layered watercolor's sweeps (id count and abstraction sigma against reference::layered)
+// and the pigment colour chart (rgb, cmyk, Kubelka–Munk against reference::pigment_mix), when
+// `types` holds `layered` or `pigment_mix` (bench_layered_sweeps.cpp).
+Result<std::vector<Sweep>> run_layered_sweeps(GlContext& context, const Registry& registry,
+                                              const Graph& graph, const SweepPlan& plan,
+                                              const std::set<std::string>& types);
+
 }  // namespace aq::app

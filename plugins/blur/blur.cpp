@@ -23,6 +23,7 @@
 // `reduced_resolution` runs Gaussians above 4 px on a pyramid of 2×2 means and back up.
 //
 // `strided`: the seed's 5×5 kernel read with strides 0.3σ and σ, kept to show its artefacts.
+#include <aquarelle/gaussian_blur.hpp>
 #include <aquarelle/plugin.hpp>
 
 #include <algorithm>
@@ -31,7 +32,6 @@
 #include <vector>
 
 #include "blur_shaders.h"
-#include "gaussian_pass.h"
 
 namespace {
 
@@ -158,30 +158,10 @@ struct Blur {
   static uint32_t scratch_format(const aq::Context&) { return AQ_FORMAT_RGBA32F; }
 
   // Exact separable Gaussian of `in` into `out` (same size), through `horizontal`, a
-  // texture of the same size.
+  // texture of the same size: the SDK's shared Gaussian (aquarelle/gaussian_blur.hpp).
   static bool gaussian(aq::Context& ctx, const aq_image& in, const aq_image& horizontal,
                        const aq_image& out, double sigma) {
-    const bool linear_taps = ctx.param_bool(kLinearTaps);
-    const blur::GaussianPass passes[2] = {blur::gaussian_pass(sigma, in.width),
-                                          blur::gaussian_pass(sigma, in.height)};
-    const aq_image sources[2] = {in, horizontal};
-    const aq_image targets[2] = {horizontal, out};
-    for (int axis = 0; axis < 2; ++axis) {
-      const std::vector<blur::Tap> taps = blur::gaussian_taps(passes[axis], linear_taps);
-      const bool table = taps.size() <= blur::kMaxTableTaps;
-      GLuint program =
-          ctx.program(table ? shaders::blur_gaussian_frag : shaders::blur_gaussian_wide_frag);
-      if (program == 0) return false;
-      glUseProgram(program);
-      aq::bind_texture(program, "u_image", 0, sources[axis]);
-      if (table) {
-        set_table(program, taps, axis, in);
-      } else {
-        set_pass(program, passes[axis], linear_taps, axis, in);
-      }
-      if (!ctx.draw(targets[axis])) return false;
-    }
-    return true;
+    return aq::gaussian::blur(ctx, in, horizontal, out, sigma, ctx.param_bool(kLinearTaps));
   }
 
   // A Gaussian of σ from `in` into `out` (same size): exact through the full-size scratch
@@ -220,28 +200,6 @@ struct Blur {
     aq::bind_texture(program, "u_image", 0, blurred);
     aq::set_vec2(program, "u_reduced_extent", scale * blurred.width, scale * blurred.height);
     return ctx.draw(out);
-  }
-
-  static void set_table(GLuint program, const std::vector<blur::Tap>& taps, int axis,
-                        const aq_image& in) {
-    aq::set_vec2(program, "u_size", in.width, in.height);
-    aq::set_vec2(program, "u_axis", axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0);
-    aq::set_int(program, "u_tap_count", static_cast<int>(taps.size()));
-    static_assert(sizeof(blur::Tap) == 2 * sizeof(float));
-    glUniform2fv(glGetUniformLocation(program, "u_taps"), static_cast<GLsizei>(taps.size()),
-                 &taps[0].offset);
-  }
-
-  static void set_pass(GLuint program, const blur::GaussianPass& pass, bool linear_taps, int axis,
-                       const aq_image& in) {
-    aq::set_vec2(program, "u_size", in.width, in.height);
-    aq::set_int(program, "u_linear_taps", linear_taps ? 1 : 0);
-    aq::set_vec2(program, "u_step", axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0);
-    aq::set_int(program, "u_radius", pass.radius);
-    aq::set_float(program, "u_inv_two_sigma2", pass.inv_two_sigma2);
-    aq::set_float(program, "u_norm", pass.norm);
-    aq::set_float(program, "u_tail", pass.tail);
-    aq::set_float(program, "u_tail_offset", pass.tail_offset);
   }
 
   // σ per pixel, σmax small: one pass, each pixel's own truncated Gaussian.

@@ -44,7 +44,8 @@ Preset make_underwater(uint64_t seed, double detail = 1.0);
 
 // Small scenes for tests: "plane_box" (10x10 ground plane, id 1, and a unit box on it, id 2),
 // "pot" (the clay pot, id 1), "cube" (unit cube centred at the origin, id 1), "double_plane"
-// (a 2x2 plane at y = 0 with both windings on the same positions, id 1).
+// (a 2x2 plane at y = 0 with both windings on the same positions, id 1), "three_cubes" (seed
+// 003: red, blue and green 1.2-unit cubes side by side along x, ids 1-3).
 bool make_test_preset(std::string_view name, Preset* preset);
 
 // Loads every mesh of an OBJ, glTF or other Assimp-readable file, node transforms baked, with

@@ -44,12 +44,12 @@ enum Param {
   kFishSpeed,
   kSway
 };
-constexpr const char* kPresetNames[] = {"underwater", "plane_box",    "pot",
-                                        "cube",       "double_plane", "file"};
-constexpr int kPresetFile = 5;
+constexpr const char* kPresetNames[] = {"underwater",   "plane_box",   "pot", "cube",
+                                        "double_plane", "three_cubes", "file"};
+constexpr int kPresetFile = 6;
 
 constexpr aq_param_desc kParams[] = {
-    aq::enum_param("preset", "underwater|plane_box|pot|cube|double_plane|file", 0,
+    aq::enum_param("preset", "underwater|plane_box|pot|cube|double_plane|three_cubes|file", 0,
                    "procedural scene, or `file` to load `path`"),
     aq::path_param("path", "OBJ or glTF scene loaded when preset is `file`"),
     aq::int_param("seed", 7, 0, 2147483647, "procedural scene seed: same seed, same scene"),

@@ -30,6 +30,15 @@ bool make_test_preset(std::string_view name, Preset* preset) {
     MeshData plane;
     add_plane(plane, 1.0f, 4, glm::vec3(0.3f, 0.7f, 0.3f), true);
     add(std::move(plane));
+  } else if (name == "three_cubes") {
+    // Seed 003's scene: a red, a blue and a green cube side by side (ids 1, 2, 3).
+    const glm::vec3 colors[] = {{0.8f, 0.1f, 0.08f}, {0.1f, 0.2f, 0.75f}, {0.15f, 0.6f, 0.15f}};
+    for (int i = 0; i < 3; ++i) {
+      MeshData cube;
+      const float x = 1.7f * static_cast<float>(i - 1);
+      add_box(cube, {x - 0.6f, 0.0f, -0.6f}, {x + 0.6f, 1.2f, 0.6f}, colors[i]);
+      add(std::move(cube));
+    }
   } else {
     return false;
   }

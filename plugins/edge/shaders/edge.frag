@@ -4,6 +4,7 @@
 // largest over r, g, b. The image's HSV value is scaled towards `factor` by a smoothstep of the
 // response. Scaling V with H and S fixed is scaling r, g and b by the same number, so no HSV
 // round trip (and its rounding) is needed.
+#include "aquarelle/edge_kernels.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 
@@ -26,11 +27,9 @@ float edge_response(ivec2 p) {
     for (int i = 0; i < 3; ++i) n[3 * j + i] = source_at(p + ivec2(i - 1, j - 1));
   }
 #ifdef AQ_EDGE_SOBEL
-  vec3 gx = (n[2] + 2.0 * n[5] + n[8]) - (n[0] + 2.0 * n[3] + n[6]);
-  vec3 gy = (n[6] + 2.0 * n[7] + n[8]) - (n[0] + 2.0 * n[1] + n[2]);
-  vec3 r = sqrt(gx * gx + gy * gy);
+  vec3 r = aq_sobel3x3(n);
 #else
-  vec3 r = abs(n[0] + n[1] + n[2] + n[3] + n[5] + n[6] + n[7] + n[8] - 8.0 * n[4]);
+  vec3 r = aq_laplacian3x3(n);
 #endif
   float response = max(r.r, max(r.g, r.b));
   // A NaN in the source must not darken (or poison) its neighbours.

@@ -1,0 +1,120 @@
+// Glazes the four layers of a range, far to near, over what lies under them (README.md):
+//   a     = smoothstep(t − s, t + s, blurred intensity)              abstraction
+//   d     = blurred diffuse / blurred intensity                        normalised lighting
+//   C     = mix_pigment(dark, light, d)                                colour of the wash
+//   w     = ease_out(gain · blurred edges)                             wet edge weight
+//   wet-to-dry: cover = a,                 extra = edge_darkness · w · a   (darker rim)
+//   wet-in-wet: cover = max(a, spread · w), extra = 0                  (feathers outwards)
+//   extra += edge_darkening · clamp((1 − b) / (1 − t), 0, 1) · a       (inverted blur)
+//   v     = 1 − smoothstep(0, depth_band, z_layer − z_front)           blurred depth test
+//   g     = mix(1, 2 (1 − paper), granulation)                         granulation
+//   thickness = density · cover · v · g · (1 + extra);  under = glaze(under, C, thickness)
+layout(location = 0) out vec4 o_color;
+
+uniform sampler2D u_under;
+uniform sampler2D u_intensity;  // raw (views)
+uniform sampler2D u_diffuse;    // raw (views)
+uniform sampler2D u_blur_intensity;
+uniform sampler2D u_blur_diffuse;
+uniform sampler2D u_blur_depth;
+uniform sampler2D u_blur_edges;
+uniform sampler2D u_depth;
+#if AQ_HAS_PAPER
+uniform sampler2D u_paper;
+#endif
+uniform vec2 u_size;
+uniform int u_layer_count;
+uniform ivec4 u_region;  // x0, y0, x1, y1 (inclusive): the range paints only there
+uniform vec3 u_light_color[4];
+uniform vec3 u_dark_color[4];
+uniform vec4 u_wet_in_wet;
+uniform float u_edge_gain;
+uniform float u_edge_darkness;
+uniform float u_wet_spread;
+uniform float u_edge_darkening;
+uniform float u_depth_band;
+uniform float u_granulation;
+uniform float u_density;
+uniform float u_gooch;  // Gooch: light towards warm, dark towards cool
+uniform vec3 u_warm;
+uniform vec3 u_cool;
+
+vec3 pigment_mix(vec3 a, vec3 b, float t) {
+#if AQ_MIX_MODE == 0
+  return aq_mix_rgb(a, b, t);
+#elif AQ_MIX_MODE == 1
+  return aq_mix_cmyk(a, b, t);
+#else
+  return aq_mix_km(a, b, t);
+#endif
+}
+
+vec3 glaze(vec3 under, vec3 colour, float thickness) {
+#if AQ_MIX_MODE == 2
+  return aq_km_glaze(under, colour, thickness);
+#else
+  // Beyond unit thickness the wash darkens as a filter would (Beer–Lambert), then it covers.
+  vec3 c = pow(aq_pigment_sanitize(colour), vec3(max(thickness, 1.0)));
+  return pigment_mix(under, c, min(thickness, 1.0));
+#endif
+}
+
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec3 under = texelFetch(u_under, p, 0).rgb;
+  if (any(lessThan(p, u_region.xy)) || any(greaterThan(p, u_region.zw))) {
+    o_color = vec4(under, 1.0);
+    return;
+  }
+  vec4 b = texelFetch(u_blur_intensity, p, 0);
+  vec4 bd = texelFetch(u_blur_diffuse, p, 0);
+  vec4 bz = texelFetch(u_blur_depth, p, 0);
+  vec4 be = texelFetch(u_blur_edges, p, 0);
+  vec4 raw = texelFetch(u_intensity, p, 0);
+  vec4 raw_diffuse = texelFetch(u_diffuse, p, 0);
+  float t = layered_threshold(gl_FragCoord.xy);
+  vec4 a = layered_abstract(b, t);
+  vec4 w = layered_ease_out(u_edge_gain * be);
+  float front = texelFetch(u_depth, p, 0).r;
+  bool has_front = front > 0.0 && front < 3.0e38;
+#if AQ_HAS_PAPER
+  float h = texture(u_paper, gl_FragCoord.xy / u_size).r;
+  h = h >= 0.0 ? min(h, 1.0) : 0.5;
+#else
+  float h = 0.5;
+#endif
+  float granulation = mix(1.0, 2.0 * (1.0 - h), u_granulation);
+  for (int k = 0; k < u_layer_count; ++k) {
+#if AQ_VIEW == 1  // segments: flat light colour on the raw masks
+    under = glaze(under, u_light_color[k], raw[k]);
+#elif AQ_VIEW == 2  // lighting: the raw lit layers, highlights left white
+    float rd = raw[k] > 0.0 ? raw_diffuse[k] / raw[k] : 0.0;
+    under = glaze(under, pigment_mix(u_dark_color[k], u_light_color[k], rd), raw[k]);
+#else
+    if (!(b[k] > 1.0e-6)) continue;
+    float d = clamp(bd[k] / b[k], 0.0, 1.0);
+    vec3 light = pigment_mix(u_light_color[k], u_warm, u_gooch);
+    vec3 dark = pigment_mix(u_dark_color[k], u_cool, u_gooch);
+    vec3 colour = pigment_mix(dark, light, d);
+#if AQ_VIEW == 3  // abstraction only
+    under = glaze(under, colour, a[k]);
+#elif AQ_VIEW == 4  // wet edge weights, grey
+    under = glaze(under, vec3(0.35), w[k]);
+#else
+    float cover = a[k];
+    float extra = 0.0;
+    if (u_wet_in_wet[k] > 0.5) {
+      cover = max(a[k], u_wet_spread * w[k]);
+    } else {
+      extra = u_edge_darkness * w[k] * a[k];
+    }
+    extra += u_edge_darkening * clamp((1.0 - b[k]) / max(1.0 - t, 1.0e-3), 0.0, 1.0) * a[k];
+    float z = bz[k] / b[k];
+    float visible = has_front ? 1.0 - smoothstep(0.0, max(u_depth_band, 1.0e-6), z - front) : 1.0;
+    float thickness = u_density * cover * visible * granulation * (1.0 + extra);
+    under = glaze(under, colour, thickness);
+#endif
+#endif
+  }
+  o_color = vec4(under, 1.0);
+}

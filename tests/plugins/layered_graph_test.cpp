@@ -1,0 +1,105 @@
+// graphs/layered.json (the underwater scene painted layer by layer) and graphs/three_cubes.json
+// (seed 003's three cubes, wet-to-dry and wet-in-wet side by side) end to end at a small size:
+// both validate, render finite images that are paintings (objects on paper, not flat), and in
+// the cubes the lit fronts are lighter than the shaded sides and the wet-in-wet cube's colour
+// feathers into the paper where the wet-to-dry cubes stop.
+#include <gtest/gtest.h>
+
+#include <aquarelle/core/graph_io.h>
+
+#include <cmath>
+
+#include "support/harness.h"
+
+namespace {
+
+aq::test::RenderOptions small() {
+  aq::test::RenderOptions options;
+  options.width = 160;
+  options.height = 90;
+  options.precision = "half";
+  return options;
+}
+
+double luminance(const aq::ImageF& im, int x, int y) {
+  return 0.2126 * im.at(x, y, 0) + 0.7152 * im.at(x, y, 1) + 0.0722 * im.at(x, y, 2);
+}
+
+double stddev_luminance(const aq::ImageF& im) {
+  double sum = 0.0, sum2 = 0.0;
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x) {
+      const double l = luminance(im, x, y);
+      sum += l;
+      sum2 += l * l;
+    }
+  const double n = static_cast<double>(im.width) * im.height;
+  return std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+}
+
+TEST(LayeredGraphs, BothValidate) {
+  for (const char* graph : {"graphs/layered.json", "graphs/three_cubes.json"}) {
+    const aq::ReadResult result =
+        aq::read_graph_file(aq::test::source_path(graph), aq::test::registry());
+    EXPECT_TRUE(result.problems.empty())
+        << graph << ": " << (result.problems.empty() ? "" : aq::format_problem(result.problems[0]));
+  }
+}
+
+TEST(LayeredGraphs, UnderwaterRendersAsAPainting) {
+  auto out = aq::test::render_graph_file(aq::test::source_path("graphs/layered.json"), small());
+  ASSERT_TRUE(out.ok()) << out.message();
+  EXPECT_TRUE(aq::test::all_finite(*out));
+  EXPECT_GT(stddev_luminance(*out), 0.05) << "objects on paper, not a flat image";
+  // The top rows are open water: paper.
+  EXPECT_GT(luminance(*out, 80, 88), 0.85);
+}
+
+TEST(LayeredGraphs, ThreeCubesLighterFrontsAndSideBySideEdges) {
+  auto options = small();
+  auto out = aq::test::render_graph_file(aq::test::source_path("graphs/three_cubes.json"), options);
+  ASSERT_TRUE(out.ok()) << out.message();
+  EXPECT_TRUE(aq::test::all_finite(*out));
+  options.output = "gbuf.id";
+  auto ids = aq::test::render_graph_file(aq::test::source_path("graphs/three_cubes.json"), options);
+  ASSERT_TRUE(ids.ok()) << ids.message();
+  options.output = "gbuf.normal";
+  auto normals =
+      aq::test::render_graph_file(aq::test::source_path("graphs/three_cubes.json"), options);
+  ASSERT_TRUE(normals.ok()) << normals.message();
+  // Per cube: mean luminance of its front (+z) face and of its other visible faces (top, side).
+  for (int cube = 1; cube <= 3; ++cube) {
+    double front = 0.0, side = 0.0;
+    int front_n = 0, side_n = 0;
+    for (int y = 0; y < 90; ++y)
+      for (int x = 0; x < 160; ++x) {
+        if (ids->at(x, y, 0) != static_cast<float>(cube)) continue;
+        if (normals->at(x, y, 2) > 0.9f) front += luminance(*out, x, y), ++front_n;
+        if (std::abs(normals->at(x, y, 2)) < 0.1f) side += luminance(*out, x, y), ++side_n;
+      }
+    ASSERT_GT(front_n, 20) << "cube " << cube;
+    ASSERT_GT(side_n, 5) << "cube " << cube;
+    EXPECT_GT(front / front_n, side / side_n + 0.02) << "cube " << cube;
+  }
+  // Wet-in-wet (the green cube, id 3) spreads colour into the paper around it; the wet-to-dry
+  // cubes leave the paper a few pixels off their silhouette.
+  auto painted_ring = [&](int cube) {
+    int painted = 0, ring = 0;
+    for (int y = 3; y < 87; ++y)
+      for (int x = 3; x < 157; ++x) {
+        if (ids->at(x, y, 0) != 0.0f) continue;
+        bool near = false;
+        for (int dy = -3; dy <= 3 && !near; ++dy)
+          for (int dx = -3; dx <= 3 && !near; ++dx)
+            near = ids->at(x + dx, y + dy, 0) == static_cast<float>(cube);
+        if (!near) continue;
+        ++ring;
+        painted += luminance(*out, x, y) < 0.85 ? 1 : 0;
+      }
+    return ring > 0 ? static_cast<double>(painted) / ring : 0.0;
+  };
+  EXPECT_GT(painted_ring(3), painted_ring(1) + 0.2);
+  EXPECT_GT(painted_ring(3), painted_ring(2) + 0.2);
+}
+
+}  // namespace
