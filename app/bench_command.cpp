@@ -4,6 +4,7 @@
 #include <aquarelle/core/evaluator.h>
 
 #include <cstdio>
+#include <fstream>
 #include <set>
 
 #include "bench_copy_pass.h"
@@ -46,7 +47,9 @@ reference render.
                           quality preset to time (default: the graph's settings.quality);
                           the preset sweep still measures all three
   --csv OUT.csv           write every measurement as CSV
-  --plot OUT.png          plot time against mean abs error, one curve per sweep
+  --plot OUT.png          plot time against mean abs error: a panel per node, a curve per
+                          sweep, the Pareto front marked (PLplot; .png, .svg or .pdf)
+  --plot-from REPORT.json redraw --plot from a saved `--json` report, without measuring
   --json                  print the report as JSON instead of the table
   --gl auto|egl|osmesa    GL backend (default auto)
   --gl-device D           EGL device: auto (a GPU when EGL lists one, else llvmpipe),
@@ -68,6 +71,7 @@ struct Arguments {
   std::string quality;
   std::string csv;
   std::string plot;
+  std::string plot_from;
   bool json = false;
   std::string gl = "auto";
   std::string gl_device = "auto";
@@ -147,6 +151,10 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments* args) {
       auto v = value();
       if (!v) return kExitBadInput;
       args->plot = *v;
+    } else if (arg == "--plot-from") {
+      auto v = value();
+      if (!v) return kExitBadInput;
+      args->plot_from = *v;
     } else if (arg == "--json") {
       args->json = true;
     } else if (arg == "--gl-device") {
@@ -179,9 +187,42 @@ void progress(const Arguments& args, const char* what) {
 
 }  // namespace
 
+// --plot-from: the plot of a saved report, nothing measured.
+int replot(const Arguments& args) {
+  if (args.plot.empty()) {
+    std::fprintf(stderr, "aquarelle bench: --plot-from needs --plot OUT.png\n");
+    return kExitBadInput;
+  }
+  std::ifstream in(args.plot_from);
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
+  if (!in.is_open() || report.is_discarded()) {
+    std::fprintf(stderr, "aquarelle bench: --plot-from %s: cannot read it as JSON\n",
+                 args.plot_from.c_str());
+    return kExitBadInput;
+  }
+  auto sweeps = sweeps_from_report(report);
+  if (!sweeps.ok()) {
+    std::fprintf(stderr, "aquarelle bench: --plot-from %s: %s\n", args.plot_from.c_str(),
+                 sweeps.message().c_str());
+    return kExitBadInput;
+  }
+  std::string title = report.value("graph", std::string());
+  const auto size = report.value("size", nlohmann::json::array());
+  if (size.size() == 2 && size[0].is_number() && size[1].is_number()) {
+    title += " " + std::to_string(size[0].get<int>()) + "x" + std::to_string(size[1].get<int>());
+  }
+  title += " " + report.value("precision", std::string());
+  if (auto s = write_plot(*sweeps, title, args.plot); !s.ok()) {
+    std::fprintf(stderr, "aquarelle bench: --plot: %s\n", s.message().c_str());
+    return kExitBadInput;
+  }
+  return kExitOk;
+}
+
 int run_bench(int argc, char** argv) {
   Arguments args;
   if (auto stop = parse_arguments(argc, argv, &args)) return *stop;
+  if (!args.plot_from.empty()) return replot(args);
 
   if (auto device = check_gl_device(args.gl_device); !device.ok()) {
     std::fprintf(stderr, "aquarelle bench: --gl-device: %s\n", device.message().c_str());

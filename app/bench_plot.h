@@ -1,12 +1,13 @@
-// The plot of `aquarelle bench`: time (x, log) against mean absolute error (y, log), one curve
-// per sweep, every measured point as a hollow marker and the Pareto points (no other point of
-// the sweep is both faster and more exact) filled and joined. Drawn into an ImageF by the
-// project itself (lines, markers, a 5x7 bitmap font) and written as PNG, so it needs nothing
-// beyond image I/O.
+// The plot of `aquarelle bench`, drawn with PLplot: small multiples, one panel per node type
+// (its sweeps as curves of one colour each), time (x) against mean absolute error (y) on log
+// axes with decade tick labels, every measured point hollow and the Pareto points (no other
+// point of the sweep is both faster and more exact) filled and joined. Exact points (error 0)
+// sit on the panel's bottom edge, labelled "exact". PNG, SVG or PDF by the file's extension.
 #pragma once
 
-#include <aquarelle/core/image.h>
 #include <aquarelle/core/result.h>
+
+#include <nlohmann/json.hpp>
 
 #include <string>
 #include <vector>
@@ -19,10 +20,11 @@ namespace aq::app {
 // first: each is more exact than every faster point.
 std::vector<size_t> pareto_points(const Sweep& sweep);
 
-// Exact points (error 0) are drawn on the bottom line of the plot, labelled "exact".
-ImageF draw_plot(const std::vector<Sweep>& sweeps, const std::string& title);
-
 Status write_plot(const std::vector<Sweep>& sweeps, const std::string& title,
                   const std::string& path);
+
+// The sweeps of a report written by `aquarelle bench --json` (series, node, points with
+// time_ms.median and mean_abs), so a plot can be redrawn without measuring again.
+Result<std::vector<Sweep>> sweeps_from_report(const nlohmann::json& report);
 
 }  // namespace aq::app

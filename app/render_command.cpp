@@ -15,6 +15,7 @@
 
 #include "commands.h"
 #include "render_guards.h"
+#include "render_layers.h"
 #include "session.h"
 
 namespace aq::app {
@@ -48,6 +49,9 @@ Renders the graph's output for each frame and writes it to OUT.
                           then not needed
   --resume                skip frames whose output file already exists and reads completely;
                           removes temporaries that killed renders left (.NAME.tmp-PID)
+  --layer [NAME=]NODE.PORT  also write that node output as a named layer of a multi-channel
+                          EXR (repeatable): in OUT itself when it is .exr, else in
+                          OUT.layers.exr; channels normal.X/Y/Z, depth.Z, light.R/G/B/A
   -q, --quiet             no progress output
 
 Exit codes: 0 ok, 1 bad input, 2 no usable GL or plugins, 130 interrupted.
@@ -77,6 +81,7 @@ int run_render(int argc, char** argv) {
   std::string graph_path, output, frames, size, backend_name = "auto", gl_device = "auto",
                                                 precision, quality, view;
   std::vector<std::string> sets;
+  std::vector<LayerRequest> layers;
   bool stats = false, resume = false, quiet = false, float_exr = false, print_plan = false;
   int bits = 8;
   for (int i = 1; i < argc; ++i) {
@@ -123,6 +128,13 @@ int run_render(int argc, char** argv) {
       stats = true;
     } else if (arg == "--plan") {
       print_plan = true;
+    } else if (arg == "--layer") {
+      auto layer = parse_layer(value());
+      if (!layer.ok()) {
+        std::fprintf(stderr, "aquarelle render: %s\n", layer.message().c_str());
+        return kExitBadInput;
+      }
+      layers.push_back(*layer);
     } else if (arg == "--resume") {
       resume = true;
     } else if (arg == "-q" || arg == "--quiet") {
@@ -217,6 +229,10 @@ int run_render(int argc, char** argv) {
       }
     }
     std::fprintf(stderr, "%s\n", format_problems(problems).c_str());
+    return kExitBadInput;
+  }
+  if (auto s = check_layers(layers, graph, registry); !s.ok()) {
+    std::fprintf(stderr, "aquarelle render: %s\n", s.message().c_str());
     return kExitBadInput;
   }
   if (print_plan) {
@@ -324,6 +340,7 @@ int run_render(int argc, char** argv) {
     options.measure_gpu_time = stats;
     options.finish_each_node = stats;  // timestamps without a flush under-read on llvmpipe
     options.retain_outputs = false;    // textures return to the pool after their last reader
+    if (!layers.empty()) options.retain_outputs = true;  // layers reuse the frame's results
     auto result = evaluator.evaluate(graph, options);
     if (!result.ok()) {
       if (progress) std::printf("\n");
@@ -361,7 +378,15 @@ int run_render(int argc, char** argv) {
     WriteOptions write_options;
     write_options.bits = bits;
     write_options.float_data = float_exr;
-    if (auto s = write_image(path, *pixels, write_options); !s.ok()) {
+    const bool layers_in_main = !layers.empty() && layers_path(path) == path;
+    Status written_main = layers_in_main ? write_layers(evaluator, graph, options, layers,
+                                                        &*pixels, path, write_options)
+                                         : write_image(path, *pixels, write_options);
+    if (written_main.ok() && !layers.empty() && !layers_in_main) {
+      written_main = write_layers(evaluator, graph, options, layers, nullptr, layers_path(path),
+                                  write_options);
+    }
+    if (auto s = written_main; !s.ok()) {
       if (progress) std::printf("\n");
       std::fprintf(stderr, "aquarelle render: frame %d: %s\n", frame, s.message().c_str());
       return kExitBadInput;

@@ -541,3 +541,50 @@ Status write_image(const std::string& path, const ImageF& image, const WriteOpti
 }
 
 }  // namespace aq
+
+namespace aq {
+
+// Multi-channel EXR (render --layer): one pass per named channel group, as compositors read
+// them. Same atomic write as write_image; OpenEXR stores the channels sorted by name.
+Status write_exr_channels(const std::string& path, const ImageF& image,
+                          const std::vector<std::string>& channel_names,
+                          const WriteOptions& options) {
+  if (lowercase_extension(path) != "exr") {
+    return make_error("cannot write image " + path +
+                      ": named channels (layers) need an .exr file; change the extension");
+  }
+  if (image.width <= 0 || image.height <= 0 || image.channels < 1 ||
+      static_cast<size_t>(image.channels) != channel_names.size() ||
+      image.pixels.size() != static_cast<size_t>(image.width) * image.height * image.channels) {
+    return make_error("cannot write image " + path + ": " + std::to_string(channel_names.size()) +
+                      " channel names for an image of " + std::to_string(image.channels) +
+                      " channels (" + std::to_string(image.width) + "x" +
+                      std::to_string(image.height) + ")");
+  }
+  OIIO::ImageSpec spec(image.width, image.height, image.channels,
+                       options.float_data ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF);
+  spec.channelnames = channel_names;
+  spec.alpha_channel = -1;
+  for (size_t c = 0; c < channel_names.size(); ++c) {
+    if (channel_names[c] == "A") spec.alpha_channel = static_cast<int>(c);
+  }
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  auto output = OIIO::ImageOutput::create(path, &memory);
+  if (!output) return make_error("cannot write image " + path + ": " + trim(oiio_error()));
+  const auto pixel_bytes = static_cast<OIIO::stride_t>(image.channels * sizeof(float));
+  const auto row_bytes = pixel_bytes * image.width;
+  const float* last_row =
+      image.pixels.data() + static_cast<size_t>(image.width) * image.channels * (image.height - 1);
+  if (!output->open(path, spec) ||
+      !output->write_image(OIIO::TypeDesc::FLOAT, last_row, pixel_bytes, -row_bytes) ||
+      !output->close()) {
+    std::string reason = trim(output->geterror());
+    if (reason.empty()) reason = trim(oiio_error());
+    return make_error("cannot encode image " + path + ": " + reason);
+  }
+  output.reset();
+  return write_atomically(path, "exr", bytes);
+}
+
+}  // namespace aq

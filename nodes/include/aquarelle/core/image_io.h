@@ -68,3 +68,14 @@ bool is_complete_image(const std::string& path);
 bool is_display_referred_format(const std::string& path);
 
 }  // namespace aq
+
+namespace aq {
+
+// Writes an EXR whose channels carry the given names, e.g. "R", "G", "B", "A", "normal.X",
+// "normal.Y", "normal.Z", "depth.Z" (Nuke reads "layer.channel" as layers). `image` has one
+// channel per name, row 0 at the bottom; half unless options.float_data. Atomic.
+Status write_exr_channels(const std::string& path, const ImageF& image,
+                          const std::vector<std::string>& channel_names,
+                          const WriteOptions& options = {});
+
+}  // namespace aq

@@ -1,0 +1,89 @@
+// A frame does not depend on how the range was cut (issue 21): a farm renders chunks of a
+// range on different machines, so frame N rendered alone, inside the whole range or inside a
+// chunk must be the same image bit for bit. Everything that carries state from one frame to
+// the next (node caches, the reuse of static nodes' outputs, the shadow map's cache of still
+// meshes, the pigment canvas, the texture pool) could break it. Each animated graph is
+// rendered three ways by the command line, as a farm would run it, and every frame compared.
+#include <gtest/gtest.h>
+
+#include <aquarelle/core/color.h>
+#include <aquarelle/core/image_io.h>
+
+#include <cstring>
+
+#include "app/cli_support.h"
+#include "support/harness.h"
+
+namespace aq::test {
+namespace {
+
+// Frames render in order, so frame 20 inside 1-48 has seen exactly what it sees inside 1-24:
+// the whole range stops at the chunk's end to keep the test short.
+constexpr const char* kSize = "96x54";
+constexpr int kWholeFirst = 1, kWholeLast = 24;
+constexpr int kChunkFirst = 17, kChunkLast = 24;
+constexpr int kAlone = 20;
+
+std::string frame_file(const std::filesystem::path& dir, int frame) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "%04d.exr", frame);
+  return (dir / name).string();
+}
+
+void render(const std::string& graph, const std::filesystem::path& dir, const std::string& frames) {
+  std::filesystem::create_directories(dir);
+  auto run = aquarelle("render " + source_path("graphs/" + graph) + " -q --float --size " + kSize +
+                       " --frames " + frames + " -o " + (dir / "####.exr").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+}
+
+// Bit for bit: the float pixels compared as bytes (NaN == NaN, -0 != +0).
+void expect_same_frame(const std::string& a, const std::string& b, const std::string& what) {
+  auto config = ColorConfig::load();
+  ASSERT_TRUE(config.ok()) << config.message();
+  auto first = read_image(a, *config);
+  auto second = read_image(b, *config);
+  ASSERT_TRUE(first.ok()) << first.message();
+  ASSERT_TRUE(second.ok()) << second.message();
+  ASSERT_EQ(first->pixels.size(), second->pixels.size()) << what;
+  size_t differing = 0;
+  for (size_t i = 0; i < first->pixels.size(); ++i) {
+    if (std::memcmp(&first->pixels[i], &second->pixels[i], sizeof(float)) != 0) ++differing;
+  }
+  EXPECT_EQ(differing, 0u) << what << ": " << differing << " of " << first->pixels.size()
+                           << " channel values differ (" << a << " vs " << b << ")";
+}
+
+class ChunkInvariance : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ChunkInvariance, FrameIsTheSameAloneInAChunkAndInTheWholeRange) {
+  const std::string graph = GetParam();
+  auto dir = scratch_dir("chunk_invariance_" + graph);
+  render(graph, dir / "whole", std::to_string(kWholeFirst) + "-" + std::to_string(kWholeLast));
+  render(graph, dir / "chunk", std::to_string(kChunkFirst) + "-" + std::to_string(kChunkLast));
+  render(graph, dir / "alone", std::to_string(kAlone));
+  if (HasFatalFailure()) return;
+  for (int frame = kChunkFirst; frame <= kChunkLast; ++frame) {
+    expect_same_frame(frame_file(dir / "whole", frame), frame_file(dir / "chunk", frame),
+                      graph + " frame " + std::to_string(frame) + ", whole range vs chunk");
+  }
+  expect_same_frame(frame_file(dir / "whole", kAlone), frame_file(dir / "alone", kAlone),
+                    graph + " frame " + std::to_string(kAlone) + ", whole range vs alone");
+  // Frames differ over time: otherwise the comparison above would prove nothing about state.
+  auto config = ColorConfig::load();
+  auto early = read_image(frame_file(dir / "whole", kChunkFirst), *config);
+  auto late = read_image(frame_file(dir / "whole", kChunkLast), *config);
+  ASSERT_TRUE(early.ok() && late.ok());
+  EXPECT_GT(max_abs_diff(*early, *late), 0.0) << graph << " does not animate";
+}
+
+// The animated graphs of graphs/ (settings.frames longer than one frame).
+INSTANTIATE_TEST_SUITE_P(AnimatedGraphs, ChunkInvariance,
+                         ::testing::Values("underwater.json", "watercolor.json", "scene_light.json",
+                                           "caustics.json"),
+                         [](const auto& info) {
+                           return info.param.substr(0, info.param.find('.'));
+                         });
+
+}  // namespace
+}  // namespace aq::test
