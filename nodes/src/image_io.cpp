@@ -584,7 +584,7 @@ Status write_exr_channels(const std::string& path, const ImageF& image,
     return make_error("cannot encode image " + path + ": " + reason);
   }
   output.reset();
-  return write_atomically(path, "exr", bytes);
+  return write_atomically(path, bytes);
 }
 
 }  // namespace aq
