@@ -45,6 +45,7 @@ Graph reference_pipeline(const Graph& graph) {
       node.params["direct_kernel"] = "full";  // the one-pass per-pixel Gaussian, not separable
     } else if (node.type == "caustics") {
       node.params["grid"] = 1024;
+      node.params["auto_grid"] = false;  // the grid asked for, whatever the texture's size
     } else if (node.type == "shadowmap") {
       node.params["size"] = 4096;
       node.params["auto_size"] = false;

@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
-# Regenerates the measured part of docs/performance.md (issue 9: the whole pipeline at 1280x720
-# in copy passes per frame, the per-node breakdown, and each quality preset's error against the
-# float reference render) with one command:
+# Regenerates the measured parts of docs/performance.md with one command:
 #
 #   scripts/update-performance.sh [GRAPH] [bench options...]
 #
-# Same machinery as scripts/update-accuracy.sh, with only the pipeline's preset sweep.
+# 1. Between the `bench` markers: the whole pipeline at quality final, 1280x720, in copy passes
+#    per frame, the per-node breakdown, and each quality preset's error against the float
+#    reference render (same machinery as scripts/update-accuracy.sh, only the preset sweep).
+# 2. Between the `levers` markers: each optimisation lever switched off on its own (one bench
+#    run each, `--set`), and all of them off, against all on: copy passes per frame, the cost of
+#    the node it acts on, and the pipeline's PSNR against the reference render. Ratios are to
+#    the copy pass of the same run; milliseconds of different runs do not compare.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 graph=graphs/underwater.json
@@ -17,4 +21,79 @@ elif [ ! -f "$graph" ]; then
 fi
 AQ_BENCH_DOC=docs/performance.md AQ_BENCH_OUT=docs/performance \
   AQ_BENCH_COMMAND=scripts/update-performance.sh \
-  exec scripts/update-accuracy.sh "$graph" --size 1280x720 --frames 5 --pipeline-only "$@"
+  scripts/update-accuracy.sh "$graph" --size 1280x720 --frames 5 --pipeline-only \
+  --quality final "$@"
+
+[ "$graph" = graphs/underwater.json ] || exit 0
+build=${AQ_BUILD_DIR:-build}
+out=docs/performance/levers
+mkdir -p "$out"
+# name | node it acts on | what switches it off (bench --set ...)
+levers=(
+  "all levers on|-|"
+  "blur: separable direct kernel|blur|blur.direct_kernel=full"
+  "caustics: grid from the footprint|caustics|caustics.auto_grid=false"
+  "all levers off|-|blur.direct_kernel=full caustics.auto_grid=false"
+)
+for i in "${!levers[@]}"; do
+  IFS='|' read -r name node off <<< "${levers[$i]}"
+  sets=()
+  for s in $off; do sets+=(--set "$s"); done
+  echo "update-performance: lever run $((i + 1))/${#levers[@]}: $name" >&2
+  "$build/app/aquarelle" bench "$graph" --size 1280x720 --frames 3 --warmup 1 --quality final \
+    --pipeline-only --json -q "${sets[@]}" > "$out/$i.json"
+done
+
+/usr/bin/python3 - "$out" docs/performance.md "${levers[@]}" <<'PYTHON'
+import json, re, sys
+
+out, doc_path, levers = sys.argv[1], sys.argv[2], sys.argv[3:]
+
+
+def final_psnr(report):
+    for sweep in report["sweeps"]:
+        for p in sweep["points"]:
+            if p["setting"] == "quality=final" and p["precision"] == report["precision"]:
+                return p["psnr"]
+    return None
+
+
+def node_cost(report, node):
+    for n in report["modes"]["cached_static_nodes"]["nodes"]:
+        if n["id"] == node:
+            return n["wall_ms"]["median"] / report["copy_pass_ms"]
+    return None
+
+
+runs = [json.load(open(f"{out}/{i}.json")) for i in range(len(levers))]
+on = runs[0]
+lines = ["Measured by `scripts/update-performance.sh`: `graphs/underwater.json` at quality final, "
+         f"1280x720, {on['precision']} precision, {on['frames']} timed frames per run, static "
+         "nodes cached; one `aquarelle bench --pipeline-only` run per row (PSNR against the "
+         "reference render of the preset table).", "",
+         "| lever | switched off by | copy passes per frame, off → on | its node, off → on | "
+         "PSNR dB, off → on |", "| --- | --- | --- | --- | --- |"]
+fmt = lambda v, f="{:.1f}": "-" if v is None else f.format(v)
+for i, spec in enumerate(levers[1:], start=1):
+    name, node, off = spec.split("|")
+    r = runs[i]
+    node_text = "-" if node == "-" else (
+        f"{node} {fmt(node_cost(r, node))} → {fmt(node_cost(on, node))}")
+    lines.append(f"| {name} | `{off}` | {r['copy_passes_per_frame']:.1f} → "
+                 f"{on['copy_passes_per_frame']:.1f} | {node_text} | "
+                 f"{fmt(final_psnr(r))} → {fmt(final_psnr(on))} |")
+lines.append("")
+lines.append("Per run (copy pass ms, copy passes per frame static cached / every node running): " +
+             "; ".join(f"{spec.split('|')[0]}: {r['copy_pass_ms']:.2f} ms, "
+                       f"{r['copy_passes_per_frame']:.1f} / "
+                       f"{r['copy_passes_per_frame_every_node_runs']:.1f}"
+                       for spec, r in zip(levers, runs)) + ".")
+block = "\n".join(lines)
+doc = open(doc_path).read()
+pattern = re.compile(r"(<!-- levers:begin -->\n).*?(<!-- levers:end -->)", re.S)
+if not pattern.search(doc):
+    sys.exit(f"{doc_path}: the markers <!-- levers:begin --> and <!-- levers:end --> are missing")
+doc = pattern.sub(lambda m: m.group(1) + block + "\n" + m.group(2), doc)
+open(doc_path, "w").write(doc)
+print(f"updated the lever table of {doc_path}")
+PYTHON

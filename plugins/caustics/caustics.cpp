@@ -29,7 +29,8 @@ enum Param {
   kEta,
   kMaxIntensity,
   kNormalizeEnergy,
-  kAutoResolution
+  kAutoResolution,
+  kAutoGrid
 };
 constexpr aq_param_desc kParams[] = {
     aq::int_param("resolution", 256, 1, 4096,
@@ -49,7 +50,10 @@ constexpr aq_param_desc kParams[] = {
                    "rescale so the tile's mean is exactly 1 (corrects clamp and sampling loss)"),
     aq::bool_param("auto_resolution", true,
                    "with `scene` connected: about one texel per screen pixel at the nearest "
-                   "receiver in view under the water (at most `resolution`)")};
+                   "receiver in view under the water (at most `resolution`)"),
+    aq::bool_param("auto_grid", true,
+                   "at final quality with auto_resolution: at most a grid cell per two texels "
+                   "of the texture (the proxy presets' density); off: the grid asked for")};
 
 // Texture pixels per tile side for about one texel per screen pixel where the tile is seen
 // largest: at the nearest point, under the water, of the meshes' boxes in view, where a tile is
@@ -103,7 +107,8 @@ struct Caustics {
     // proxy presets, at a third of the cost of grid 256 (README, error in the bench).
     const int quality_divisor = ctx.quality() == 0 ? 8 : ctx.quality() == 1 ? 4 : 1;
     int grid = std::max(4, static_cast<int>(ctx.param_int(kGrid)) / quality_divisor);
-    if (ctx.quality() >= 2 && scene != nullptr && ctx.param_bool(kAutoResolution)) {
+    if (ctx.quality() >= 2 && scene != nullptr && ctx.param_bool(kAutoResolution) &&
+        ctx.param_bool(kAutoGrid)) {
       grid = std::min(grid, std::max(4, (resolution + 1) / 2));
     }
     const double depth = ctx.param_float(kDepth);

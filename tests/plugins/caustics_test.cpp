@@ -402,6 +402,11 @@ TEST(Caustics, FinalGridFollowsTheFootprintTexture) {
   ASSERT_FALSE(fine.empty());
   EXPECT_EQ(aq::test::max_abs_diff(automatic, by_hand), 0.0);
   EXPECT_GT(aq::test::max_abs_diff(automatic, fine), 1e-3) << "the grid asked for is not used";
+  // auto_grid off: the footprint still sizes the texture, the grid is the one asked for.
+  const ImageF asked = footprint_caustics(
+      {{"grid", 256}, {"resolution", 256}, {"auto_resolution", true}, {"auto_grid", false}});
+  ASSERT_FALSE(asked.empty());
+  EXPECT_EQ(aq::test::max_abs_diff(asked, fine), 0.0);
 }
 
 }  // namespace
