@@ -33,7 +33,8 @@ levers=(
   "all levers on|-|"
   "blur: separable direct kernel|blur|blur.direct_kernel=full"
   "caustics: grid from the footprint|caustics|caustics.auto_grid=false"
-  "all levers off|-|blur.direct_kernel=full caustics.auto_grid=false"
+  "pigment: canvas densities kept while the view stays|pigment|pigment.cache_canvas=false"
+  "all levers off|-|blur.direct_kernel=full caustics.auto_grid=false pigment.cache_canvas=false"
 )
 for i in "${!levers[@]}"; do
   IFS='|' read -r name node off <<< "${levers[$i]}"
