@@ -28,18 +28,19 @@ AQ_BENCH_DOC=docs/performance.md AQ_BENCH_OUT=docs/performance \
 build=${AQ_BUILD_DIR:-build}
 out=docs/performance/levers
 mkdir -p "$out"
-# name | node it acts on | what switches it off (bench --set ...)
+# name | node it acts on | the run's settings (bench --set ...) | on: the run has the lever
+# (off by default), off: the run lacks it (on by default). The first run is the graph as it is.
 levers=(
-  "all levers on|-|"
-  "blur: separable direct kernel|blur|blur.direct_kernel=full"
-  "caustics: grid from the footprint|caustics|caustics.auto_grid=false"
-  "pigment: canvas densities kept while the view stays|pigment|pigment.cache_canvas=false"
-  "all levers off|-|blur.direct_kernel=full caustics.auto_grid=false pigment.cache_canvas=false"
+  "the graph's defaults|-||-"
+  "blur: separable direct kernel|blur|blur.direct_kernel=full|off"
+  "pigment: canvas densities kept while the view stays|pigment|pigment.cache_canvas=false|off"
+  "caustics: grid from the footprint (off by default)|caustics|caustics.auto_grid=true|on"
+  "the default levers off|-|blur.direct_kernel=full pigment.cache_canvas=false|off"
 )
 for i in "${!levers[@]}"; do
-  IFS='|' read -r name node off <<< "${levers[$i]}"
+  IFS='|' read -r name node settings sense <<< "${levers[$i]}"
   sets=()
-  for s in $off; do sets+=(--set "$s"); done
+  for s in $settings; do sets+=(--set "$s"); done
   echo "update-performance: lever run $((i + 1))/${#levers[@]}: $name" >&2
   "$build/app/aquarelle" bench "$graph" --size 1280x720 --frames 3 --warmup 1 --quality final \
     --pipeline-only --json -q "${sets[@]}" > "$out/$i.json"
@@ -72,17 +73,17 @@ lines = ["Measured by `scripts/update-performance.sh`: `graphs/underwater.json` 
          f"1280x720, {on['precision']} precision, {on['frames']} timed frames per run, static "
          "nodes cached; one `aquarelle bench --pipeline-only` run per row (PSNR against the "
          "reference render of the preset table).", "",
-         "| lever | switched off by | copy passes per frame, off → on | its node, off → on | "
-         "PSNR dB, off → on |", "| --- | --- | --- | --- | --- |"]
+         "| lever | measured with | copy passes per frame, without → with | its node, "
+         "without → with | PSNR dB, without → with |", "| --- | --- | --- | --- | --- |"]
 fmt = lambda v, f="{:.1f}": "-" if v is None else f.format(v)
 for i, spec in enumerate(levers[1:], start=1):
-    name, node, off = spec.split("|")
-    r = runs[i]
+    name, node, settings, sense = spec.split("|")
+    without, with_ = (runs[i], on) if sense == "off" else (on, runs[i])
     node_text = "-" if node == "-" else (
-        f"{node} {fmt(node_cost(r, node))} → {fmt(node_cost(on, node))}")
-    lines.append(f"| {name} | `{off}` | {r['copy_passes_per_frame']:.1f} → "
-                 f"{on['copy_passes_per_frame']:.1f} | {node_text} | "
-                 f"{fmt(final_psnr(r))} → {fmt(final_psnr(on))} |")
+        f"{node} {fmt(node_cost(without, node))} → {fmt(node_cost(with_, node))}")
+    lines.append(f"| {name} | `{settings}` | {without['copy_passes_per_frame']:.1f} → "
+                 f"{with_['copy_passes_per_frame']:.1f} | {node_text} | "
+                 f"{fmt(final_psnr(without))} → {fmt(final_psnr(with_))} |")
 lines.append("")
 lines.append("Per run (copy pass ms, copy passes per frame static cached / every node running): " +
              "; ".join(f"{spec.split('|')[0]}: {r['copy_pass_ms']:.2f} ms, "

@@ -51,9 +51,10 @@ constexpr aq_param_desc kParams[] = {
     aq::bool_param("auto_resolution", true,
                    "with `scene` connected: about one texel per screen pixel at the nearest "
                    "receiver in view under the water (at most `resolution`)"),
-    aq::bool_param("auto_grid", true,
+    aq::bool_param("auto_grid", false,
                    "at final quality with auto_resolution: at most a grid cell per two texels "
-                   "of the texture (the proxy presets' density); off: the grid asked for")};
+                   "of the texture (the proxy presets' density): about a quarter of the cost, "
+                   "1.5 dB less pipeline PSNR on the underwater graph; off: the grid asked for")};
 
 // Texture pixels per tile side for about one texel per screen pixel where the tile is seen
 // largest: at the nearest point, under the water, of the meshes' boxes in view, where a tile is
@@ -102,9 +103,10 @@ struct Caustics {
     }
     // The quality preset trades the grid (cost ~ grid^2 triangles, error ~ 1/grid): draft an
     // eighth, preview a quarter (the texture is already halved by the render scale, so about a
-    // cell per two texels), final the grid asked for but, with `auto_resolution`, no finer than
-    // a cell per two texels of the texture the footprint asked for: the same density as the
-    // proxy presets, at a third of the cost of grid 256 (README, error in the bench).
+    // cell per two texels), final the grid asked for; with `auto_grid` and `auto_resolution`
+    // no finer than a cell per two texels of the footprint's texture: the proxy presets'
+    // density, a quarter of the cost of grid 256 but 1.5 dB of pipeline PSNR, too much at
+    // final, so it is off by default (README).
     const int quality_divisor = ctx.quality() == 0 ? 8 : ctx.quality() == 1 ? 4 : 1;
     int grid = std::max(4, static_cast<int>(ctx.param_int(kGrid)) / quality_divisor);
     if (ctx.quality() >= 2 && scene != nullptr && ctx.param_bool(kAutoResolution) &&

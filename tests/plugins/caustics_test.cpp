@@ -386,13 +386,13 @@ TEST(Caustics, TextureSizeFollowsTheFootprintOfATileOnScreen) {
   EXPECT_EQ(footprint_width(10.0, true, 2.0), pinhole_texels(2.0, 64, 50.0, 3.0));
 }
 
-// At final quality with the footprint's texture, the grid is no finer than a cell per two
-// texels of it (the proxy presets' density): the same image as that grid asked for by hand.
+// At final quality with the footprint's texture and auto_grid, the grid is no finer than a cell
+// per two texels of it (the proxy presets' density): the same image as that grid by hand.
 TEST(Caustics, FinalGridFollowsTheFootprintTexture) {
   const int width = footprint_width(10.0);
   ASSERT_GT(width, 8);
-  const ImageF automatic =
-      footprint_caustics({{"grid", 256}, {"resolution", 256}, {"auto_resolution", true}});
+  const ImageF automatic = footprint_caustics(
+      {{"grid", 256}, {"resolution", 256}, {"auto_resolution", true}, {"auto_grid", true}});
   const ImageF by_hand = footprint_caustics(
       {{"grid", (width + 1) / 2}, {"resolution", width}, {"auto_resolution", false}});
   const ImageF fine =
@@ -402,9 +402,10 @@ TEST(Caustics, FinalGridFollowsTheFootprintTexture) {
   ASSERT_FALSE(fine.empty());
   EXPECT_EQ(aq::test::max_abs_diff(automatic, by_hand), 0.0);
   EXPECT_GT(aq::test::max_abs_diff(automatic, fine), 1e-3) << "the grid asked for is not used";
-  // auto_grid off: the footprint still sizes the texture, the grid is the one asked for.
-  const ImageF asked = footprint_caustics(
-      {{"grid", 256}, {"resolution", 256}, {"auto_resolution", true}, {"auto_grid", false}});
+  // auto_grid off (the default): the footprint still sizes the texture, the grid is the one
+  // asked for.
+  const ImageF asked =
+      footprint_caustics({{"grid", 256}, {"resolution", 256}, {"auto_resolution", true}});
   ASSERT_FALSE(asked.empty());
   EXPECT_EQ(aq::test::max_abs_diff(asked, fine), 0.0);
 }
