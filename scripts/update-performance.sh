@@ -34,16 +34,35 @@ levers=(
   "the graph's defaults|-||-"
   "blur: separable direct kernel|blur|blur.direct_kernel=full|off"
   "pigment: canvas densities kept while the view stays|pigment|pigment.cache_canvas=false|off"
+  "wobble: the paper's precomputed gradient|wobble|-wobble.gradient|off"
   "caustics: grid from the footprint (off by default)|caustics|caustics.auto_grid=true|on"
-  "the default levers off|-|blur.direct_kernel=full pigment.cache_canvas=false|off"
+  "the default levers off|-|blur.direct_kernel=full pigment.cache_canvas=false -wobble.gradient|off"
 )
 for i in "${!levers[@]}"; do
   IFS='|' read -r name node settings sense <<< "${levers[$i]}"
   sets=()
-  for s in $settings; do sets+=(--set "$s"); done
+  run_graph=$graph
+  for s in $settings; do
+    if [ "${s#-}" != "$s" ]; then
+      # -NODE.INPUT: the graph without that link (a copy beside the original, so that paths
+      # relative to the graph's folder still resolve).
+      copy=$(dirname "$graph")/.levers-$i.json
+      /usr/bin/python3 - "$run_graph" "$copy" "${s#-}" <<'PYTHON'
+import json, sys
+graph = json.load(open(sys.argv[1]))
+node, port = sys.argv[3].split(".")
+del graph["nodes"][node]["inputs"][port]
+json.dump(graph, open(sys.argv[2], "w"), indent=2)
+PYTHON
+      run_graph=$copy
+    else
+      sets+=(--set "$s")
+    fi
+  done
   echo "update-performance: lever run $((i + 1))/${#levers[@]}: $name" >&2
-  "$build/app/aquarelle" bench "$graph" --size 1280x720 --frames 3 --warmup 1 --quality final \
-    --pipeline-only --json -q "${sets[@]}" > "$out/$i.json"
+  "$build/app/aquarelle" bench "$run_graph" --size 1280x720 --frames 3 --warmup 1 \
+    --quality final --pipeline-only --json -q "${sets[@]}" > "$out/$i.json"
+  [ "$run_graph" = "$graph" ] || rm -f "$run_graph"
 done
 
 /usr/bin/python3 - "$out" docs/performance.md "${levers[@]}" <<'PYTHON'
