@@ -46,6 +46,8 @@ reference render.
   --quality draft|preview|final
                           quality preset to time (default: the graph's settings.quality);
                           the preset sweep still measures all three
+  --set NODE.PARAM=VALUE  override a parameter before timing (repeatable; VALUE as JSON), e.g.
+                          to time a graph with one optimisation switched off
   --csv OUT.csv           write every measurement as CSV
   --plot OUT.png          plot time against mean abs error: a panel per node, a curve per
                           sweep, the Pareto front marked (PLplot; .png, .svg or .pdf)
@@ -69,6 +71,7 @@ struct Arguments {
   bool pipeline_only = false;
   std::string precision;
   std::string quality;
+  std::vector<std::string> sets;
   std::string csv;
   std::string plot;
   std::string plot_from;
@@ -143,6 +146,10 @@ std::optional<int> parse_arguments(int argc, char** argv, Arguments* args) {
         return kExitBadInput;
       }
       args->quality = *v;
+    } else if (arg == "--set") {
+      auto v = value();
+      if (!v) return kExitBadInput;
+      args->sets.push_back(*v);
     } else if (arg == "--csv") {
       auto v = value();
       if (!v) return kExitBadInput;
@@ -260,6 +267,12 @@ int run_bench(int argc, char** argv) {
   }
   if (!args.precision.empty()) graph.settings.precision = args.precision;
   if (!args.quality.empty()) graph.settings.quality = args.quality;
+  for (const auto& assignment : args.sets) {
+    if (auto s = apply_setting(graph, registry, assignment); !s.ok()) {
+      std::fprintf(stderr, "aquarelle bench: --set: %s\n", s.message().c_str());
+      return kExitBadInput;
+    }
+  }
 
   auto context = create_headless_context(*backend, args.gl_device);
   if (!context.ok()) {

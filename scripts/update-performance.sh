@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
-# Regenerates the measured part of docs/performance.md (issue 9: the whole pipeline at 1280x720
-# in copy passes per frame, the per-node breakdown, and each quality preset's error against the
-# float reference render) with one command:
+# Regenerates the measured parts of docs/performance.md with one command:
 #
 #   scripts/update-performance.sh [GRAPH] [bench options...]
 #
-# Same machinery as scripts/update-accuracy.sh, with only the pipeline's preset sweep.
+# 1. Between the `bench` markers: the whole pipeline at quality final, 1280x720, in copy passes
+#    per frame, the per-node breakdown, and each quality preset's error against the float
+#    reference render (same machinery as scripts/update-accuracy.sh, only the preset sweep).
+# 2. Between the `levers` markers: each optimisation lever switched off on its own (one bench
+#    run each, `--set`), and all of them off, against all on: copy passes per frame, the cost of
+#    the node it acts on, and the pipeline's PSNR against the reference render. Ratios are to
+#    the copy pass of the same run; milliseconds of different runs do not compare.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 graph=graphs/underwater.json
@@ -17,4 +21,100 @@ elif [ ! -f "$graph" ]; then
 fi
 AQ_BENCH_DOC=docs/performance.md AQ_BENCH_OUT=docs/performance \
   AQ_BENCH_COMMAND=scripts/update-performance.sh \
-  exec scripts/update-accuracy.sh "$graph" --size 1280x720 --frames 5 --pipeline-only "$@"
+  scripts/update-accuracy.sh "$graph" --size 1280x720 --frames 5 --pipeline-only \
+  --quality final "$@"
+
+[ "$graph" = graphs/underwater.json ] || exit 0
+build=${AQ_BUILD_DIR:-build}
+out=docs/performance/levers
+mkdir -p "$out"
+# name | node it acts on | the run's settings (bench --set ...) | on: the run has the lever
+# (off by default), off: the run lacks it (on by default). The first run is the graph as it is.
+levers=(
+  "the graph's defaults|-||-"
+  "blur: separable direct kernel|blur|blur.direct_kernel=full|off"
+  "pigment: canvas densities kept while the view stays|pigment|pigment.cache_canvas=false|off"
+  "wobble: the paper's precomputed gradient|wobble|-wobble.gradient|off"
+  "caustics: grid from the footprint (off by default)|caustics|caustics.auto_grid=true|on"
+  "the default levers off|-|blur.direct_kernel=full pigment.cache_canvas=false -wobble.gradient|off"
+)
+for i in "${!levers[@]}"; do
+  IFS='|' read -r name node settings sense <<< "${levers[$i]}"
+  sets=()
+  run_graph=$graph
+  for s in $settings; do
+    if [ "${s#-}" != "$s" ]; then
+      # -NODE.INPUT: the graph without that link (a copy beside the original, so that paths
+      # relative to the graph's folder still resolve).
+      copy=$(dirname "$graph")/.levers-$i.json
+      /usr/bin/python3 - "$run_graph" "$copy" "${s#-}" <<'PYTHON'
+import json, sys
+graph = json.load(open(sys.argv[1]))
+node, port = sys.argv[3].split(".")
+del graph["nodes"][node]["inputs"][port]
+json.dump(graph, open(sys.argv[2], "w"), indent=2)
+PYTHON
+      run_graph=$copy
+    else
+      sets+=(--set "$s")
+    fi
+  done
+  echo "update-performance: lever run $((i + 1))/${#levers[@]}: $name" >&2
+  "$build/app/aquarelle" bench "$run_graph" --size 1280x720 --frames 3 --warmup 1 \
+    --quality final --pipeline-only --json -q "${sets[@]}" > "$out/$i.json"
+  [ "$run_graph" = "$graph" ] || rm -f "$run_graph"
+done
+
+/usr/bin/python3 - "$out" docs/performance.md "${levers[@]}" <<'PYTHON'
+import json, re, sys
+
+out, doc_path, levers = sys.argv[1], sys.argv[2], sys.argv[3:]
+
+
+def final_psnr(report):
+    for sweep in report["sweeps"]:
+        for p in sweep["points"]:
+            if p["setting"] == "quality=final" and p["precision"] == report["precision"]:
+                return p["psnr"]
+    return None
+
+
+def node_cost(report, node):
+    for n in report["modes"]["cached_static_nodes"]["nodes"]:
+        if n["id"] == node:
+            return n["wall_ms"]["median"] / report["copy_pass_ms"]
+    return None
+
+
+runs = [json.load(open(f"{out}/{i}.json")) for i in range(len(levers))]
+on = runs[0]
+lines = ["Measured by `scripts/update-performance.sh`: `graphs/underwater.json` at quality final, "
+         f"1280x720, {on['precision']} precision, {on['frames']} timed frames per run, static "
+         "nodes cached; one `aquarelle bench --pipeline-only` run per row (PSNR against the "
+         "reference render of the preset table).", "",
+         "| lever | measured with | copy passes per frame, without → with | its node, "
+         "without → with | PSNR dB, without → with |", "| --- | --- | --- | --- | --- |"]
+fmt = lambda v, f="{:.1f}": "-" if v is None else f.format(v)
+for i, spec in enumerate(levers[1:], start=1):
+    name, node, settings, sense = spec.split("|")
+    without, with_ = (runs[i], on) if sense == "off" else (on, runs[i])
+    node_text = "-" if node == "-" else (
+        f"{node} {fmt(node_cost(without, node))} → {fmt(node_cost(with_, node))}")
+    lines.append(f"| {name} | `{settings}` | {without['copy_passes_per_frame']:.1f} → "
+                 f"{with_['copy_passes_per_frame']:.1f} | {node_text} | "
+                 f"{fmt(final_psnr(without))} → {fmt(final_psnr(with_))} |")
+lines.append("")
+lines.append("Per run (copy pass ms, copy passes per frame static cached / every node running): " +
+             "; ".join(f"{spec.split('|')[0]}: {r['copy_pass_ms']:.2f} ms, "
+                       f"{r['copy_passes_per_frame']:.1f} / "
+                       f"{r['copy_passes_per_frame_every_node_runs']:.1f}"
+                       for spec, r in zip(levers, runs)) + ".")
+block = "\n".join(lines)
+doc = open(doc_path).read()
+pattern = re.compile(r"(<!-- levers:begin -->\n).*?(<!-- levers:end -->)", re.S)
+if not pattern.search(doc):
+    sys.exit(f"{doc_path}: the markers <!-- levers:begin --> and <!-- levers:end --> are missing")
+doc = pattern.sub(lambda m: m.group(1) + block + "\n" + m.group(2), doc)
+open(doc_path, "w").write(doc)
+print(f"updated the lever table of {doc_path}")
+PYTHON

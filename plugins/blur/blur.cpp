@@ -52,7 +52,7 @@ enum Param {
   kDirectKernel
 };
 enum Method { kGaussian = 0, kStrided = 1 };
-enum DirectKernel { kDirectAuto = 0, kDirectFull = 1, kDirectPinwheel = 2 };
+enum DirectKernel { kDirectAuto = 0, kDirectFull = 1, kDirectPinwheel = 2, kDirectSeparable = 3 };
 constexpr aq_param_desc kParams[] = {
     aq::enum_param("method", "gaussian|strided", kGaussian,
                    "gaussian: exact separable Gaussian (default); strided: the seed's 5x5 kernel "
@@ -75,10 +75,13 @@ constexpr aq_param_desc kParams[] = {
     aq::bool_param("reduced_resolution", false,
                    "blur sigmas above 4 px (uniform, or the stack's levels) on a pyramid reduced "
                    "2^k times, sigma/2^k >= 2 px: much faster, error measured in the tests"),
-    aq::enum_param("direct_kernel", "auto|full|pinwheel", kDirectAuto,
-                   "one-pass kernel for a varying sigma up to 1 working px: full = the 5x5 "
-                   "truncated Gaussian (9 reads); pinwheel = 17 of its 25 taps (5 reads, less "
-                   "accurate); auto = pinwheel at draft and preview quality, full at final")};
+    aq::enum_param("direct_kernel", "auto|full|pinwheel|separable", kDirectAuto,
+                   "kernel for a varying sigma up to 2 working px: full = the truncated "
+                   "Gaussian in one pass (9 reads up to 1 px, 25 up to 2 px); pinwheel = 17 of "
+                   "the 5x5 taps (5 reads, up to 1 px, less accurate); separable = rows then "
+                   "columns, each pixel with its own sigma (2 passes of 3 or 5 reads; differs "
+                   "from full where sigma changes within the radius); auto = pinwheel at draft "
+                   "and preview, full at final up to 1 px, separable above 1 px")};
 
 constexpr int kMaxLevels = 12;          // blurred levels in the stack besides the input (shader)
 constexpr double kSmallestLevel = 0.5;  // below this a Gaussian is nearly the identity
@@ -209,6 +212,10 @@ struct Blur {
     const int64_t kernel = ctx.param_enum(kDirectKernel);
     const bool pinwheel =
         radius == 2 && (kernel == kDirectPinwheel || (kernel == kDirectAuto && ctx.quality() < 2));
+    // Above 1 px the one pass reads 25 texels; two passes of 5 cost less (README, cost).
+    if (kernel == kDirectSeparable || (kernel == kDirectAuto && radius > 2)) {
+      return separable_gaussian(ctx, in, out, sigma, radius);
+    }
     const std::string defines =
         define("AQ_RADIUS", radius) + define("AQ_PINWHEEL", pinwheel) + depth_define(ctx, in);
     GLuint program = ctx.program(with_strength(shaders::blur_direct_frag, defines, source));
@@ -218,6 +225,27 @@ struct Blur {
     aq::bind_texture(program, "u_image", 0, in);
     aq::set_float(program, "u_sigma", sigma);
     return ctx.draw(out);
+  }
+
+  // σ per pixel, σmax small: rows then columns, each pixel with its own σ (a float scratch
+  // between the passes, as the exact separable blur).
+  bool separable_gaussian(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma,
+                          int radius) {
+    aq_image rows;
+    if (!ctx.scratch(in.width, in.height, scratch_format(ctx), &rows)) return false;
+    for (int axis = 0; axis < 2; ++axis) {
+      const std::string defines =
+          define("AQ_RADIUS", radius) + define("AQ_AXIS", axis) + depth_define(ctx, in);
+      GLuint program =
+          ctx.program(with_strength(shaders::blur_direct_separable_frag, defines, source));
+      if (program == 0) return false;
+      glUseProgram(program);
+      set_strength_uniforms(ctx, program, in);
+      aq::bind_texture(program, "u_image", 0, axis == 0 ? in : rows);
+      aq::set_float(program, "u_sigma", sigma);
+      if (!ctx.draw(axis == 0 ? rows : out)) return false;
+    }
+    return true;
   }
 
   // σ per pixel: a stack of exact blurs mixed per pixel by the composite shader.

@@ -12,7 +12,10 @@
 namespace {
 
 constexpr aq_port_desc kOutputs[] = {
-    aq::image_port("image", "paper height in rgb (0.5 mean level, [0,1]), alpha 1")};
+    aq::image_port("image", "paper height in rgb (0.5 mean level, [0,1]), alpha 1"),
+    aq::image_port("gradient",
+                   "height change per texel in rg (central differences, clamped at the "
+                   "border), RGBA32F: what wobble reads instead of differencing the height")};
 enum Param { kGrainScale, kFiberScale, kOctaves, kFiberWeight, kRoughness, kSeed, kWidth, kHeight };
 constexpr aq_param_desc kParams[] = {
     aq::int_param("grain_scale", 48, 1, 4096, "grain bumps (Worley cells) across the width"),
@@ -50,7 +53,18 @@ struct Paper {
     aq::set_float(program, "u_fiber_weight", ctx.param_float(kFiberWeight));
     aq::set_float(program, "u_roughness", ctx.param_float(kRoughness));
     aq::set_int(program, "u_seed", int(ctx.param_int(kSeed)));
-    const bool drawn = ctx.draw(out);
+    if (!ctx.draw(out)) return AQ_ERROR;
+
+    // The gradient once here (the paper is static, so cached) rather than four reads per pixel
+    // in every frame's wobble.
+    aq_image gradient;
+    if (!ctx.output(1, width, height, AQ_FORMAT_RGBA32F, &gradient)) return AQ_ERROR;
+    GLuint differences = ctx.program(shaders::paper_gradient_frag);
+    if (differences == 0) return AQ_ERROR;
+    glUseProgram(differences);
+    aq::bind_texture(differences, "u_height", 0, out);
+    const bool drawn = ctx.draw(gradient);
+    aq::unbind_textures(1);
     glUseProgram(0);
     return drawn ? AQ_OK : AQ_ERROR;
   }

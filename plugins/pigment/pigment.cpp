@@ -8,11 +8,13 @@
 //   [turbulence] [grain] [paper] ────────┤
 //   [position] (object) ─────────────────┼──► pigment.frag ──► image
 //   [scene] camera ─► pan, zoom (screen) ┘
+#include <aquarelle/gl_raii.hpp>
 #include <aquarelle/plugin.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "pigment_shaders.h"
@@ -46,7 +48,8 @@ enum Param : uint32_t {
   kPaperWeight,
   kPaperFrequency,
   kWorldScale,
-  kSeed
+  kSeed,
+  kCacheCanvas
 };
 constexpr aq_param_desc kParams[] = {
     aq::enum_param("anchoring", "screen|object", 0,
@@ -64,7 +67,11 @@ constexpr aq_param_desc kParams[] = {
                     "procedural paper cells per image height (always on the canvas)"),
     aq::float_param("world_scale", 1.0, 0.001, 1e6, "object anchoring: world units per unit", 0.0,
                     "log"),
-    aq::int_param("seed", 0, 0, 1 << 20, "independent procedural textures per seed")};
+    aq::int_param("seed", 0, 0, 1 << 20, "independent procedural textures per seed"),
+    aq::bool_param("cache_canvas", true,
+                   "screen anchoring: keep the procedural densities of the view in a texture "
+                   "while the camera stays (same image, the noise computed once); off: computed "
+                   "every frame")};
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -100,7 +107,17 @@ Canvas canvas_for(const aq_scene* scene) {
   return canvas;
 }
 
+// The procedural canvas densities of one view (pass 1 of pigment.frag), kept while the view,
+// the size and the parameters they depend on stay the same.
+struct CanvasCache {
+  aq::gl::Texture texture;
+  uint32_t generation = 0;
+  std::string key;
+};
+
 struct Pigment {
+  CanvasCache cache;
+
   int process(aq::Context& ctx) {
     const aq_image in = ctx.input_image(kImage);
     const std::array<float, 3> weights = {static_cast<float>(ctx.param_float(kTurbulenceWeight)),
@@ -128,11 +145,23 @@ struct Pigment {
     defines += std::string("#define AQ_PIGMENT_OBJECT ") + (object ? "1" : "0") + "\n";
     defines += std::string("#define AQ_PIGMENT_TWO_LAYERS ") +
                (canvas.zoom != std::floor(canvas.zoom) ? "1" : "0") + "\n";
-    const std::string text = defines + shaders::pigment_frag.text;
+    // Screen anchoring with a procedural density: its values depend on the view alone.
+    bool procedural = false;
+    for (uint32_t i = 0; i < 3; ++i)
+      procedural = procedural || (weights[i] != 0.0f && !ctx.connected(kTurbulence + i));
+    const bool cached = !object && procedural && ctx.param_bool(kCacheCanvas);
+    if (cached && !update_canvas_cache(ctx, in, defines, canvas)) return AQ_ERROR;
+    const std::string text =
+        defines + (cached ? "#define AQ_PIGMENT_PASS 2\n" : "#define AQ_PIGMENT_PASS 0\n") +
+        shaders::pigment_frag.text;
     const GLuint program =
         ctx.program(aq_shader_source{shaders::pigment_frag.name, text.c_str(), nullptr});
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
+    set_canvas_uniforms(ctx, program, in, canvas);
+    if (cached)
+      aq::bind_texture(program, "u_density", 5,
+                       aq_image{cache.texture.get(), in.width, in.height, AQ_FORMAT_RGBA32F});
 
     // Unit 0: image; 1-3: the density textures (the image stands in for unconnected ones so
     // every sampler names a complete texture); 4: position.
@@ -148,6 +177,14 @@ struct Pigment {
     glUniform1iv(glGetUniformLocation(program, "u_textures"), 3, units.data());
     aq::bind_texture(program, "u_position", 4, object ? ctx.input_image(kPosition) : in);
     glUniform1fv(glGetUniformLocation(program, "u_weights"), 3, weights.data());
+    const bool drawn = ctx.draw(out);
+    aq::unbind_textures(6);
+    return drawn ? AQ_OK : AQ_ERROR;
+  }
+
+  // What the procedural densities depend on: frequencies, seed, aspect, the canvas view.
+  static void set_canvas_uniforms(aq::Context& ctx, GLuint program, const aq_image& in,
+                                  const Canvas& canvas) {
     const std::array<float, 3> frequencies = {
         static_cast<float>(ctx.param_float(kTurbulenceFrequency)),
         static_cast<float>(ctx.param_float(kGrainFrequency)),
@@ -158,9 +195,45 @@ struct Pigment {
     aq::set_float(program, "u_aspect", static_cast<double>(in.width) / in.height);
     aq::set_vec2(program, "u_pan", canvas.pan_x, canvas.pan_y);
     aq::set_float(program, "u_zoom", canvas.zoom);
-    const bool drawn = ctx.draw(out);
-    aq::unbind_textures(5);
-    return drawn ? AQ_OK : AQ_ERROR;
+  }
+
+  // Renders the densities of this view (pass 1) unless the cache already holds them.
+  bool update_canvas_cache(aq::Context& ctx, const aq_image& in, const std::string& defines,
+                           const Canvas& canvas) {
+    char view[256];
+    std::snprintf(view, sizeof(view), "%dx%d %a %a %a %a %a %a %lld|", in.width, in.height,
+                  canvas.pan_x, canvas.pan_y, canvas.zoom, ctx.param_float(kTurbulenceFrequency),
+                  ctx.param_float(kGrainFrequency), ctx.param_float(kPaperFrequency),
+                  static_cast<long long>(ctx.param_int(kSeed)));
+    const std::string key = view + defines;
+    const uint32_t generation = ctx.raw()->gl_generation;
+    if (cache.texture && cache.generation == generation && cache.key == key) return true;
+    if (cache.generation != generation) cache.texture.forget();  // the old context's name
+    cache.texture.create();
+    glTextureStorage2D(cache.texture.get(), 1, GL_RGBA32F, in.width, in.height);
+    cache.generation = generation;
+    cache.key.clear();
+    const std::string text = defines + "#define AQ_PIGMENT_PASS 1\n" + shaders::pigment_frag.text;
+    const GLuint program =
+        ctx.program(aq_shader_source{shaders::pigment_frag.name, text.c_str(), nullptr});
+    if (program == 0) return false;
+    glUseProgram(program);
+    set_canvas_uniforms(ctx, program, in, canvas);
+    // Every sampler names a complete texture, as in the main pass.
+    std::array<GLint, 3> units{1, 2, 3};
+    for (uint32_t i = 0; i < 3; ++i) {
+      glActiveTexture(GL_TEXTURE1 + i);
+      glBindTexture(GL_TEXTURE_2D, ctx.connected(kTurbulence + i)
+                                       ? ctx.input_image(kTurbulence + i).texture
+                                       : in.texture);
+    }
+    glUniform1iv(glGetUniformLocation(program, "u_textures"), 3, units.data());
+    aq::bind_texture(program, "u_image", 0, in);
+    aq::bind_texture(program, "u_position", 4, in);
+    if (!ctx.draw(aq_image{cache.texture.get(), in.width, in.height, AQ_FORMAT_RGBA32F}))
+      return false;
+    cache.key = key;
+    return true;
   }
 };
 

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "wobble_shaders.h"
 
@@ -18,9 +19,12 @@ constexpr aq_port_desc kInputs[] = {
     aq::image_port("image", "colour to displace"),
     aq::optional_image_port("paper",
                             "paper height in the red channel, stretched over the image; "
-                            "unconnected: a procedural paper")};
+                            "unconnected: a procedural paper"),
+    aq::optional_image_port("gradient",
+                            "the paper's `gradient` output (with `paper` connected): read once "
+                            "per pixel instead of differencing the height with four reads")};
 constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "displaced colour")};
-enum Input : uint32_t { kImage, kPaper };
+enum Input : uint32_t { kImage, kPaper, kGradient };
 enum Param : uint32_t { kStrength, kPaperResolution, kGrain, kSeed };
 constexpr aq_param_desc kParams[] = {
     aq::float_param("strength", 8.0, 0.0, 64.0,
@@ -43,11 +47,18 @@ struct Wobble {
 
     aq_image out;
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
-    const GLuint program = ctx.program(shaders::wobble_frag);
+    // The precomputed gradient only stands for the paper it was computed from (same size).
+    const bool precomputed = ctx.connected(kPaper) && ctx.connected(kGradient) &&
+                             ctx.input_image(kGradient).width == paper.width &&
+                             ctx.input_image(kGradient).height == paper.height;
+    const std::string text = std::string("#define AQ_WOBBLE_GRADIENT ") +
+                             (precomputed ? "1" : "0") + "\n" + shaders::wobble_frag.text;
+    const GLuint program =
+        ctx.program(aq_shader_source{shaders::wobble_frag.name, text.c_str(), nullptr});
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
     aq::bind_texture(program, "u_image", 0, in);
-    aq::bind_texture(program, "u_paper", 1, paper);
+    aq::bind_texture(program, "u_paper", 1, precomputed ? ctx.input_image(kGradient) : paper);
     aq::set_vec2(program, "u_paper_size", paper.width, paper.height);
     // The displacement is strength·h'/P² in uv for a paper of P pixels across (see the
     // shader), so a proxy render whose paper shrank with the working size (P·scale) needs

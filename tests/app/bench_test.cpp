@@ -276,6 +276,9 @@ TEST(Bench, TimesTheQualityPresetAsked) {
       aq::test::aquarelle("bench " + aq::test::source_path("graphs/tint.json") + " --quality best");
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.output.find("draft, preview or final"), std::string::npos) << bad.output;
+  auto bad_set = aq::test::aquarelle("bench " + aq::test::source_path("graphs/tint.json") +
+                                     " --set nosuch.amount=1");
+  EXPECT_EQ(bad_set.exit_code, 1);
 }
 
 TEST(Bench, HelpDescribesTheCommand) {

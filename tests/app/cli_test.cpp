@@ -49,6 +49,18 @@ TEST(Cli, HelpOnEveryCommand) {
   EXPECT_EQ(aquarelle("").exit_code, 1);
 }
 
+TEST(Cli, RenderPlanPrintsThePassesWithoutRendering) {
+  auto plan = aq::test::aquarelle("render " + aq::test::source_path("graphs/underwater.json") +
+                                  " --plan --quality final");
+  EXPECT_EQ(plan.exit_code, 0) << plan.output;
+  EXPECT_NE(plan.output.find("working size 1280x720"), std::string::npos) << plan.output;
+  EXPECT_NE(plan.output.find("fused: vignette -> tint"), std::string::npos) << plan.output;
+  auto preview = aq::test::aquarelle("render " + aq::test::source_path("graphs/underwater.json") +
+                                     " --plan --quality preview");
+  EXPECT_NE(preview.output.find("working size 640x360"), std::string::npos) << preview.output;
+  EXPECT_NE(preview.output.find("(inside the upscale)"), std::string::npos) << preview.output;
+}
+
 TEST(Cli, NodesListsInstalledTypes) {
   auto result = aquarelle("nodes");
   ASSERT_EQ(result.exit_code, 0) << result.output;

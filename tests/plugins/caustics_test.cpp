@@ -534,7 +534,8 @@ TEST(Caustics, ManyFoldsStayFiniteAndKeepTheLight) {
 // down from 4 units up: the box top (y = 1) is 3 units away, the floor 4; a tile of 4 world
 // units (the scene's caustic_tile) at depth z covers 4 H / (2 tan(fov / 2) z) pixels (pinhole
 // camera), rounded up to 8.
-int footprint_width(double water_height, bool auto_resolution = true, double tile = 4.0) {
+ImageF footprint_caustics(const nlohmann::json& params, double water_height = 10.0,
+                          double tile = 4.0) {
   nlohmann::json g = {
       {"aquarelle", 1},
       {"nodes",
@@ -548,18 +549,23 @@ int footprint_width(double water_height, bool auto_resolution = true, double til
             {"water_height", water_height},
             {"caustic_tile", tile}}}}},
         {"caustics",
-         {{"type", "caustics"},
-          {"params", {{"grid", 16}, {"resolution", 256}, {"auto_resolution", auto_resolution}}},
-          {"inputs", {{"scene", "scene.scene"}}}}}}},
+         {{"type", "caustics"}, {"params", params}, {"inputs", {{"scene", "scene.scene"}}}}}}},
       {"output", "caustics.image"}};
   aq::test::RenderOptions options;
   options.width = 96;
   options.height = 64;
   auto image = aq::test::render_graph(g.dump(), options);
   EXPECT_TRUE(image.ok()) << (image.ok() ? "" : image.message());
-  if (!image.ok()) return -1;
-  EXPECT_EQ(image->width, image->height);
-  return image->width;
+  return image.ok() ? *image : ImageF();
+}
+
+int footprint_width(double water_height, bool auto_resolution = true, double tile = 4.0) {
+  const ImageF image =
+      footprint_caustics({{"grid", 16}, {"resolution", 256}, {"auto_resolution", auto_resolution}},
+                         water_height, tile);
+  if (image.empty()) return -1;
+  EXPECT_EQ(image.width, image.height);
+  return image.width;
 }
 
 int pinhole_texels(double tile, int height, double fov_degrees, double depth) {
@@ -575,6 +581,30 @@ TEST(Caustics, TextureSizeFollowsTheFootprintOfATileOnScreen) {
   EXPECT_EQ(footprint_width(10.0, false), 256);
   // The tile's size is the scene's (the period cel_light projects with by default).
   EXPECT_EQ(footprint_width(10.0, true, 2.0), pinhole_texels(2.0, 64, 50.0, 3.0));
+}
+
+// At final quality with the footprint's texture and auto_grid, the grid is no finer than a cell
+// per two texels of it (the proxy presets' density): the same image as that grid by hand.
+TEST(Caustics, FinalGridFollowsTheFootprintTexture) {
+  const int width = footprint_width(10.0);
+  ASSERT_GT(width, 8);
+  const ImageF automatic = footprint_caustics(
+      {{"grid", 256}, {"resolution", 256}, {"auto_resolution", true}, {"auto_grid", true}});
+  const ImageF by_hand = footprint_caustics(
+      {{"grid", (width + 1) / 2}, {"resolution", width}, {"auto_resolution", false}});
+  const ImageF fine =
+      footprint_caustics({{"grid", 256}, {"resolution", width}, {"auto_resolution", false}});
+  ASSERT_FALSE(automatic.empty());
+  ASSERT_FALSE(by_hand.empty());
+  ASSERT_FALSE(fine.empty());
+  EXPECT_EQ(aq::test::max_abs_diff(automatic, by_hand), 0.0);
+  EXPECT_GT(aq::test::max_abs_diff(automatic, fine), 1e-3) << "the grid asked for is not used";
+  // auto_grid off (the default): the footprint still sizes the texture, the grid is the one
+  // asked for.
+  const ImageF asked =
+      footprint_caustics({{"grid", 256}, {"resolution", 256}, {"auto_resolution", true}});
+  ASSERT_FALSE(asked.empty());
+  EXPECT_EQ(aq::test::max_abs_diff(asked, fine), 0.0);
 }
 
 }  // namespace

@@ -5,6 +5,9 @@
 // errors or finite output, never NaN.
 #include <gtest/gtest.h>
 
+#include <aquarelle/core/evaluator.h>
+#include <aquarelle/core/graph_io.h>
+
 #include "plugins/watercolor_test_images.h"
 #include "reference/pigment.h"
 #include "support/harness.h"
@@ -265,6 +268,40 @@ TEST(Pigment, DynamicCanvasTurnsWithTheCamera) {
   const ImageF expected =
       aq::reference::pigment(grey, {nullptr, nullptr, nullptr}, nullptr, params);
   EXPECT_GE(fraction_within(*turned, expected, 1e-4), 0.99);
+}
+
+// The procedural canvas densities are kept while the view stays (cache_canvas): frame after
+// frame, and after the camera turns and turns back, the image equals the one computed afresh.
+TEST(Pigment, CachedCanvasEqualsTheCanvasComputedEachFrame) {
+  constexpr double kPi = 3.14159265358979323846;
+  const double yaw = 0.125 * 2.0 * std::tan(25.0 * kPi / 180.0);
+  std::map<std::string, ImageF> images{{"grey", aq::test::random_image(64, 64, 5, 0.0f, 1.0f)}};
+  auto context = aq::create_headless_context(aq::GlBackend::kAuto);
+  ASSERT_TRUE(context.ok()) << context.message();
+  aq::Evaluator cached(**context, aq::test::registry());
+  aq::Evaluator fresh(**context, aq::test::registry());
+  auto render = [&](aq::Evaluator& evaluator, double angle, bool cache, int frame) {
+    auto read = aq::read_graph_text(canvas_graph(angle), aq::test::registry(), "pigment test");
+    EXPECT_TRUE(read.ok());
+    read.graph.settings.precision = "float";
+    read.graph.nodes["pigment"].params["cache_canvas"] = cache;
+    aq::EvalOptions options;
+    options.frame = frame;
+    options.images = &images;
+    auto out = evaluator.evaluate(read.graph, options);
+    EXPECT_TRUE(out.ok()) << (out.ok() ? "" : out.message());
+    auto pixels = evaluator.read_back(*out);
+    EXPECT_TRUE(pixels.ok());
+    return pixels.ok() ? *pixels : ImageF();
+  };
+  int frame = 1;
+  for (double angle : {0.0, 0.0, yaw, 0.0}) {
+    const ImageF a = render(cached, angle, true, frame);
+    const ImageF b = render(fresh, angle, false, frame);
+    ASSERT_FALSE(a.empty());
+    EXPECT_LE(aq::test::max_abs_diff(a, b), 1e-6) << "frame " << frame << " yaw " << angle;
+    ++frame;
+  }
 }
 
 TEST(Pigment, ObjectAnchoringWithoutPositionIsAnError) {

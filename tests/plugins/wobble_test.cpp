@@ -9,6 +9,7 @@
 #include "support/harness.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <string>
@@ -215,3 +216,50 @@ TEST(Wobble, OnePixelImageAndPaper) {
 }
 
 }  // namespace
+
+namespace {
+
+// image -> wobble, its paper from a `paper` node, optionally with the paper's gradient.
+std::string paper_wobble_graph(bool gradient, int paper_width) {
+  nlohmann::json inputs = {{"image", "input.image"}, {"paper", "paper.image"}};
+  if (gradient) inputs["gradient"] = "paper.gradient";
+  nlohmann::json graph = {
+      {"aquarelle", 1},
+      {"nodes",
+       {{"input", {{"type", "image_input"}, {"params", {{"name", "image"}}}}},
+        {"paper",
+         {{"type", "paper"},
+          {"params", {{"grain_scale", 12}, {"width", paper_width}, {"height", 0}}}}},
+        {"wobble", {{"type", "wobble"}, {"params", {{"strength", 24.0}}}, {"inputs", inputs}}}}},
+      {"output", "wobble.image"}};
+  return graph.dump();
+}
+
+}  // namespace
+
+// The paper's precomputed gradient gives the image wobble gets by differencing the height
+// itself (shifting by one texel commutes with bilinear filtering), except within a texel of the
+// border, where the clamp comes before instead of after the difference.
+TEST(Wobble, PrecomputedPaperGradientEqualsTheDifferences) {
+  const ImageF input = aq::test::random_image(96, 64, 41);
+  for (int paper_width : {0, 61}) {  // the image's size, and another size (filtered reads)
+    aq::test::RenderOptions options;
+    options.width = 96;
+    options.height = 64;
+    auto with =
+        aq::test::render_graph(paper_wobble_graph(true, paper_width), options, {{"image", input}});
+    auto without =
+        aq::test::render_graph(paper_wobble_graph(false, paper_width), options, {{"image", input}});
+    ASSERT_TRUE(with.ok()) << with.message();
+    ASSERT_TRUE(without.ok()) << without.message();
+    double inside = 0.0;
+    for (int y = 2; y < 62; ++y)
+      for (int x = 2; x < 94; ++x)
+        for (int c = 0; c < 4; ++c)
+          inside = std::max<double>(inside, std::abs(with->at(x, y, c) - without->at(x, y, c)));
+    EXPECT_LE(inside, 1e-5) << "paper width " << paper_width;
+    std::printf("[wobble gradient] paper width %d: max difference inside %.3g\n", paper_width,
+                inside);
+    EXPECT_GT(aq::test::max_abs_diff(*without, input), 0.05) << "the wobble moved nothing";
+  }
+}

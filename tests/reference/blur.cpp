@@ -199,6 +199,48 @@ ImageF truncated_variable_blur(const ImageF& image, const ImageF* depth, const B
   return to_float(out);
 }
 
+ImageF separable_variable_blur(const ImageF& image, const ImageF* depth, const BlurParams& params,
+                               int radius) {
+  const ImageD input = to_double(image);
+  // The normalised 1D kernel exp(-i²/2σ²), |i| <= radius, of pixel (x, y)'s own σ.
+  auto kernel = [&](int x, int y) {
+    const double sigma =
+        params.sigma * blur_strength(x, y, image.width, image.height, depth, params);
+    std::vector<double> k(radius + 1);
+    double sum = 0.0;
+    for (int i = 0; i <= radius; ++i) {
+      k[i] = i == 0 ? 1.0 : sigma > 0.0 ? std::exp(-0.5 * (i / sigma) * (i / sigma)) : 0.0;
+      sum += i == 0 ? k[i] : 2.0 * k[i];
+    }
+    for (double& w : k) w /= sum;
+    return k;
+  };
+  // Rows first, each pixel with its own σ; then columns, each pixel with its own σ.
+  ImageD rows(image.width, image.height);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::vector<double> k = kernel(x, y);
+      for (int c = 0; c < 4; ++c) {
+        double sum = 0.0;
+        for (int i = -radius; i <= radius; ++i)
+          sum += k[std::abs(i)] * input.at(clamp_index(x + i, image.width), y, c);
+        rows.at(x, y, c) = sum;
+      }
+    }
+  ImageD out(image.width, image.height);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::vector<double> k = kernel(x, y);
+      for (int c = 0; c < 4; ++c) {
+        double sum = 0.0;
+        for (int j = -radius; j <= radius; ++j)
+          sum += k[std::abs(j)] * rows.at(x, clamp_index(y + j, image.height), c);
+        out.at(x, y, c) = sum;
+      }
+    }
+  return to_float(out);
+}
+
 ImageF pinwheel_variable_blur(const ImageF& image, const ImageF* depth, const BlurParams& params) {
   auto kept = [](int i, int j) {
     if (std::abs(i) == 2 && std::abs(j) == 2) return false;

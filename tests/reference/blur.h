@@ -49,6 +49,13 @@ int direct_blur_radius(double max_sigma);
 ImageF truncated_variable_blur(const ImageF& image, const ImageF* depth, const BlurParams& params,
                                int radius);
 
+// The `separable` kernel of the one-pass path at final quality: the truncated sampled Gaussian
+// along rows, each pixel with its own σ, then along columns, each pixel with its own σ. Equal
+// to truncated_variable_blur where σ is constant over a pixel's column of taps; elsewhere it
+// mixes rows blurred with their own σ.
+ImageF separable_variable_blur(const ImageF& image, const ImageF* depth, const BlurParams& params,
+                               int radius);
+
 // The one-pass path's `pinwheel` kernel: the per-pixel sampled Gaussian on the 5×5 taps less
 // the 4 corners and (−2, 1), (1, 2), (2, −1), (−1, −2) (x right, y up), normalised over the
 // 17 taps kept.

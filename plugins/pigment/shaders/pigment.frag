@@ -18,6 +18,14 @@
 //   AQ_PIGMENT_TURBULENCE, AQ_PIGMENT_GRAIN, AQ_PIGMENT_PAPER: 0 off, 1 input image, 2 procedural
 //   AQ_PIGMENT_OBJECT: 1 for object anchoring
 //   AQ_PIGMENT_TWO_LAYERS: 1 when the canvas zoom is fractional (two layers to blend)
+//   AQ_PIGMENT_PASS: 0 one pass; 1 writes the procedural canvas densities (r turbulence, g grain,
+//   b paper) of this view; 2 reads them from u_density instead of computing them. Screen
+//   anchoring's procedural densities depend only on the view (canvas pan and zoom), not on the
+//   image: pigment.cpp keeps them in a texture while the view stays, so a still camera pays
+//   for the noise once.
+#ifndef AQ_PIGMENT_PASS
+#define AQ_PIGMENT_PASS 0
+#endif
 #ifndef AQ_PIGMENT_TURBULENCE
 #define AQ_PIGMENT_TURBULENCE 2
 #define AQ_PIGMENT_GRAIN 2
@@ -72,7 +80,14 @@ float canvas_layer(int source, vec2 q, float layer) {
   return procedural2(source, q * u_frequencies[source] + field_offset(source, layer));
 }
 
+#if AQ_PIGMENT_PASS == 2
+uniform sampler2D u_density;  // the procedural canvas densities of this view (pass 1)
+#endif
+
 float canvas_density(int source, vec2 screen) {
+#if AQ_PIGMENT_PASS == 2
+  if (kSourceMode[source] == 2) return texelFetch(u_density, ivec2(gl_FragCoord.xy), 0)[source];
+#endif
   float base = floor(u_zoom);
   float blend = u_zoom - base;
   // Layer `base + k` is scaled by 2^(k - blend): as the zoom grows by 1 the next layer takes
@@ -126,6 +141,22 @@ vec3 modulate(vec3 c, int source, vec2 screen, bool on_object, vec3 world) {
   return apply_density(c, u_weights[source], n);
 }
 
+#if AQ_PIGMENT_PASS == 1
+void main() {
+  vec2 screen = (v_uv - 0.5) * vec2(u_aspect, 1.0);
+  vec4 n = vec4(0.0);
+#if AQ_PIGMENT_TURBULENCE == 2
+  n.r = canvas_density(TURBULENCE, screen);
+#endif
+#if AQ_PIGMENT_GRAIN == 2
+  n.g = canvas_density(GRAIN, screen);
+#endif
+#if AQ_PIGMENT_PAPER == 2
+  n.b = canvas_density(PAPER, screen);
+#endif
+  o_color = n;
+}
+#else
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 color = texelFetch(u_image, pixel, 0);
@@ -152,3 +183,4 @@ void main() {
 #endif
   o_color = vec4(c, color.a);
 }
+#endif

@@ -2,7 +2,11 @@
 // The gradient is a true derivative: central differences one paper pixel either side, divided
 // by the real step (2 paper pixels). The displacement is in paper pixels and converted to uv,
 // so it covers the same part of the image at every output resolution. The sampler clamps to
-// the edge, so no lookup leaves the image.
+// the edge, so no lookup leaves the image. wobble.cpp defines AQ_WOBBLE_GRADIENT 1 when the
+// paper's precomputed gradient is connected.
+#ifndef AQ_WOBBLE_GRADIENT
+#define AQ_WOBBLE_GRADIENT 0
+#endif
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 
@@ -15,11 +19,16 @@ float paper_height(vec2 uv) { return texture(u_paper, uv).r; }
 
 void main() {
   vec2 step_uv = 1.0 / u_paper_size;
+#if AQ_WOBBLE_GRADIENT
+  // u_paper holds the paper's precomputed gradient (paper_gradient.frag): one read.
+  vec2 gradient = texture(u_paper, v_uv).rg;
+#else
   vec2 gradient = vec2(paper_height(v_uv + vec2(step_uv.x, 0.0)) -
                            paper_height(v_uv - vec2(step_uv.x, 0.0)),
                        paper_height(v_uv + vec2(0.0, step_uv.y)) -
                            paper_height(v_uv - vec2(0.0, step_uv.y))) /
                   2.0;
+#endif
   // A NaN or infinite paper would throw the lookup anywhere: keep the pixel in place instead.
   if (any(isnan(gradient)) || any(isinf(gradient))) gradient = vec2(0.0);
   o_color = texture(u_image, v_uv + u_strength * gradient * step_uv);
