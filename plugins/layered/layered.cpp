@@ -166,14 +166,15 @@ struct Layered {
   std::string segment_text, edges_text, paper_text, composite_text;
   std::vector<float> id_pixels, depth_pixels, albedo_pixels;
 
+  // The texture's first `components` channels as floats; false on a GL error.
   static bool read_back(const aq_image& image, GLenum format, int components,
                         std::vector<float>& pixels) {
     pixels.assign(static_cast<size_t>(image.width) * image.height * components, 0.0f);
-    glBindTexture(GL_TEXTURE_2D, image.texture);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTexImage(GL_TEXTURE_2D, 0, format, GL_FLOAT, pixels.data());
-    glBindTexture(GL_TEXTURE_2D, 0);
-    return true;
+    while (glGetError() != GL_NO_ERROR) {
+    }  // only this read's error counts below
+    glGetTextureImage(image.texture, 0, format, GL_FLOAT,
+                      static_cast<GLsizei>(pixels.size() * sizeof(float)), pixels.data());
+    return glGetError() == GL_NO_ERROR;
   }
 
   std::string compose(const std::string& defines, const aq_shader_source& main,
@@ -198,18 +199,22 @@ struct Layered {
     // ---- The per-object table ----
     std::vector<layered::PaletteEntry> palette;
     std::vector<float> wet_ids;
-    std::string error = layered::parse_palette(ctx.param_string(kPalette), &palette);
-    if (error.empty()) error = layered::parse_id_list(ctx.param_string(kWetInWetIds), &wet_ids);
-    if (!error.empty()) {
-      return ctx.fail(std::string("layered '") + ctx.node_id() + "': parameter '" +
-                      (palette.empty() && !std::string(ctx.param_string(kPalette)).empty()
-                           ? "palette"
-                           : "wet_in_wet_ids") +
-                      "': " + error);
+    for (const auto& [param, error] :
+         {std::pair{"palette", layered::parse_palette(ctx.param_string(kPalette), &palette)},
+          std::pair{"wet_in_wet_ids",
+                    layered::parse_id_list(ctx.param_string(kWetInWetIds), &wet_ids)}}) {
+      if (!error.empty()) {
+        return ctx.fail(std::string("layered '") + ctx.node_id() + "': parameter '" + param +
+                        "': " + error);
+      }
     }
-    read_back(id, GL_RED, 1, id_pixels);
-    read_back(ctx.input_image(3), GL_RED, 1, depth_pixels);
-    read_back(ctx.input_image(2), GL_RGBA, 4, albedo_pixels);
+    if (!read_back(id, GL_RED, 1, id_pixels) ||
+        !read_back(ctx.input_image(3), GL_RED, 1, depth_pixels) ||
+        !read_back(ctx.input_image(2), GL_RGBA, 4, albedo_pixels)) {
+      return ctx.fail(std::string("layered '") + ctx.node_id() +
+                      "': reading the id, depth and albedo inputs back failed: connect float "
+                      "images (the gbuffer's id, depth and albedo outputs)");
+    }
     std::vector<layered::Layer> layers = layered::collect_layers(
         id_pixels.data(), depth_pixels.data(), albedo_pixels.data(), id_pixels.size(), id.width);
     layered::ColourSettings colours;

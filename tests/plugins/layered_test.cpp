@@ -394,10 +394,16 @@ TEST(Layered, BadPaletteNamesTheParameterAndTheFix) {
   const GBuffer g = scene(16, 16);
   auto out = aq::test::run_node(
       "layered", {{"id", g.id}, {"normal", g.normal}, {"albedo", g.albedo}, {"depth", g.depth}},
-      {{"palette", "3:red"}});
+      {{"palette", "1:0.5,0.5,0.5; 3:red"}});
   ASSERT_FALSE(out.ok());
-  EXPECT_NE(out.message().find("palette"), std::string::npos) << out.message();
+  EXPECT_NE(out.message().find("parameter 'palette'"), std::string::npos) << out.message();
+  EXPECT_NE(out.message().find("'3:red'"), std::string::npos) << out.message();
   EXPECT_NE(out.message().find("ID:R,G,B"), std::string::npos) << out.message();
+  auto ids = aq::test::run_node(
+      "layered", {{"id", g.id}, {"normal", g.normal}, {"albedo", g.albedo}, {"depth", g.depth}},
+      {{"wet_in_wet_ids", "2, x"}});
+  ASSERT_FALSE(ids.ok());
+  EXPECT_NE(ids.message().find("parameter 'wet_in_wet_ids'"), std::string::npos) << ids.message();
 }
 
 }  // namespace
