@@ -378,13 +378,18 @@ int run_render(int argc, char** argv) {
     WriteOptions write_options;
     write_options.bits = bits;
     write_options.float_data = float_exr;
+    // Layers in a file of their own go first, so --resume, which looks at the main image, never
+    // skips a frame whose layers are missing.
     const bool layers_in_main = !layers.empty() && layers_path(path) == path;
-    Status written_main = layers_in_main ? write_layers(evaluator, graph, options, layers,
-                                                        &*pixels, path, write_options)
-                                         : write_image(path, *pixels, write_options);
-    if (written_main.ok() && !layers.empty() && !layers_in_main) {
+    Status written_main = Ok{};
+    if (!layers.empty() && !layers_in_main) {
       written_main = write_layers(evaluator, graph, options, layers, nullptr, layers_path(path),
                                   write_options);
+    }
+    if (written_main.ok()) {
+      written_main = layers_in_main ? write_layers(evaluator, graph, options, layers, &*pixels,
+                                                   path, write_options)
+                                    : write_image(path, *pixels, write_options);
     }
     if (auto s = written_main; !s.ok()) {
       if (progress) std::printf("\n");
