@@ -309,6 +309,13 @@ const aiScene* read_mesh_file(Assimp::Importer& importer, const std::string& pat
   if (std::string why = aq::files::regular_file_problem(path); !why.empty()) {
     return fail(why + " (a relative path is relative to the graph file's folder)");
   }
+  // Assimp reads dozens of formats by content; only the documented ones are let through (each
+  // format reader is attack surface), chosen by extension as Assimp chooses its reader.
+  const std::string ext = lowercase_extension(path);
+  if (ext != "obj" && ext != "gltf" && ext != "glb" && ext != "ply" && ext != "fbx" &&
+      ext != "stl") {
+    return fail("'." + ext + "' files are not read; use OBJ, glTF/GLB, FBX, PLY or STL");
+  }
   std::error_code ec;
   // The folder the path names (Assimp resolves references from it), links resolved.
   const std::string folder =
