@@ -173,7 +173,7 @@ int run_render(int argc, char** argv) {
     return kExitBadInput;
   }
   install_stop_handlers();
-  // Still single-threaded: a driver that crashes takes down a child, not this process.
+  // Before any plugin loads: a driver that crashes takes down a child, not this process.
   if (auto probe = probe_gl_in_child(*backend, gl_device); !probe.ok()) {
     std::fprintf(stderr, "aquarelle render: --gl %s: %s\n", backend_name.c_str(),
                  probe.message().c_str());

@@ -345,7 +345,9 @@ ReadResult read_graph_file(const std::string& path, const Registry& registry) {
   };
   // Only a regular file: a FIFO or /dev/zero would block or grow without end.
   std::string text, why;
-  if (!files::read_regular_file(path, kMaxGraphFileBytes, &text, &why)) return unreadable(why);
+  if (!files::read_regular_file(path, kMaxGraphFileBytes, &text, &why)) {
+    return unreadable(why == "no such file" ? std::strerror(ENOENT) : why);
+  }
   return read_graph_text(text, registry, path);
 }
 

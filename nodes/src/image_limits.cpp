@@ -2,6 +2,11 @@
 
 #include <aquarelle/regular_file.hpp>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdint>
+
 namespace aq {
 namespace {
 
@@ -47,6 +52,65 @@ Status check_declared_size(const std::string& path, const std::string& ext, uint
                       megabytes(need) + ", more than the memory budget of " + megabytes(budget) +
                       " (downscale the image, or raise AQUARELLE_MEMORY_BUDGET_MB)");
   }
+  return Ok{};
+}
+
+Status check_exr_header(const std::string& path) {
+  std::string why;
+  const int fd = files::open_regular_file(path, &why);
+  if (fd < 0) return make_error("cannot read image " + path + ": " + why);
+  struct stat info {};
+  ::fstat(fd, &info);
+  const auto size = static_cast<uint64_t>(info.st_size);
+  uint64_t at = 0;
+  auto read_at = [&](void* out, size_t n) {
+    const ssize_t got = ::pread(fd, out, n, static_cast<off_t>(at));
+    if (got != static_cast<ssize_t>(n)) return false;
+    at += n;
+    return true;
+  };
+  // A null-terminated name of at most 255 characters (OpenEXR's long-name limit).
+  auto read_name = [&](std::string* name) {
+    name->clear();
+    char c = 0;
+    while (read_at(&c, 1)) {
+      if (c == '\0') return true;
+      if (name->size() >= 255) return false;
+      name->push_back(c);
+    }
+    return false;
+  };
+  auto refuse = [&](const std::string& what) {
+    ::close(fd);
+    return make_error("cannot read image " + path + ": its OpenEXR header " + what +
+                      " (the file is corrupt or forged; re-export it)");
+  };
+  unsigned char magic[8] = {};
+  if (!read_at(magic, 8) || magic[0] != 0x76 || magic[1] != 0x2f || magic[2] != 0x31 ||
+      magic[3] != 0x01) {
+    ::close(fd);
+    return Ok{};  // not an EXR file
+  }
+  const bool multipart = (magic[5] & 0x10) != 0;
+  std::string name, type;
+  for (int headers = 0; headers < 1024; ++headers) {
+    int attributes = 0;
+    while (true) {
+      if (!read_name(&name)) return refuse("ends inside an attribute name");
+      if (name.empty()) break;  // end of this header
+      if (++attributes > 4096) return refuse("has more than 4096 attributes");
+      if (!read_name(&type)) return refuse("ends inside the type of attribute " + name);
+      int32_t declared = 0;
+      if (!read_at(&declared, 4)) return refuse("ends before the size of attribute " + name);
+      if (declared < 0 || static_cast<uint64_t>(declared) > size - at) {
+        return refuse("declares " + std::to_string(declared) + " bytes for attribute '" + name +
+                      "' but only " + std::to_string(size - at) + " bytes follow");
+      }
+      at += static_cast<uint64_t>(declared);
+    }
+    if (!multipart || attributes == 0) break;  // single part, or the empty header ending parts
+  }
+  ::close(fd);
   return Ok{};
 }
 

@@ -192,7 +192,11 @@ int hierarchy_depth(const aiNode* root) {
   return deepest;
 }
 
-// Convex (and simple: it winds once) in the plane of its Newell normal.
+// Convex (and simple: it winds once) in the plane of its Newell normal. Files round their
+// coordinates: in a 200,000-gon each true turn is 3e-5 rad while rounding to 7 digits moves
+// an edge's direction by up to 1e-3 rad, so turns back by less than kConvexTolerance count as
+// straight (a fan over such a dent is off by a sliver far below a pixel).
+constexpr double kConvexTolerance = 0.01;
 bool is_convex(const aiMesh& mesh, const aiFace& face) {
   const unsigned n = face.mNumIndices;
   auto at = [&](unsigned i) {
@@ -215,8 +219,9 @@ bool is_convex(const aiMesh& mesh, const aiFace& face) {
     if (glm::dot(edge, edge) == 0.0) continue;  // repeated vertex
     const double sine = glm::dot(glm::cross(previous, edge), normal);
     const double cosine = glm::dot(previous, edge);
-    if (sine < -1e-12 * glm::length(previous) * glm::length(edge)) return false;
-    turning += std::atan2(sine, cosine);
+    const double turn = std::atan2(sine, cosine);
+    if (turn < -kConvexTolerance) return false;
+    turning += turn;
     previous = edge;
   }
   return std::abs(turning - 2.0 * M_PI) < 1e-3;
@@ -303,6 +308,13 @@ const aiScene* read_mesh_file(Assimp::Importer& importer, const std::string& pat
   };
   if (std::string why = aq::files::regular_file_problem(path); !why.empty()) {
     return fail(why + " (a relative path is relative to the graph file's folder)");
+  }
+  // Assimp reads dozens of formats by content; only the documented ones are let through (each
+  // format reader is attack surface), chosen by extension as Assimp chooses its reader.
+  const std::string ext = lowercase_extension(path);
+  if (ext != "obj" && ext != "gltf" && ext != "glb" && ext != "ply" && ext != "fbx" &&
+      ext != "stl") {
+    return fail("'." + ext + "' files are not read; use OBJ, glTF/GLB, FBX, PLY or STL");
   }
   std::error_code ec;
   // The folder the path names (Assimp resolves references from it), links resolved.

@@ -128,6 +128,11 @@ inline double covered(const ImageF& image) {
   return static_cast<double>(hits) / (static_cast<double>(image.width) * image.height);
 }
 
+// The plugin path with the hostile test nodes (test_bad_format, test_slow) and the build's.
+inline std::string hostile_plugin_path() {
+  return std::string(AQ_BUILD_DIR) + "/test_plugins_hostile:" + AQ_PLUGIN_BUILD_DIR;
+}
+
 // `aquarelle ARGS` with a time limit: a hang ends as exit code 124 instead of stalling.
 inline CommandResult aquarelle_within(int seconds, const std::string& arguments,
                                       const std::string& environment = "") {

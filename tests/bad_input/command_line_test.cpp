@@ -165,7 +165,7 @@ TEST(PluginAbi, UnknownOutputFormatIsRefusedNamingTheNode) {
   "output": "odd.image"})");
   auto result = aquarelle_within(
       60, "render " + (dir / "g.json").string() + " -q -o " + (dir / "out.exr").string(),
-      "AQUARELLE_PLUGIN_PATH=" + std::string(AQ_TEST_PLUGIN_DIR) + ":" + AQ_PLUGIN_BUILD_DIR);
+      "AQUARELLE_PLUGIN_PATH=" + hostile_plugin_path());
   EXPECT_EQ(result.exit_code, 1) << result.output;
   EXPECT_TRUE(mentions(result.output, "'odd'")) << result.output;
   EXPECT_TRUE(mentions(result.output, "unknown image format 999")) << result.output;

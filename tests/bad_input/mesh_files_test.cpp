@@ -43,6 +43,14 @@ TEST(MeshHierarchy, CycleInNodeChildrenIsRefused) {
   EXPECT_TRUE(mentions(image.message(), "cycle.gltf")) << image.message();
 }
 
+TEST(MeshFormats, OnlyTheDocumentedFormatsAreRead) {
+  const fs::path dir = scratch_dir("bad_input_mesh_format");
+  write_bytes(dir / "tri.dae", "<?xml version=\"1.0\"?><COLLADA></COLLADA>");
+  auto image = load_mesh(dir / "tri.dae");
+  ASSERT_FALSE(image.ok());
+  EXPECT_TRUE(mentions(image.message(), "'.dae' files are not read")) << image.message();
+}
+
 // Item 2.
 TEST(MeshDeclaredSizes, TinyPlyDeclaringTwoBillionVerticesIsRefused) {
   const fs::path dir = scratch_dir("bad_input_ply_huge");

@@ -105,8 +105,7 @@ void expect_prompt_stop(int signal) {
 })");
   const std::string log = (dir / "log.txt").string();
   // Everything the child needs is made before fork: the test process has GL driver threads.
-  const std::string plugins =
-      "AQUARELLE_PLUGIN_PATH=" + std::string(AQ_TEST_PLUGIN_DIR) + ":" + AQ_PLUGIN_BUILD_DIR;
+  const std::string plugins = "AQUARELLE_PLUGIN_PATH=" + hostile_plugin_path();
   std::vector<char*> environment;
   for (char** e = environ; *e != nullptr; ++e) {
     if (std::string(*e).rfind("AQUARELLE_PLUGIN_PATH=", 0) != 0) environment.push_back(*e);
