@@ -8,6 +8,7 @@ packages=(
   libglfw3-dev libglm-dev libopenimageio-dev openimageio-tools libopencolorio-dev
   libosmesa6-dev libegl-dev libegl1-mesa-dev libgl-dev libimgui-dev nlohmann-json3-dev
   libassimp-dev libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
+  fonts-dejavu-core
 )
 
 missing=()

@@ -50,10 +50,6 @@ void draw_link(ImDrawList* draw, Vec2 from, Vec2 to, ImU32 colour, float zoom) {
                        colour, std::max(1.5f, 2.5f * zoom));
 }
 
-void text_at(ImDrawList* draw, Vec2 at, float zoom, ImU32 colour, const std::string& text) {
-  draw->AddText(ImGui::GetFont(), ImGui::GetFontSize() * zoom, im(at), colour, text.c_str());
-}
-
 const NodeLayout* find_layout(const std::vector<NodeLayout>& layouts, const std::string& id) {
   for (const auto& layout : layouts) {
     if (layout.id == id) return &layout;
@@ -70,15 +66,40 @@ const PortSpot* find_spot(const std::vector<PortSpot>& spots, const std::string&
 
 }  // namespace
 
-void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
+void Canvas::text(ImDrawList* draw, Vec2 at, float zoom, ImU32 colour,
+                  const std::string& label) const {
+  const float pixels = kTextSize * zoom;
+  if (pixels < 4.0f) return;  // too small to read: a blur of pixels helps nobody
+  auto font = fonts_.find(text_raster_size(pixels));
+  ImFont* chosen = font != fonts_.end() ? font->second : ImGui::GetFont();
+  // Whole pixels: a glyph placed between pixels is resampled and goes soft.
+  draw->AddText(chosen, pixels, ImVec2(std::round(at.x), std::round(at.y)), colour, label.c_str());
+}
+
+Vec2 Canvas::text_size(float zoom, const std::string& label) const {
+  const float pixels = kTextSize * zoom;
+  auto font = fonts_.find(text_raster_size(pixels));
+  ImFont* chosen = font != fonts_.end() ? font->second : ImGui::GetFont();
+  return vec(chosen->CalcTextSizeA(pixels, FLT_MAX, 0, label.c_str()));
+}
+
+void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
+                  const std::vector<KeyChord>& chords) {
   const Graph& graph = state.doc.graph();
   const Registry& registry = state.doc.registry();
   ImVec2 available = ImGui::GetContentRegionAvail();
   size_ = {std::max(available.x, 50.0f), std::max(available.y, 50.0f)};
   origin_ = vec(ImGui::GetCursorScreenPos());
   CanvasView& view = state.canvas;
+  const Rect bounds = graph_bounds(graph, registry);
   if (fit_requested_) {
-    view.fit(graph_bounds(graph, registry), size_);
+    // Readable zoom; the output node is kept in view when the graph is wider than the canvas.
+    std::optional<Vec2> focus;
+    if (graph.output && graph.nodes.count(graph.output->node)) {
+      Position at = node_position(graph, graph.output->node);
+      focus = Vec2{at.x, at.y};
+    }
+    view.fit(bounds, size_, focus);
     fit_requested_ = false;
   }
 
@@ -130,8 +151,9 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
     auto problems = state.doc.problems_of(layout.id);
     bool failed = !problems.empty() || feedback.error_node == layout.id || type == nullptr;
     bool selected = state.selection.count(layout.id) > 0;
-    draw->AddRectFilled(im(layout.rect.min), im(layout.rect.max), IM_COL32(58, 60, 66, 240),
-                        rounding);
+    const bool bypassed = state.doc.bypassed(layout.id);
+    draw->AddRectFilled(im(layout.rect.min), im(layout.rect.max),
+                        bypassed ? IM_COL32(44, 44, 48, 240) : IM_COL32(58, 60, 66, 240), rounding);
     draw->AddRectFilled(im(layout.header.min), im(layout.header.max),
                         type ? category_colour(type->category) : IM_COL32(120, 40, 40, 255),
                         rounding, ImDrawFlags_RoundCornersTop);
@@ -142,15 +164,20 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
                   failed || selected ? 2.5f : 1.0f);
     std::string title = layout.id == node.type ? layout.id : layout.id + " (" + node.type + ")";
     if (failed) title = "! " + title;
-    text_at(draw, {layout.header.min.x + 6 * z, layout.header.min.y + 4 * z}, z,
-            IM_COL32(245, 245, 245, 255), title);
+    text(draw, {layout.header.min.x + 6 * z, layout.header.min.y + 4 * z}, z,
+         IM_COL32(245, 245, 245, 255), title);
+    if (bypassed) {
+      // Nuke's mark of a disabled node: a diagonal across it.
+      draw->AddLine(im(layout.rect.min), im(layout.rect.max), IM_COL32(230, 170, 60, 220),
+                    2.0f * z);
+    }
     for (const auto& spot : layout.inputs) {
       bool linked = node.inputs.count(spot.port) > 0;
       draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z,
                             linked ? port_colour(spot.type) : IM_COL32(70, 70, 76, 255));
       draw->AddCircle(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type), 0, 1.5f);
-      text_at(draw, {spot.at.x + 9 * z, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
-              spot.port);
+      text(draw, {spot.at.x + 9 * z, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
+           spot.port);
     }
     for (const auto& spot : layout.outputs) {
       draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type));
@@ -158,15 +185,18 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
         draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 4) * z,
                         IM_COL32(255, 255, 255, 255), 0, 2.0f);
       }
-      ImVec2 text_size =
-          ImGui::GetFont()->CalcTextSizeA(ImGui::GetFontSize() * z, FLT_MAX, 0, spot.port.c_str());
-      text_at(draw, {spot.at.x - 9 * z - text_size.x, spot.at.y - 7 * z}, z,
-              IM_COL32(210, 210, 215, 255), spot.port);
+      const Vec2 label = text_size(z, spot.port);
+      text(draw, {spot.at.x - 9 * z - label.x, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
+           spot.port);
     }
     // Footer: GPU time of the last evaluation.
     std::string footer;
     auto timing = feedback.timings.find(layout.id);
-    if (timing != feedback.timings.end()) {
+    if (bypassed) {
+      footer = "bypassed";
+    } else if (feedback.error_node == layout.id) {
+      footer = "failed";
+    } else if (timing != feedback.timings.end()) {
       char text[64];
       std::snprintf(text, sizeof text, "gpu %.2f ms%s", timing->second.gpu_ms,
                     timing->second.cached ? "  (cached)" : "");
@@ -174,26 +204,40 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
     } else {
       footer = "not evaluated";
     }
-    text_at(draw, {layout.rect.min.x + 6 * z, layout.rect.max.y - NodeMetrics::kFooter * z}, z,
-            IM_COL32(150, 200, 150, 255), footer);
-    // The reason a node is marked, on hover.
+    text(draw, {layout.rect.min.x + 6 * z, layout.rect.max.y - NodeMetrics::kFooter * z}, z,
+         feedback.error_node == layout.id ? IM_COL32(255, 120, 110, 255)
+                                          : IM_COL32(150, 200, 150, 255),
+         footer);
+    // The reason a node is marked, on hover: each message once.
     if (failed && ImGui::IsWindowHovered() && layout.rect.contains(vec(ImGui::GetMousePos()))) {
+      std::vector<std::string> reasons;
+      auto add = [&](const std::string& reason) {
+        if (!reason.empty() && std::find(reasons.begin(), reasons.end(), reason) == reasons.end())
+          reasons.push_back(reason);
+      };
+      if (type == nullptr) add("type '" + node.type + "' is not installed");
+      for (const auto& problem : problems) add(problem.message);
+      if (feedback.error_node == layout.id) add(feedback.error);
       std::string why;
-      if (type == nullptr) why += "type '" + node.type + "' is not installed\n";
-      for (const auto& problem : problems) why += problem.message + "\n";
-      if (feedback.error_node == layout.id) why += feedback.error;
+      for (const auto& reason : reasons) why += (why.empty() ? "" : "\n") + reason;
       ImGui::SetTooltip("%s", why.c_str());
     }
   }
 
   handle_mouse(state, layouts, origin_);
   layouts_ = std::move(layouts);
+  draw_minimap(state, bounds);
   draw->PopClipRect();
-  if (ImGui::IsWindowFocused(ImGuiFocusedFlags_ChildWindows) && !ImGui::GetIO().WantTextInput) {
-    handle_keys(state);
+  // Keys act on hover: no click into the canvas first.
+  const bool over = ImGui::IsWindowHovered(ImGuiHoveredFlags_ChildWindows |
+                                           ImGuiHoveredFlags_AllowWhenBlockedByActiveItem);
+  if ((over || ImGui::IsWindowFocused(ImGuiFocusedFlags_ChildWindows)) &&
+      !ImGui::GetIO().WantTextInput && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) {
+    handle_keys(state, chords);
   }
   draw_add_menu(state);
   draw_node_menu(state);
+  draw_rename(state);
 }
 
 void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin) {
@@ -224,10 +268,25 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
         Vec2 at = view.to_canvas(origin, mouse);
         add_at_ = {at.x, at.y};
         add_filter_.clear();
+        add_on_link_ = link_at(state.doc.graph(), layouts, mouse, 6.0f, view.zoom);
         ImGui::OpenPopup("add_node");
       }
     }
     drag_ = Drag::kNone;
+  }
+
+  const Minimap map =
+      minimap_for(graph_bounds(state.doc.graph(), state.doc.registry()), origin, size_);
+  if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && map.box.contains(mouse)) {
+    minimap_drag_ = true;
+  }
+  if (minimap_drag_) {
+    if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+      centre_on(view, map.to_canvas(mouse), size_);
+    } else {
+      minimap_drag_ = false;
+    }
+    return;
   }
 
   // Left button: press starts a link, node or box drag.
@@ -266,7 +325,7 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
         drag_origins_[id] = node_position(state.doc.graph(), id);
       }
     } else {
-      if (!io.KeyCtrl) state.selection.clear();
+      if (!io.KeyCtrl) actions::clear_selection(state);
       drag_ = Drag::kBox;
     }
   }
@@ -339,28 +398,126 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
   }
 }
 
-void Canvas::handle_keys(EditorState& state) {
-  ImGuiIO& io = ImGui::GetIO();
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete)) ||
-      ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Backspace))) {
-    if (!state.selection.empty()) (void)actions::delete_selection(state);
+void Canvas::handle_keys(EditorState& state, const std::vector<KeyChord>& chords) {
+  const Vec2 mouse = vec(ImGui::GetIO().MousePos);
+  const bool over = Rect{origin_, {origin_.x + size_.x, origin_.y + size_.y}}.contains(mouse);
+  const Vec2 anchor = over ? mouse : Vec2{origin_.x + size_.x * 0.5f, origin_.y + size_.y * 0.5f};
+  for (const KeyChord& chord : chords) {
+    const bool plain = !chord.ctrl && !chord.alt;
+    switch (chord.key) {
+      case GLFW_KEY_DELETE:
+      case GLFW_KEY_BACKSPACE:
+        if (!state.selection.empty()) (void)actions::delete_selection(state);
+        break;
+      case GLFW_KEY_D:
+        if (chord.ctrl) {
+          (void)actions::duplicate_selection(state);
+        } else if (plain) {
+          (void)actions::toggle_bypass(state);
+        }
+        break;
+      case GLFW_KEY_C:
+        if (chord.ctrl) {
+          std::string copied = actions::copy_selection(state);
+          if (!copied.empty()) ImGui::SetClipboardText(copied.c_str());
+        } else if (plain) {
+          actions::cycle_output(state, chord.shift ? -1 : +1);
+        }
+        break;
+      case GLFW_KEY_V:
+        if (chord.ctrl) {
+          const char* text = ImGui::GetClipboardText();
+          Vec2 at = state.canvas.to_canvas(origin_, anchor);
+          (void)actions::paste(state, text != nullptr ? text : "", Position{at.x, at.y});
+        }
+        break;
+      case GLFW_KEY_F:
+        if (plain) request_fit();
+        break;
+      case GLFW_KEY_1:
+        if (plain) state.canvas.zoom_to(origin_, anchor, 1.0f);
+        break;
+      case GLFW_KEY_L:
+        if (plain) (void)actions::auto_layout(state);
+        break;
+      case GLFW_KEY_F2:
+        if (state.selection.size() == 1) {
+          rename_node_ = *state.selection.begin();
+          rename_text_ = rename_node_;
+        }
+        break;
+      case GLFW_KEY_TAB:
+        if (plain) request_add_menu();
+        break;
+      default:
+        break;
+    }
   }
-  if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_D, false)) {
-    (void)actions::duplicate_selection(state);
+}
+
+void Canvas::draw_minimap(EditorState& state, const Rect& bounds) {
+  const Graph& graph = state.doc.graph();
+  if (graph.nodes.empty()) return;
+  const CanvasView& view = state.canvas;
+  // Only when part of the graph is out of view.
+  Vec2 lo = view.to_screen(origin_, bounds.min);
+  Vec2 hi = view.to_screen(origin_, bounds.max);
+  if (lo.x >= origin_.x && lo.y >= origin_.y && hi.x <= origin_.x + size_.x &&
+      hi.y <= origin_.y + size_.y) {
+    return;
   }
-  if (!io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_F, false)) request_fit();
-  if (!io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_C)) {
-    actions::cycle_output(state, io.KeyShift ? -1 : +1);
+  const Minimap map = minimap_for(bounds, origin_, size_);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(im(map.box.min), im(map.box.max), IM_COL32(20, 21, 24, 220), 4.0f);
+  draw->AddRect(im(map.box.min), im(map.box.max), IM_COL32(90, 92, 100, 255), 4.0f);
+  for (const auto& [id, node] : graph.nodes) {
+    Rect rect = node_rect(graph, state.doc.registry(), id);
+    draw->AddRectFilled(
+        im(map.to_minimap(rect.min)), im(map.to_minimap(rect.max)),
+        state.selection.count(id) ? IM_COL32(255, 220, 120, 255) : IM_COL32(140, 145, 160, 255));
   }
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Tab), false)) request_add_menu();
-  if (!io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_1, false)) state.canvas.zoom = 1.0f;
+  // The part of the canvas on screen.
+  Vec2 view_min = view.to_canvas(origin_, origin_);
+  Vec2 view_max = view.to_canvas(origin_, {origin_.x + size_.x, origin_.y + size_.y});
+  draw->PushClipRect(im(map.box.min), im(map.box.max), true);
+  draw->AddRect(im(map.to_minimap(view_min)), im(map.to_minimap(view_max)),
+                IM_COL32(255, 255, 255, 200), 0.0f, 0, 1.5f);
+  draw->PopClipRect();
+}
+
+void Canvas::draw_rename(EditorState& state) {
+  if (!rename_node_.empty() && !ImGui::IsPopupOpen("rename_node")) {
+    ImGui::OpenPopup("rename_node");
+  }
+  if (!ImGui::BeginPopup("rename_node")) {
+    rename_node_.clear();
+    return;
+  }
+  ImGui::Text("rename %s", rename_node_.c_str());
+  if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+  if (ImGui::InputText("##rename", &rename_text_, ImGuiInputTextFlags_EnterReturnsTrue)) {
+    if (actions::rename(state, rename_node_, rename_text_)) {
+      rename_node_.clear();
+      ImGui::CloseCurrentPopup();
+    }
+  }
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+    rename_node_.clear();
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
 }
 
 void Canvas::draw_add_menu(EditorState& state) {
   if (add_menu_requested_) {
-    Vec2 centre =
-        state.canvas.to_canvas(origin_, {origin_.x + size_.x * 0.5f, origin_.y + size_.y * 0.5f});
-    add_at_ = {centre.x, centre.y};
+    // At the cursor when it is over the canvas (Tab), else at the centre (menu bar).
+    const Vec2 mouse = vec(ImGui::GetIO().MousePos);
+    const bool over = Rect{origin_, {origin_.x + size_.x, origin_.y + size_.y}}.contains(mouse);
+    const Vec2 anchor = over ? mouse : Vec2{origin_.x + size_.x * 0.5f, origin_.y + size_.y * 0.5f};
+    Vec2 at = state.canvas.to_canvas(origin_, anchor);
+    add_at_ = {at.x, at.y};
+    add_on_link_ =
+        over ? link_at(state.doc.graph(), layouts_, mouse, 6.0f, state.canvas.zoom) : std::nullopt;
     add_filter_ = requested_filter_;
     ImGui::OpenPopup("add_node");
     add_menu_requested_ = false;
@@ -394,7 +551,13 @@ void Canvas::draw_add_menu(EditorState& state) {
   }
   if (by_category.empty()) ImGui::TextDisabled("no node matches");
   if (!chosen.empty()) {
-    (void)actions::add_node(state, chosen, add_at_);
+    if (add_on_link_) {
+      (void)actions::insert_on_link(state, chosen, add_at_, add_on_link_->node,
+                                    add_on_link_->input);
+    } else {
+      (void)actions::add_node_at_cursor(state, chosen, add_at_);
+    }
+    add_on_link_.reset();
     ImGui::CloseCurrentPopup();
   }
   ImGui::EndPopup();
@@ -419,6 +582,17 @@ void Canvas::draw_node_menu(EditorState& state) {
       }
     }
     ImGui::Separator();
+    if (ImGui::MenuItem("rename...", "F2")) {
+      rename_node_ = id;
+      rename_text_ = id;
+    }
+    if (ImGui::MenuItem(state.doc.bypassed(id) ? "enable" : "bypass", "D")) {
+      (void)actions::toggle_bypass(state);
+    }
+    if (ImGui::MenuItem("copy", "Ctrl+C")) {
+      std::string copied = actions::copy_selection(state);
+      if (!copied.empty()) ImGui::SetClipboardText(copied.c_str());
+    }
     if (ImGui::MenuItem("duplicate", "Ctrl+D")) (void)actions::duplicate_selection(state);
     if (ImGui::MenuItem("delete", "Del")) (void)actions::delete_selection(state);
   }

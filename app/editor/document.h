@@ -23,10 +23,11 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <optional>
-#include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace aq::editor {
@@ -42,6 +43,7 @@ struct Position {
 struct NodeState {
   std::optional<Node> node;
   std::optional<Position> position;
+  bool bypassed = false;  // editor.bypassed[id]: the node passes its input through
 };
 
 // What one edit changed; applying `after` redoes it, applying `before` undoes it.
@@ -71,8 +73,15 @@ class Document {
   void new_graph(const std::string& path = "");
   // Canonical, atomic writes through aq::save_graph_file; clears the dirty flag and removes
   // the autosave side file.
+  // Saving patches the text the graph was read from (aq::write_graph_text with the original):
+  // an unedited graph saves to the same bytes, an edit changes only the lines it concerns.
   Status save();
-  Status save_as(const std::string& path);
+  // Refuses to replace an existing file other than the graph's own unless `replace` (the user
+  // confirmed): would_replace() says when the editor must ask first.
+  Status save_as(const std::string& path, bool replace = false);
+  bool would_replace(const std::string& path) const;
+  // The text save() would write now.
+  std::string text_to_save() const;
   const std::string& path() const { return path_; }
   bool dirty() const;
 
@@ -126,6 +135,8 @@ class Document {
   Status set_settings(const Settings& settings);
   // Ends a continuous gesture: the next edit starts a new undo step even with the same key.
   void end_gesture() { gesture_open_ = false; }
+  // A continuous gesture (slider or node drag) is under way.
+  bool in_gesture() const { return gesture_open_; }
 
   // ---- Undo and redo -------------------------------------------------------------------
   bool can_undo() const { return !undo_.empty(); }
@@ -138,6 +149,29 @@ class Document {
   // A free node id for `type` ("blur", then "blur2", "blur3"...).
   std::string free_id(const std::string& type) const;
 
+  // ---- Nuke-style editing: each one undo step ---------------------------------------------
+  // The nodes as graph JSON text (the system clipboard's content): their definitions, the
+  // links among them and into them, their positions.
+  std::string copy_nodes(const std::vector<std::string>& ids) const;
+  // Adds the nodes of a copied text: fresh ids where taken (links among them follow), links to
+  // nodes this graph lacks dropped; their top-left lands at `at` when given, else 40 units
+  // right of and below where they were. Returns the new ids.
+  Result<std::vector<std::string>> paste_nodes(const std::string& text,
+                                               std::optional<Position> at = std::nullopt);
+  // A new node at `at` wired after `after`: its first input of that output's type reads it, and
+  // everything that read `after` (links, the graph output) now reads the new node.
+  Result<std::string> insert_node_after(const std::string& type, Position at, const PortRef& after);
+  // A new node dropped on the link into `to_node.to_input`: source → new → to_node.
+  Result<std::string> insert_node_on_link(const std::string& type, Position at,
+                                          const std::string& to_node, const std::string& to_input);
+  // Renames a node; links, the output, its position and bypass follow.
+  Status rename_node(const std::string& id, const std::string& new_id);
+  // Bypassed nodes pass their first input of each output's type through (see with_bypass).
+  Status set_bypassed(const std::vector<std::string>& ids, bool bypassed);
+  bool bypassed(const std::string& id) const;
+  // Moves every node to the automatic layout (columns by depth).
+  Status auto_layout();
+
  private:
   NodeState state_of(const std::string& id) const;
   void apply_side(const std::map<std::string, NodeState>& side, const std::optional<PortRef>& out,
@@ -147,10 +181,22 @@ class Document {
   void reset_history();
   void touch() { ++revision_; }
   bool depends_on(const std::string& node, const std::string& upstream) const;
+  // A new node wired after `after`; every reader of it moves to the new node, or only the
+  // link into only_link (node, input).
+  Result<std::string> insert_node(
+      const std::string& type, Position at, const PortRef& after,
+      const std::optional<std::pair<std::string, std::string>>& only_link);
+  // Records the difference between the graph and `edited` (nodes, positions, bypass, output,
+  // settings) as one change.
+  void commit_edit(const std::string& label, const Graph& edited);
+  // The first input of `type_node` that accepts an output of `type`, or "".
+  std::string first_input_of_type(const std::string& node_type, aq_port_type type) const;
 
   const Registry& registry_;
   Graph graph_;
   std::string path_;
+  std::string file_text_;                 // the text last read or written, patched on save
+  std::vector<std::string> auto_placed_;  // nodes placed at open, not by the user
   // The file's modification time when opened or last saved: save() refuses once to overwrite
   // a file someone else changed since, and a second save() is the user's confirmation.
   std::filesystem::file_time_type disk_time_{};
@@ -174,7 +220,20 @@ void write_position(Graph& graph, const std::string& id, const std::optional<Pos
 // Positions for nodes in columns by their longest path from a source (for graphs written by
 // hand), and writing them for the nodes that have none.
 std::map<std::string, Position> automatic_positions(const Graph& graph);
-void place_unplaced_nodes(Graph& graph);
+// Bypass marks live in graph.editor["bypassed"][id] = true.
+bool read_bypassed(const Graph& graph, const std::string& id);
+void write_bypassed(Graph& graph, const std::string& id, bool bypassed);
+// The graph evaluation sees: every link from a bypassed node goes to the source of that node's
+// first input of the same port type (a chain of bypassed nodes is followed); a bypassed node
+// with no such input is left as it is.
+Graph with_bypass(const Graph& graph, const Registry& registry);
+
+// Returns the ids it placed.
+std::vector<std::string> place_unplaced_nodes(Graph& graph);
+
+// A float parameter value that came from a float (an ImGui slider or field) as the shortest
+// decimal that reads back to the same float: 0.30000001192092896 → 0.3. Other values as given.
+nlohmann::json shortest_number(const nlohmann::json& value);
 
 // The JSON shape a parameter value must have, or why `value` does not fit `param`.
 std::string why_bad_param_value(const ParamInfo& param, const nlohmann::json& value);

@@ -1,0 +1,329 @@
+// The Nuke-style edits of the document: clipboard copy and paste as graph JSON, insert after a
+// node or onto a link, rename, bypass, auto-layout. Each builds the edited graph on a copy and
+// records the difference as one undoable change (Document::commit_edit).
+#include "document.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <set>
+
+namespace aq::editor {
+
+namespace {
+
+bool same_node(const std::optional<Node>& a, const std::optional<Node>& b) {
+  if (a.has_value() != b.has_value()) return false;
+  if (!a) return true;
+  return a->type == b->type && a->params == b->params && a->inputs == b->inputs;
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
+
+bool valid_id(const std::string& id) {
+  return !id.empty() && id.find('.') == std::string::npos;
+}
+
+}  // namespace
+
+bool read_bypassed(const Graph& graph, const std::string& id) {
+  if (!graph.editor.is_object()) return false;
+  auto bypassed = graph.editor.find("bypassed");
+  if (bypassed == graph.editor.end() || !bypassed->is_object()) return false;
+  auto it = bypassed->find(id);
+  return it != bypassed->end() && it->is_boolean() && it->get<bool>();
+}
+
+void write_bypassed(Graph& graph, const std::string& id, bool bypassed) {
+  if (!bypassed && !read_bypassed(graph, id)) return;  // keeps files without bypass untouched
+  if (!graph.editor.is_object()) graph.editor = nlohmann::json::object();
+  nlohmann::json& marks = graph.editor["bypassed"];
+  if (!marks.is_object()) marks = nlohmann::json::object();
+  if (bypassed) {
+    marks[id] = true;
+  } else {
+    marks.erase(id);
+    if (marks.empty()) graph.editor.erase("bypassed");
+  }
+}
+
+Graph with_bypass(const Graph& graph, const Registry& registry) {
+  Graph out = graph;
+  // Where an output of a bypassed node really comes from.
+  std::function<PortRef(const PortRef&, int)> resolve = [&](const PortRef& ref,
+                                                            int depth) -> PortRef {
+    if (depth > 64 || !read_bypassed(graph, ref.node)) return ref;
+    auto node = graph.nodes.find(ref.node);
+    if (node == graph.nodes.end()) return ref;
+    const NodeType* type = registry.find(node->second.type);
+    if (type == nullptr) return ref;
+    const PortInfo* port = type->output(ref.port);
+    if (port == nullptr) return ref;
+    for (const auto& input : type->inputs) {
+      auto linked = node->second.inputs.find(input.name);
+      if (input.type == port->type && linked != node->second.inputs.end()) {
+        return resolve(linked->second, depth + 1);
+      }
+    }
+    return ref;
+  };
+  for (auto& [id, node] : out.nodes) {
+    for (auto& [port, source] : node.inputs) source = resolve(source, 0);
+  }
+  if (out.output) out.output = resolve(*out.output, 0);
+  return out;
+}
+
+void Document::commit_edit(const std::string& label, const Graph& edited) {
+  Change change;
+  change.label = label;
+  std::set<std::string> ids;
+  for (const auto& [id, node] : graph_.nodes) ids.insert(id);
+  for (const auto& [id, node] : edited.nodes) ids.insert(id);
+  for (const auto& id : ids) {
+    NodeState before = state_of(id);
+    NodeState after;
+    if (auto it = edited.nodes.find(id); it != edited.nodes.end()) after.node = it->second;
+    after.position = read_position(edited, id);
+    after.bypassed = read_bypassed(edited, id);
+    if (same_node(before.node, after.node) && before.position == after.position &&
+        before.bypassed == after.bypassed) {
+      continue;
+    }
+    change.before[id] = before;
+    change.after[id] = after;
+  }
+  change.output_before = graph_.output;
+  change.output_after = edited.output;
+  change.settings_before = graph_.settings;
+  change.settings_after = edited.settings;
+  commit(std::move(change));
+}
+
+std::string Document::first_input_of_type(const std::string& node_type, aq_port_type type) const {
+  const NodeType* info = registry_.find(node_type);
+  if (info == nullptr) return "";
+  for (const auto& input : info->inputs) {
+    if (input.type == type) return input.name;
+  }
+  return "";
+}
+
+std::string Document::copy_nodes(const std::vector<std::string>& ids) const {
+  nlohmann::json nodes = nlohmann::json::object();
+  nlohmann::json positions = nlohmann::json::object();
+  for (const auto& id : ids) {
+    auto it = graph_.nodes.find(id);
+    if (it == graph_.nodes.end()) continue;
+    nlohmann::json node = {{"type", it->second.type}};
+    for (const auto& [name, value] : it->second.params) node["params"][name] = value;
+    for (const auto& [port, source] : it->second.inputs) node["inputs"][port] = source.str();
+    nodes[id] = node;
+    if (auto at = read_position(graph_, id)) {
+      positions[id] = {std::llround(at->x), std::llround(at->y)};
+    }
+  }
+  nlohmann::json text = {{"aquarelle", graph_.version}, {"nodes", nodes}};
+  if (!positions.empty()) text["editor"]["positions"] = positions;
+  return text.dump(2) + "\n";
+}
+
+Result<std::vector<std::string>> Document::paste_nodes(const std::string& text,
+                                                       std::optional<Position> at) {
+  nlohmann::json pasted = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (pasted.is_discarded() || !pasted.is_object() || !pasted.contains("nodes") ||
+      !pasted["nodes"].is_object() || pasted["nodes"].empty()) {
+    return make_error(
+        "nothing to paste: the clipboard holds no graph nodes (copy nodes in the editor, or "
+        "graph JSON with a \"nodes\" object)");
+  }
+  Graph edited = graph_;
+  std::map<std::string, std::string> new_id_of;
+  for (const auto& [id, node] : pasted["nodes"].items()) {
+    if (!node.is_object() || !node.contains("type") || !node["type"].is_string()) {
+      return make_error("cannot paste node '" + id + "': it has no \"type\" string");
+    }
+    std::string type = node["type"].get<std::string>();
+    std::string fresh = valid_id(id) && !edited.nodes.count(id) ? id : "";
+    for (int n = 2; fresh.empty(); ++n) {
+      std::string candidate = type + std::to_string(n);
+      if (!edited.nodes.count(candidate)) fresh = candidate;
+    }
+    edited.nodes[fresh] = Node{type, {}, {}};
+    new_id_of[id] = fresh;
+  }
+  // Where the copies go: their top-left at `at`, or offset from where they were.
+  Position top_left{1e30f, 1e30f};
+  auto positions = pasted.contains("editor") && pasted["editor"].is_object()
+                       ? pasted["editor"].value("positions", nlohmann::json::object())
+                       : nlohmann::json::object();
+  for (const auto& [id, fresh] : new_id_of) {
+    auto p = positions.find(id);
+    if (p != positions.end() && p->is_array() && p->size() == 2 && (*p)[0].is_number() &&
+        (*p)[1].is_number()) {
+      top_left.x = std::min(top_left.x, (*p)[0].get<float>());
+      top_left.y = std::min(top_left.y, (*p)[1].get<float>());
+    }
+  }
+  if (top_left.x > 1e29f) top_left = Position{0, 0};
+  const Position shift = at ? Position{at->x - top_left.x, at->y - top_left.y} : Position{40, 40};
+  std::vector<std::string> created;
+  int row = 0;
+  for (const auto& [id, node] : pasted["nodes"].items()) {
+    const std::string& fresh = new_id_of[id];
+    Node& copy = edited.nodes[fresh];
+    if (node.contains("params") && node["params"].is_object()) {
+      for (const auto& [name, value] : node["params"].items()) copy.params[name] = value;
+    }
+    if (node.contains("inputs") && node["inputs"].is_object()) {
+      for (const auto& [port, source] : node["inputs"].items()) {
+        if (!source.is_string()) continue;
+        auto ref = PortRef::parse(source.get<std::string>());
+        if (!ref) continue;
+        if (auto inner = new_id_of.find(ref->node); inner != new_id_of.end()) {
+          ref->node = inner->second;
+        } else if (!graph_.nodes.count(ref->node)) {
+          continue;  // its source is not in this graph
+        }
+        copy.inputs[port] = *ref;
+      }
+    }
+    auto p = positions.find(id);
+    Position where{top_left.x, top_left.y + 120.0f * row++};
+    if (p != positions.end() && p->is_array() && p->size() == 2 && (*p)[0].is_number() &&
+        (*p)[1].is_number()) {
+      where = {(*p)[0].get<float>(), (*p)[1].get<float>()};
+    }
+    write_position(edited, fresh, Position{where.x + shift.x, where.y + shift.y});
+    created.push_back(fresh);
+  }
+  commit_edit(created.size() == 1 ? "paste " + created.front()
+                                  : "paste " + std::to_string(created.size()) + " nodes",
+              edited);
+  return created;
+}
+
+Result<std::string> Document::insert_node(
+    const std::string& type, Position at, const PortRef& after,
+    const std::optional<std::pair<std::string, std::string>>& only_link) {
+  auto source = graph_.nodes.find(after.node);
+  if (source == graph_.nodes.end()) {
+    return make_error("cannot insert after '" + after.node + "': no such node");
+  }
+  const NodeType* source_type = registry_.find(source->second.type);
+  const PortInfo* port = source_type ? source_type->output(after.port) : nullptr;
+  if (port == nullptr) {
+    return make_error("cannot insert after " + after.str() + ": no such output");
+  }
+  const NodeType* new_type = registry_.find(type);
+  if (new_type == nullptr) {
+    return make_error("cannot add a node of type '" + type +
+                      "': no installed plugin provides it (installed: " + join(registry_.names()) +
+                      ")");
+  }
+  const std::string input = first_input_of_type(type, port->type);
+  if (input.empty()) {
+    return make_error("cannot insert a '" + type + "' after " + after.str() +
+                      ": it has no input of that output's type; add it with nothing selected "
+                      "and link it by hand");
+  }
+  Graph edited = graph_;
+  const std::string id = free_id(type);
+  const PortInfo* new_output = nullptr;
+  for (const auto& output : new_type->outputs) {
+    if (output.type == port->type && new_output == nullptr) new_output = &output;
+  }
+  if (new_output != nullptr) {
+    const PortRef through{id, new_output->name};
+    for (auto& [other, node] : edited.nodes) {
+      for (auto& [in, from] : node.inputs) {
+        const bool chosen = !only_link || (only_link->first == other && only_link->second == in);
+        if (from == after && chosen) from = through;
+      }
+    }
+    if (!only_link && edited.output == after) edited.output = through;
+  }
+  edited.nodes[id] = Node{type, {}, {{input, after}}};
+  write_position(edited, id, at);
+  commit_edit("insert " + id +
+                  (only_link ? " on the link into " + only_link->first + "." + only_link->second
+                             : " after " + after.node),
+              edited);
+  return id;
+}
+
+Result<std::string> Document::insert_node_after(const std::string& type, Position at,
+                                                const PortRef& after) {
+  return insert_node(type, at, after, std::nullopt);
+}
+
+Result<std::string> Document::insert_node_on_link(const std::string& type, Position at,
+                                                  const std::string& to_node,
+                                                  const std::string& to_input) {
+  auto target = graph_.nodes.find(to_node);
+  if (target == graph_.nodes.end() || !target->second.inputs.count(to_input)) {
+    return make_error("cannot insert on the link into " + to_node + "." + to_input +
+                      ": there is no such link");
+  }
+  return insert_node(type, at, target->second.inputs.at(to_input),
+                     std::make_pair(to_node, to_input));
+}
+
+Status Document::rename_node(const std::string& id, const std::string& new_id) {
+  if (!graph_.nodes.count(id)) return make_error("cannot rename '" + id + "': no such node");
+  if (new_id == id) return Ok{};
+  if (!valid_id(new_id)) {
+    return make_error("cannot rename '" + id + "' to '" + new_id +
+                      "': an id must be non-empty and have no '.'");
+  }
+  if (graph_.nodes.count(new_id)) {
+    return make_error("cannot rename '" + id + "' to '" + new_id +
+                      "': that id is taken; choose another");
+  }
+  Graph edited = graph_;
+  edited.nodes[new_id] = edited.nodes.at(id);
+  edited.nodes.erase(id);
+  for (auto& [other, node] : edited.nodes) {
+    for (auto& [in, from] : node.inputs) {
+      if (from.node == id) from.node = new_id;
+    }
+  }
+  if (edited.output && edited.output->node == id) edited.output->node = new_id;
+  write_position(edited, new_id, read_position(graph_, id));
+  write_position(edited, id, std::nullopt);
+  write_bypassed(edited, new_id, read_bypassed(graph_, id));
+  write_bypassed(edited, id, false);
+  commit_edit("rename " + id + " to " + new_id, edited);
+  return Ok{};
+}
+
+Status Document::set_bypassed(const std::vector<std::string>& ids, bool bypassed) {
+  if (ids.empty()) return make_error("nothing to bypass: select nodes first");
+  Graph edited = graph_;
+  for (const auto& id : ids) {
+    if (!graph_.nodes.count(id)) return make_error("cannot bypass '" + id + "': no such node");
+    write_bypassed(edited, id, bypassed);
+  }
+  commit_edit(std::string(bypassed ? "bypass " : "enable ") +
+                  (ids.size() == 1 ? ids.front() : std::to_string(ids.size()) + " nodes"),
+              edited);
+  return Ok{};
+}
+
+bool Document::bypassed(const std::string& id) const {
+  return read_bypassed(graph_, id);
+}
+
+Status Document::auto_layout() {
+  if (graph_.nodes.empty()) return make_error("nothing to lay out: the graph is empty");
+  Graph edited = graph_;
+  for (const auto& [id, at] : automatic_positions(graph_)) write_position(edited, id, at);
+  commit_edit("auto-layout", edited);
+  return Ok{};
+}
+
+}  // namespace aq::editor
