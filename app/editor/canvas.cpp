@@ -99,7 +99,7 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
       Position at = node_position(graph, graph.output->node);
       focus = Vec2{at.x, at.y};
     }
-    view.fit(bounds, size_, focus);
+    view.fit(bounds, size_, focus, fit_whole_ ? CanvasView::kMinZoom : CanvasView::kReadableZoom);
     fit_requested_ = false;
   }
 
@@ -127,6 +127,8 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
   // Selected nodes are drawn last, so on top, and are the first hit where nodes overlap.
   std::stable_partition(layouts.begin(), layouts.end(),
                         [&](const NodeLayout& l) { return !state.selection.count(l.id); });
+
+  draw_backdrops(state, draw);
 
   // Links.
   for (const auto& [id, node] : graph.nodes) {
@@ -307,6 +309,15 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
         (void)actions::unlink(state, port->node, port->spot.port);
         drag_ = Drag::kLink;
       }
+    } else if (!node && backdrop_title_at(state, mouse)) {
+      backdrop_ = *backdrop_title_at(state, mouse);
+      backdrop_moved_ = {0, 0};
+      drag_ = Drag::kBackdrop;
+      if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
+        label_backdrop_ = true;
+        label_text_ = read_backdrops(state.doc.graph())[backdrop_].label;
+        drag_ = Drag::kNone;
+      }
     } else if (node) {
       if (io.KeyCtrl) {
         if (!state.selection.erase(*node)) state.selection.insert(*node);
@@ -342,6 +353,22 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
                    start.y + (mouse.y - press_at_.y) / view.zoom};
     }
     (void)actions::move(state, moved, /*gesture=*/true);
+  }
+
+  if (drag_ == Drag::kBackdrop) {
+    if (left_down && drag_moved_) {
+      const Vec2 total{std::round((mouse.x - press_at_.x) / view.zoom),
+                       std::round((mouse.y - press_at_.y) / view.zoom)};
+      const Position step{total.x - backdrop_moved_.x, total.y - backdrop_moved_.y};
+      if (step.x != 0 || step.y != 0) {
+        (void)state.doc.move_backdrop(backdrop_, step, "backdrop");
+        backdrop_moved_ = total;
+      }
+    }
+    if (!left_down) {
+      actions::end_gesture(state);
+      drag_ = Drag::kNone;
+    }
   }
 
   if (drag_ == Drag::kLink) {
@@ -440,6 +467,9 @@ void Canvas::handle_keys(EditorState& state, const std::vector<KeyChord>& chords
       case GLFW_KEY_L:
         if (plain) (void)actions::auto_layout(state);
         break;
+      case GLFW_KEY_B:
+        if (plain) (void)actions::backdrop_around_selection(state);
+        break;
       case GLFW_KEY_F2:
         if (state.selection.size() == 1) {
           rename_node_ = *state.selection.begin();
@@ -483,6 +513,52 @@ void Canvas::draw_minimap(EditorState& state, const Rect& bounds) {
   draw->AddRect(im(map.to_minimap(view_min)), im(map.to_minimap(view_max)),
                 IM_COL32(255, 255, 255, 200), 0.0f, 0, 1.5f);
   draw->PopClipRect();
+}
+
+std::optional<size_t> Canvas::backdrop_title_at(const EditorState& state, Vec2 screen) const {
+  const auto backdrops = read_backdrops(state.doc.graph());
+  const CanvasView& view = state.canvas;
+  for (size_t i = backdrops.size(); i-- > 0;) {
+    const Backdrop& b = backdrops[i];
+    Vec2 lo = view.to_screen(origin_, {b.at.x, b.at.y});
+    Rect title{lo, {lo.x + b.width * view.zoom, lo.y + 30.0f * view.zoom}};
+    if (title.contains(screen)) return i;
+  }
+  return std::nullopt;
+}
+
+void Canvas::draw_backdrops(EditorState& state, ImDrawList* draw) {
+  const CanvasView& view = state.canvas;
+  const float z = view.zoom;
+  const auto backdrops = read_backdrops(state.doc.graph());
+  for (const auto& b : backdrops) {
+    Vec2 lo = view.to_screen(origin_, {b.at.x, b.at.y});
+    Vec2 hi = view.to_screen(origin_, {b.at.x + b.width, b.at.y + b.height});
+    draw->AddRectFilled(im(lo), im(hi), IM_COL32(70, 80, 96, 110), 6.0f * z);
+    draw->AddRectFilled(im(lo), ImVec2(hi.x, lo.y + 30.0f * z), IM_COL32(88, 102, 124, 200),
+                        6.0f * z, ImDrawFlags_RoundCornersTop);
+    draw->AddRect(im(lo), im(hi), IM_COL32(120, 140, 170, 200), 6.0f * z);
+    text(draw, {lo.x + 8 * z, lo.y + 6 * z}, z * 1.4f, IM_COL32(235, 240, 250, 255), b.label);
+  }
+  if (label_backdrop_ && !ImGui::IsPopupOpen("backdrop_label")) {
+    ImGui::OpenPopup("backdrop_label");
+  }
+  if (ImGui::BeginPopup("backdrop_label")) {
+    if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+    if (ImGui::InputText("label", &label_text_, ImGuiInputTextFlags_EnterReturnsTrue)) {
+      (void)state.doc.set_backdrop_label(backdrop_, label_text_);
+      label_backdrop_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    if (ImGui::Button("delete backdrop")) {
+      (void)state.doc.remove_backdrop(backdrop_);
+      label_backdrop_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  } else {
+    label_backdrop_ = false;
+  }
 }
 
 void Canvas::draw_rename(EditorState& state) {

@@ -10,8 +10,9 @@
 //                                          inserted after the one selected node, or onto the
 //                                          link under the cursor; or the node menu
 //   Delete, Ctrl+D, F, 1, C / Shift+C       delete, duplicate, fit, 1:1 at the cursor, cycle output
-//   Ctrl+C / Ctrl+V, D, F2, L               copy / paste (system clipboard, graph JSON), bypass,
-//                                          rename, auto-layout
+//   Ctrl+C / Ctrl+V, D, F2, L, B            copy / paste (system clipboard, graph JSON), bypass,
+//                                          rename, auto-layout, backdrop around the selection
+//   drag a backdrop's title bar            moves it with the nodes on it; double-click: label
 //   minimap (bottom right)                 click or drag to move the view
 //
 // Keys act while the mouse is over the canvas (no click needed) and come from a queue of key
@@ -63,7 +64,12 @@ class Canvas {
   Vec2 origin() const { return origin_; }
   Vec2 size() const { return size_; }
   // Fit all nodes into view on the next draw.
-  void request_fit() { fit_requested_ = true; }
+  // `whole`: every node in view however small (View > Show whole graph, scripts); otherwise at
+  // a readable zoom.
+  void request_fit(bool whole = false) {
+    fit_requested_ = true;
+    fit_whole_ = whole;
+  }
   // Opens the add-node menu at the canvas centre (menu bar, Tab).
   void request_add_menu(const std::string& filter = "") {
     add_menu_requested_ = true;
@@ -71,12 +77,14 @@ class Canvas {
   }
 
  private:
-  enum class Drag { kNone, kNodes, kLink, kBox, kPan };
+  enum class Drag { kNone, kNodes, kLink, kBox, kPan, kBackdrop };
 
   void handle_mouse(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin);
   void handle_keys(EditorState& state, const std::vector<KeyChord>& chords);
   void draw_minimap(EditorState& state, const Rect& bounds);
   void draw_rename(EditorState& state);
+  void draw_backdrops(EditorState& state, ImDrawList* draw);
+  std::optional<size_t> backdrop_title_at(const EditorState& state, Vec2 screen) const;
   void text(ImDrawList* draw, Vec2 at, float zoom, ImU32 colour, const std::string& text) const;
   Vec2 text_size(float zoom, const std::string& text) const;
   void draw_add_menu(EditorState& state);
@@ -91,12 +99,17 @@ class Canvas {
   Position add_at_;
   std::string add_filter_;
   bool fit_requested_ = true;
+  bool fit_whole_ = false;
   bool add_menu_requested_ = false;
   std::string requested_filter_;
   std::optional<LinkHit> add_on_link_;  // the add menu opened over a link: insert on it
   std::string rename_node_;             // the rename prompt's node ("" when closed)
   std::string rename_text_;
   bool minimap_drag_ = false;
+  size_t backdrop_ = 0;  // the backdrop being dragged or labelled
+  Vec2 backdrop_moved_;  // whole canvas units already applied during the drag
+  bool label_backdrop_ = false;
+  std::string label_text_;
   std::map<float, ImFont*> fonts_;
   Vec2 size_;
   Vec2 origin_;

@@ -20,13 +20,13 @@ void CanvasView::zoom_to(Vec2 origin, Vec2 screen, float new_zoom) {
   zoom_at(origin, screen, new_zoom / zoom);
 }
 
-void CanvasView::fit(Rect bounds, Vec2 size, std::optional<Vec2> focus) {
+void CanvasView::fit(Rect bounds, Vec2 size, std::optional<Vec2> focus, float min_zoom) {
   constexpr float kMargin = 30.0f;
   float w = std::max(bounds.max.x - bounds.min.x, 1.0f);
   float h = std::max(bounds.max.y - bounds.min.y, 1.0f);
   float zx = (size.x - 2 * kMargin) / w;
   float zy = (size.y - 2 * kMargin) / h;
-  zoom = std::clamp(std::min(zx, zy), kReadableZoom, 1.5f);
+  zoom = std::clamp(std::min(zx, zy), min_zoom, 1.5f);
   // Centred along an axis that fits; from the left or top end along one that does not.
   auto place = [&](float extent, float screen, float low) {
     if (extent * zoom <= screen - 2 * kMargin) return (screen - extent * zoom) * 0.5f - low * zoom;

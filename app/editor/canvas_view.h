@@ -52,7 +52,8 @@ struct CanvasView {
   // Pan and zoom so that `bounds` (canvas units) fills `size` (screen) with a margin, at a
   // readable zoom at least: a graph too big for that shows its left end (`focus`, a canvas
   // point, when given, is kept in view), the rest a pan away.
-  void fit(Rect bounds, Vec2 size, std::optional<Vec2> focus = std::nullopt);
+  void fit(Rect bounds, Vec2 size, std::optional<Vec2> focus = std::nullopt,
+           float min_zoom = kReadableZoom);
 };
 
 // Node geometry in canvas units.

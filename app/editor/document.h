@@ -55,6 +55,9 @@ struct Change {
   std::optional<PortRef> output_after;
   Settings settings_before;
   Settings settings_after;
+  // editor.backdrops before and after, when the change touches them.
+  std::optional<nlohmann::json> backdrops_before;
+  std::optional<nlohmann::json> backdrops_after;
   std::string coalesce_key;  // non-empty: later edits with the same key merge into this one
   uint64_t serial = 0;       // unique per change, for the dirty flag
 };
@@ -172,6 +175,14 @@ class Document {
   // Moves every node to the automatic layout (columns by depth).
   Status auto_layout();
 
+  // ---- Backdrops: labelled frames behind groups of nodes (editor.backdrops) ---------------
+  // A backdrop around the nodes (with a margin and a title bar); returns its index.
+  Result<size_t> add_backdrop(const std::vector<std::string>& around, const std::string& label);
+  Status set_backdrop_label(size_t index, const std::string& label);
+  Status remove_backdrop(size_t index);
+  // Moves the backdrop and the nodes inside it by (dx, dy). Pass a coalesce key for a drag.
+  Status move_backdrop(size_t index, Position by, const std::string& coalesce_key = "");
+
  private:
   NodeState state_of(const std::string& id) const;
   void apply_side(const std::map<std::string, NodeState>& side, const std::optional<PortRef>& out,
@@ -188,7 +199,10 @@ class Document {
       const std::optional<std::pair<std::string, std::string>>& only_link);
   // Records the difference between the graph and `edited` (nodes, positions, bypass, output,
   // settings) as one change.
-  void commit_edit(const std::string& label, const Graph& edited);
+  void commit_edit(const std::string& label, const Graph& edited,
+                   const std::string& coalesce_key = "");
+  // editor.backdrops = value (null: none).
+  void apply_backdrops(const nlohmann::json& value);
   // The first input of `type_node` that accepts an output of `type`, or "".
   std::string first_input_of_type(const std::string& node_type, aq_port_type type) const;
 
@@ -220,6 +234,19 @@ void write_position(Graph& graph, const std::string& id, const std::optional<Pos
 // Positions for nodes in columns by their longest path from a source (for graphs written by
 // hand), and writing them for the nodes that have none.
 std::map<std::string, Position> automatic_positions(const Graph& graph);
+struct Backdrop {
+  std::string label;
+  Position at;  // top-left, canvas units
+  float width = 0;
+  float height = 0;
+  bool contains(Position p) const {
+    return p.x >= at.x && p.y >= at.y && p.x <= at.x + width && p.y <= at.y + height;
+  }
+};
+// Backdrops live in graph.editor["backdrops"] = [{"label", "rect": [x, y, w, h]}...].
+std::vector<Backdrop> read_backdrops(const Graph& graph);
+void write_backdrops(Graph& graph, const std::vector<Backdrop>& backdrops);
+
 // Bypass marks live in graph.editor["bypassed"][id] = true.
 bool read_bypassed(const Graph& graph, const std::string& id);
 void write_bypassed(Graph& graph, const std::string& id, bool bypassed);

@@ -3,6 +3,8 @@
 // records the difference as one undoable change (Document::commit_edit).
 #include "document.h"
 
+#include "canvas_view.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -78,9 +80,30 @@ Graph with_bypass(const Graph& graph, const Registry& registry) {
   return out;
 }
 
-void Document::commit_edit(const std::string& label, const Graph& edited) {
+void Document::apply_backdrops(const nlohmann::json& value) {
+  if (!graph_.editor.is_object()) graph_.editor = nlohmann::json::object();
+  if (value.is_null()) {
+    graph_.editor.erase("backdrops");
+  } else {
+    graph_.editor["backdrops"] = value;
+  }
+  touch();
+}
+
+void Document::commit_edit(const std::string& label, const Graph& edited,
+                           const std::string& coalesce_key) {
   Change change;
   change.label = label;
+  change.coalesce_key = coalesce_key;
+  auto backdrops_of = [](const Graph& graph) {
+    return graph.editor.is_object() && graph.editor.contains("backdrops")
+               ? graph.editor["backdrops"]
+               : nlohmann::json();
+  };
+  if (backdrops_of(graph_) != backdrops_of(edited)) {
+    change.backdrops_before = backdrops_of(graph_);
+    change.backdrops_after = backdrops_of(edited);
+  }
   std::set<std::string> ids;
   for (const auto& [id, node] : graph_.nodes) ids.insert(id);
   for (const auto& [id, node] : edited.nodes) ids.insert(id);
@@ -316,6 +339,103 @@ Status Document::set_bypassed(const std::vector<std::string>& ids, bool bypassed
 
 bool Document::bypassed(const std::string& id) const {
   return read_bypassed(graph_, id);
+}
+
+std::vector<Backdrop> read_backdrops(const Graph& graph) {
+  std::vector<Backdrop> out;
+  if (!graph.editor.is_object() || !graph.editor.contains("backdrops")) return out;
+  const auto& list = graph.editor["backdrops"];
+  if (!list.is_array()) return out;
+  for (const auto& item : list) {
+    if (!item.is_object() || !item.contains("rect") || !item["rect"].is_array() ||
+        item["rect"].size() != 4) {
+      continue;
+    }
+    const auto& r = item["rect"];
+    if (!std::all_of(r.begin(), r.end(), [](const auto& v) { return v.is_number(); })) continue;
+    Backdrop backdrop;
+    backdrop.label = item.value("label", std::string());
+    backdrop.at = {r[0].get<float>(), r[1].get<float>()};
+    backdrop.width = r[2].get<float>();
+    backdrop.height = r[3].get<float>();
+    out.push_back(backdrop);
+  }
+  return out;
+}
+
+void write_backdrops(Graph& graph, const std::vector<Backdrop>& backdrops) {
+  if (!graph.editor.is_object()) graph.editor = nlohmann::json::object();
+  if (backdrops.empty()) {
+    graph.editor.erase("backdrops");
+    return;
+  }
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& b : backdrops) {
+    list.push_back({{"label", b.label},
+                    {"rect",
+                     {std::llround(b.at.x), std::llround(b.at.y), std::llround(b.width),
+                      std::llround(b.height)}}});
+  }
+  graph.editor["backdrops"] = list;
+}
+
+Result<size_t> Document::add_backdrop(const std::vector<std::string>& around,
+                                      const std::string& label) {
+  constexpr float kMargin = 30.0f;
+  constexpr float kTitle = 36.0f;
+  Rect box{{1e30f, 1e30f}, {-1e30f, -1e30f}};
+  for (const auto& id : around) {
+    if (!graph_.nodes.count(id)) return make_error("cannot frame '" + id + "': no such node");
+    Rect r = node_rect(graph_, registry_, id);
+    box.min = {std::min(box.min.x, r.min.x), std::min(box.min.y, r.min.y)};
+    box.max = {std::max(box.max.x, r.max.x), std::max(box.max.y, r.max.y)};
+  }
+  if (around.empty()) return make_error("nothing to frame: select the nodes for the backdrop");
+  Graph edited = graph_;
+  auto backdrops = read_backdrops(edited);
+  backdrops.push_back({label.empty() ? "Backdrop" : label,
+                       {box.min.x - kMargin, box.min.y - kMargin - kTitle},
+                       box.max.x - box.min.x + 2 * kMargin,
+                       box.max.y - box.min.y + 2 * kMargin + kTitle});
+  write_backdrops(edited, backdrops);
+  commit_edit("backdrop " + backdrops.back().label, edited);
+  return backdrops.size() - 1;
+}
+
+Status Document::set_backdrop_label(size_t index, const std::string& label) {
+  Graph edited = graph_;
+  auto backdrops = read_backdrops(edited);
+  if (index >= backdrops.size()) return make_error("no backdrop " + std::to_string(index));
+  backdrops[index].label = label;
+  write_backdrops(edited, backdrops);
+  commit_edit("label backdrop " + label, edited);
+  return Ok{};
+}
+
+Status Document::remove_backdrop(size_t index) {
+  Graph edited = graph_;
+  auto backdrops = read_backdrops(edited);
+  if (index >= backdrops.size()) return make_error("no backdrop " + std::to_string(index));
+  backdrops.erase(backdrops.begin() + static_cast<long>(index));
+  write_backdrops(edited, backdrops);
+  commit_edit("delete backdrop", edited);
+  return Ok{};
+}
+
+Status Document::move_backdrop(size_t index, Position by, const std::string& coalesce_key) {
+  Graph edited = graph_;
+  auto backdrops = read_backdrops(edited);
+  if (index >= backdrops.size()) return make_error("no backdrop " + std::to_string(index));
+  Backdrop& moved = backdrops[index];
+  // The nodes inside it travel with it (Nuke's backdrops).
+  for (const auto& [id, node] : graph_.nodes) {
+    Position at = node_position(graph_, id);
+    if (moved.contains(at)) write_position(edited, id, Position{at.x + by.x, at.y + by.y});
+  }
+  moved.at = {moved.at.x + by.x, moved.at.y + by.y};
+  write_backdrops(edited, backdrops);
+  commit_edit("move backdrop " + moved.label, edited, coalesce_key);
+  return Ok{};
 }
 
 Status Document::auto_layout() {

@@ -216,6 +216,12 @@ Status toggle_bypass(EditorState& state) {
   return done;
 }
 
+Status backdrop_around_selection(EditorState& state, const std::string& label) {
+  auto added = state.doc.add_backdrop({state.selection.begin(), state.selection.end()}, label);
+  report(state, added ? Status(Ok{}) : Status(added.error()), "backdrop '" + label + "' added");
+  return added ? Status(Ok{}) : Status(added.error());
+}
+
 Status auto_layout(EditorState& state) {
   Status done = state.doc.auto_layout();
   report(state, done, "laid out " + std::to_string(state.doc.graph().nodes.size()) + " nodes");

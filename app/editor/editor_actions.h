@@ -50,6 +50,8 @@ Status rename(EditorState& state, const std::string& id, const std::string& new_
 // Bypasses the selection, or enables it again when every selected node is bypassed.
 Status toggle_bypass(EditorState& state);
 Status auto_layout(EditorState& state);
+// A labelled backdrop around the selection.
+Status backdrop_around_selection(EditorState& state, const std::string& label = "Backdrop");
 
 // The viewer shows `output` (any node's any output); the graph's own output is unchanged.
 Status select_output(EditorState& state, const PortRef& output);

@@ -240,7 +240,7 @@ int EditorApp::run() {
     runner_ = std::make_unique<ScriptRunner>(*read);
   }
   ScriptHooks hooks;
-  hooks.fit = [this] { canvas_.request_fit(); };
+  hooks.fit = [this](bool whole) { canvas_.request_fit(whole); };
   hooks.add_menu = [this](const std::string& filter) { canvas_.request_add_menu(filter); };
   hooks.key = [this](const std::string& text) -> Status {
     auto chord = parse_chord(text);
@@ -526,6 +526,7 @@ void EditorApp::draw_menu_bar() {
   }
   if (ImGui::BeginMenu("View")) {
     if (ImGui::MenuItem("Fit graph", "F")) canvas_.request_fit();
+    if (ImGui::MenuItem("Show whole graph")) canvas_.request_fit(/*whole=*/true);
     if (ImGui::MenuItem("Zoom 1:1", "1")) {
       Vec2 centre{canvas_.origin().x + canvas_.size().x * 0.5f,
                   canvas_.origin().y + canvas_.size().y * 0.5f};

@@ -39,7 +39,7 @@ uint64_t evaluation_key(const Graph& graph, const std::optional<PortRef>& output
 bool evaluate_as_draft(const DraftInputs& in) {
   if (in.graph_is_draft || in.last_full_ms <= 0) return false;
   if (in.playing) return in.last_full_ms > 1000.0 / (in.fps > 0 ? in.fps : 24.0);
-  if (in.gesture) return in.last_full_ms > kGestureBudgetMs;
+  if (in.gesture) return in.last_full_ms > in.gesture_budget_ms;
   return false;
 }
 

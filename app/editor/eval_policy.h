@@ -26,14 +26,15 @@ uint64_t evaluation_key(const Graph& graph, const std::optional<PortRef>& output
 // with the interaction: during a continuous gesture (slider or node drag) when it takes longer
 // than `gesture_budget_ms`, during playback when it takes longer than a frame of the graph's
 // fps. A typed value, a link, an undo: always full. Unknown cost (no full evaluation yet): full.
+constexpr double kGestureBudgetMs = 100.0;  // ten updates a second keep a drag responsive
 struct DraftInputs {
   bool gesture = false;  // a slider drag or similar continuous edit is under way
   bool playing = false;
   double fps = 24.0;
   double last_full_ms = 0;      // the last evaluation at the graph's own quality; 0 = none yet
   bool graph_is_draft = false;  // the graph's own quality is "draft" already
+  double gesture_budget_ms = kGestureBudgetMs;
 };
-constexpr double kGestureBudgetMs = 100.0;  // ten updates a second keep a drag responsive
 bool evaluate_as_draft(const DraftInputs& inputs);
 
 }  // namespace aq::editor

@@ -40,7 +40,16 @@ EvalWorker::EvalWorker(const Registry& registry, std::function<bool()> attach,
   thread_ = std::thread([this] { run(); });
 }
 
+EvalWorker::EvalWorker(const Registry& registry, GlContext& context)
+    : registry_(registry),
+      get_proc_address_(nullptr),
+      inline_evaluator_(std::make_unique<Evaluator>(context, registry)) {}
+
 EvalWorker::~EvalWorker() {
+  if (inline_evaluator_) {
+    if (finished_) delete_texture(finished_->texture);
+    return;
+  }
   {
     std::lock_guard lock(mutex_);
     stop_ = true;
@@ -50,6 +59,16 @@ EvalWorker::~EvalWorker() {
 }
 
 void EvalWorker::submit(EvalRequest request) {
+  if (inline_evaluator_) {
+    if (clear_) inline_evaluator_->clear();
+    if (hot_reload_) inline_evaluator_->set_shader_hot_reload(*hot_reload_);
+    clear_ = false;
+    hot_reload_.reset();
+    EvalFinished done = evaluate(*inline_evaluator_, request);
+    if (finished_) delete_texture(finished_->texture);
+    finished_ = std::move(done);
+    return;
+  }
   {
     std::lock_guard lock(mutex_);
     pending_ = std::move(request);
@@ -90,6 +109,27 @@ std::string EvalWorker::start_error() const {
   return start_error_;
 }
 
+EvalFinished EvalWorker::evaluate(Evaluator& evaluator, const EvalRequest& request) {
+  EvalFinished done;
+  done.tag = request.tag;
+  const auto start = std::chrono::steady_clock::now();
+  auto evaluated = evaluator.evaluate(request.graph, request.options, request.output);
+  if (evaluated) {
+    done.image = (*evaluated)->image;
+    done.texture = copy_of(done.image);
+    done.image.texture = done.texture;
+  } else {
+    done.error = evaluated.message();
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glFinish();  // the copy is complete before the UI's context samples it
+  done.timings = evaluator.last_timings();
+  done.run_counts = evaluator.run_counts();
+  done.ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return done;
+}
+
 void EvalWorker::run() {
   if (!attach_()) {
     std::lock_guard lock(mutex_);
@@ -118,26 +158,12 @@ void EvalWorker::run() {
       hot_reload_.reset();
     }
     EvalFinished done;
-    done.tag = request.tag;
-    const auto start = std::chrono::steady_clock::now();
     if (!evaluator) {
+      done.tag = request.tag;
       done.error = start_error();
     } else {
-      auto evaluated = evaluator->evaluate(request.graph, request.options, request.output);
-      if (evaluated) {
-        done.image = (*evaluated)->image;
-        done.texture = copy_of(done.image);
-        done.image.texture = done.texture;
-      } else {
-        done.error = evaluated.message();
-      }
-      glBindFramebuffer(GL_FRAMEBUFFER, 0);
-      glFinish();  // the copy is complete before the UI's context samples it
-      done.timings = evaluator->last_timings();
-      done.run_counts = evaluator->run_counts();
+      done = evaluate(*evaluator, request);
     }
-    done.ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     std::lock_guard lock(mutex_);
     if (finished_) delete_texture(finished_->texture);  // never taken: superseded
     finished_ = std::move(done);

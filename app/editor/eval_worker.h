@@ -52,6 +52,9 @@ class EvalWorker {
   // thread (it runs on the worker) and returns false when it cannot; `detach` releases it.
   EvalWorker(const Registry& registry, std::function<bool()> attach, std::function<void()> detach,
              void* (*get_proc_address)(const char*));
+  // Inline: no thread; submit() evaluates at once on `context` (current on the caller's thread).
+  // For tests with one headless context, and where no second context can be had.
+  EvalWorker(const Registry& registry, GlContext& context);
   ~EvalWorker();
   EvalWorker(const EvalWorker&) = delete;
   EvalWorker& operator=(const EvalWorker&) = delete;
@@ -70,6 +73,7 @@ class EvalWorker {
 
  private:
   void run();
+  EvalFinished evaluate(Evaluator& evaluator, const EvalRequest& request);
 
   const Registry& registry_;
   std::function<bool()> attach_;
@@ -87,6 +91,7 @@ class EvalWorker {
   std::optional<bool> hot_reload_;
   std::string start_error_;
   std::thread thread_;
+  std::unique_ptr<Evaluator> inline_evaluator_;  // inline mode only
 };
 
 }  // namespace aq::editor

@@ -138,6 +138,11 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
     return actions::toggle_bypass(state);
   }
   if (kind == "auto_layout") return actions::auto_layout(state);
+  if (kind == "backdrop") {
+    actions::select(state, nodes_field(action));
+    return actions::backdrop_around_selection(state,
+                                              action.value("label", std::string("Backdrop")));
+  }
   if (kind == "insert") {
     Position at = position_field(action, "at", {0, 0});
     std::string type = text_field(action, "type");
@@ -152,14 +157,14 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
     return inserted ? Status(Ok{}) : Status(inserted.error());
   }
   if (kind == "fit") {
-    if (hooks.fit) hooks.fit();
+    if (hooks.fit) hooks.fit(action.value("whole", false));
     return Ok{};
   }
   throw std::invalid_argument(
       "unknown action '" + kind +
       "' (add_node, link, unlink, set_param, move, select_output, "
       "set_output, delete, duplicate, select, undo, redo, save, frame, fit, add_menu, play, key, "
-      "copy, paste, rename, bypass, auto_layout, insert)");
+      "copy, paste, rename, bypass, auto_layout, insert, backdrop)");
 }
 
 }  // namespace

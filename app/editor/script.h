@@ -20,13 +20,14 @@
 //   {"do": "wheel", "steps": 2}                                     zoom at the canvas centre
 //
 // Also: "delete" / "duplicate" / "select" {"nodes": [...]}, "set_output" {"output"},
-// "frame" {"frame"}, "fit", "add_menu" {"filter"} (opens the add-node menu, for screenshots),
-// "key" {"chord": "ctrl+d"} (a key press as if released before the next frame: the canvas
-// keys act with the mouse over the canvas), "copy", "paste" {"at"}, "rename" {"node", "to"},
-// "bypass" {"nodes"}, "auto_layout", "insert" {"type", "after": "node.port" | "on": "node.input",
-// "at"}, "play" {"frames": N} (plays until N frames later is on screen, at the editor's own pace).
-// An action whose outcome differs from "expect" ("ok" by default, or "refused") stops the script
-// with a message naming the action.
+// "frame" {"frame"}, "fit" {"whole": true for every node however small}, "add_menu" {"filter"}
+// (opens the add-node menu, for screenshots), "key" {"chord": "ctrl+d"} (a key press as if released
+// before the next frame: the canvas keys act with the mouse over the canvas), "copy", "paste"
+// {"at"}, "rename" {"node", "to"}, "bypass" {"nodes"}, "auto_layout", "backdrop" {"nodes",
+// "label"}, "insert" {"type", "after": "node.port" | "on": "node.input", "at"}, "play" {"frames":
+// N} (plays until N frames later is on screen, at the editor's own pace). An action whose outcome
+// differs from "expect" ("ok" by default, or "refused") stops the script with a message naming the
+// action.
 #pragma once
 
 #include "editor_state.h"
@@ -51,7 +52,7 @@ struct MouseFrame {
 };
 
 struct ScriptHooks {
-  std::function<void()> fit;                         // View > Fit, which needs the canvas
+  std::function<void(bool whole)> fit;  // View > Fit (whole: every node, however small)
   std::function<void(const std::string&)> add_menu;  // opens the add-node menu (screenshots)
   // The frame of the image on screen once the viewer is settled, -1 while it evaluates.
   std::function<int()> shown_frame;

@@ -193,6 +193,7 @@ void Viewer::update(const EditorState& state, bool force) {
   draft_inputs.fps = graph.settings.fps;
   draft_inputs.last_full_ms = last_full_ms_;
   draft_inputs.graph_is_draft = graph.settings.quality == "draft";
+  draft_inputs.gesture_budget_ms = gesture_budget_ms_;
   Wanted wanted;
   wanted.key = evaluation_key(graph, output);
   wanted.frame = state.frame;
@@ -220,6 +221,7 @@ void Viewer::update(const EditorState& state, bool force) {
   in_flight_[request.tag] = wanted;
   requested_ = wanted;
   worker_->submit(std::move(request));
+  take_finished();  // an inline worker has it already
 }
 
 void Viewer::measure_range() {
@@ -359,6 +361,23 @@ void Viewer::draw_progress(ImVec2 at, float width) const {
   draw->AddText(text, IM_COL32(200, 230, 255, 255), label);
 }
 
+void Viewer::hold_for_wipe() {
+  if (!display_) return;
+  GLuint copy = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &copy);
+  glTextureStorage2D(copy, 1, GL_RGBA8, display_width_, display_height_);
+  glTextureParameteri(copy, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(copy, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(copy, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(copy, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glCopyImageSubData(display_.get(), GL_TEXTURE_2D, 0, 0, 0, 0, copy, GL_TEXTURE_2D, 0, 0, 0, 0,
+                     display_width_, display_height_, 1);
+  held_.reset(copy);
+  held_width_ = display_width_;
+  held_height_ = display_height_;
+  wipe_ = true;
+}
+
 void Viewer::draw(EditorState& state) {
   // Toolbar.
   auto shown = state.shown_output();
@@ -377,9 +396,23 @@ void Viewer::draw(EditorState& state) {
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("evaluation resolution (preview while editing)");
   ImGui::SameLine();
-  if (ImGui::RadioButton("fit", fit_)) fit_ = true;
+  if (ImGui::RadioButton("fit", view_.fit)) view_.fit = true;
   ImGui::SameLine();
-  if (ImGui::RadioButton("1:1", !fit_)) fit_ = false;
+  if (ImGui::RadioButton("1:1", !view_.fit && view_.zoom == 1.0f)) {
+    ImVec2 area = ImGui::GetContentRegionAvail();
+    view_.zoom_to(area.x * 0.5f, area.y * 0.5f, 1.0f);
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("wheel: zoom at the cursor; middle/right drag: pan");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("hold A")) hold_for_wipe();
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("keep the picture shown now as A, to compare with what follows (wipe)");
+  }
+  if (held_) {
+    ImGui::SameLine();
+    ImGui::Checkbox("wipe A|B", &wipe_);
+  }
   if (has_image_) {
     const aq_image& image = image_;
     ImGui::SameLine();
@@ -435,19 +468,60 @@ void Viewer::draw(EditorState& state) {
   const aq_image& image = image_;
   ImVec2 avail = ImGui::GetContentRegionAvail();
   avail.y -= ImGui::GetTextLineHeightWithSpacing();  // the probe line below
-  float scale = 1.0f;
-  if (fit_) {
-    scale = std::min(avail.x / image.width, avail.y / image.height);
-    scale = std::max(scale, 0.01f);
-  }
-  ImVec2 size(image.width * scale, image.height * scale);
   ImGui::BeginChild("##viewer_image", ImVec2(0, avail.y), false,
-                    fit_ ? ImGuiWindowFlags_None : ImGuiWindowFlags_HorizontalScrollbar);
-  ImVec2 top_left = ImGui::GetCursorScreenPos();
-  // The display texture has row 0 at the bottom: flip v.
-  ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(display_.get())), size,
-               ImVec2(0, 1), ImVec2(1, 0));
+                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  const ImVec2 area_at = ImGui::GetCursorScreenPos();
+  const ImVec2 area(std::max(ImGui::GetContentRegionAvail().x, 1.0f),
+                    std::max(ImGui::GetContentRegionAvail().y, 1.0f));
+  ImGui::InvisibleButton("##image_area", area,
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonMiddle |
+                             ImGuiButtonFlags_MouseButtonRight);
   bool hovered = ImGui::IsItemHovered();
+  const bool active = ImGui::IsItemActive();
+  ImGuiIO& io = ImGui::GetIO();
+  view_.place(static_cast<float>(image.width), static_cast<float>(image.height), area.x, area.y);
+  if (hovered && io.MouseWheel != 0.0f) {
+    view_.zoom_to(io.MousePos.x - area_at.x, io.MousePos.y - area_at.y,
+                  view_.zoom * std::pow(1.2f, io.MouseWheel));
+  }
+  if (active && (ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 2.0f) ||
+                 ImGui::IsMouseDragging(ImGuiMouseButton_Right, 2.0f))) {
+    view_.pan_by(io.MouseDelta.x, io.MouseDelta.y);
+  }
+  const float scale = view_.zoom;
+  const ImVec2 top_left(area_at.x + view_.pan_x, area_at.y + view_.pan_y);
+  const ImVec2 bottom_right(top_left.x + image.width * scale, top_left.y + image.height * scale);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->PushClipRect(area_at, ImVec2(area_at.x + area.x, area_at.y + area.y), true);
+  auto texture_id = [](const gl::Texture& texture) {
+    return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture.get()));
+  };
+  // The display texture has row 0 at the bottom: flip v.
+  if (wipe_ && held_) {
+    const float split = top_left.x + (bottom_right.x - top_left.x) * wipe_at_;
+    draw->AddImage(texture_id(held_), top_left, ImVec2(split, bottom_right.y), ImVec2(0, 1),
+                   ImVec2(wipe_at_, 0));
+    draw->AddImage(texture_id(display_), ImVec2(split, top_left.y), bottom_right,
+                   ImVec2(wipe_at_, 1), ImVec2(1, 0));
+    draw->AddLine(ImVec2(split, area_at.y), ImVec2(split, area_at.y + area.y),
+                  IM_COL32(255, 255, 255, 220), 2.0f);
+    draw->AddText(ImVec2(split - 16, area_at.y + 4), IM_COL32(255, 255, 255, 255), "A");
+    draw->AddText(ImVec2(split + 6, area_at.y + 4), IM_COL32(255, 255, 255, 255), "B");
+    // Drag the line with the left button.
+    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
+        std::fabs(io.MousePos.x - split) < 8.0f) {
+      wipe_drag_ = true;
+    }
+    if (wipe_drag_ && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+      wipe_at_ = std::clamp(
+          (io.MousePos.x - top_left.x) / std::max(bottom_right.x - top_left.x, 1.0f), 0.0f, 1.0f);
+    } else {
+      wipe_drag_ = false;
+    }
+  } else {
+    draw->AddImage(texture_id(display_), top_left, bottom_right, ImVec2(0, 1), ImVec2(1, 0));
+  }
+  draw->PopClipRect();
   {
     // The error of the last evaluation over the last good image, and the progress of the
     // running one: the picture never goes blank while the graph is broken or busy.
@@ -468,8 +542,11 @@ void Viewer::draw(EditorState& state) {
 
   if (hovered) {
     ImVec2 mouse = ImGui::GetMousePos();
-    int x = static_cast<int>((mouse.x - top_left.x) / scale);
-    int y = image.height - 1 - static_cast<int>((mouse.y - top_left.y) / scale);
+    float px = 0;
+    float py = 0;
+    view_.pixel_at(mouse.x - area_at.x, mouse.y - area_at.y, &px, &py);
+    int x = static_cast<int>(px);
+    int y = image.height - 1 - static_cast<int>(py);
     if (x >= 0 && y >= 0 && x < image.width && y < image.height) {
       char line[160];
       if (image.format == AQ_FORMAT_R32UI) {

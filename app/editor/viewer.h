@@ -14,7 +14,9 @@
 #pragma once
 
 #include "editor_state.h"
+#include "eval_policy.h"
 #include "eval_worker.h"
+#include "image_view.h"
 
 #include <aquarelle/core/evaluator.h>
 #include <aquarelle/core/gl_context.h>
@@ -66,6 +68,8 @@ class Viewer {
   // UI loop keeps polling instead of sleeping until then.
   bool refine_pending() const { return showing_draft_ || !settled_; }
   bool showing_draft() const { return showing_draft_; }
+  // A drag of a graph whose full evaluation takes longer than this (ms) shows drafts.
+  void set_gesture_budget_ms(double ms) { gesture_budget_ms_ = ms; }
   bool has_image() const { return has_image_; }
 
  private:
@@ -75,6 +79,8 @@ class Viewer {
   void measure_range();
   bool ensure_program();
   void take_finished();
+  // Keeps the picture shown now as A of the wipe compare.
+  void hold_for_wipe();
   void draw_progress(ImVec2 at, float width) const;
 
   // What one evaluation was asked for; a new request goes out when the wanted one differs.
@@ -105,6 +111,7 @@ class Viewer {
   double last_ms_ = 0;
   double last_full_ms_ = 0;  // the last evaluation at the graph's own quality
   bool showing_draft_ = false;
+  double gesture_budget_ms_ = kGestureBudgetMs;
 
   gl::Program program_;
   gl::VertexArray vertex_array_;
@@ -117,7 +124,15 @@ class Viewer {
   // View options.
   // Evaluates at 1/divisor of the graph's resolution, for live edits of big graphs on slow GPUs.
   int preview_divisor_ = 1;
-  bool fit_ = true;
+  ImageView view_;  // pan and zoom of the image in the viewer
+  // Wipe compare: a held copy of the displayed picture (A) left of the wipe line, the live
+  // image (B) right of it.
+  bool wipe_ = false;
+  float wipe_at_ = 0.5f;  // fraction of the image width
+  bool wipe_drag_ = false;
+  gl::Texture held_;  // RGBA8 copy of display_ when "hold A" was pressed
+  int held_width_ = 0;
+  int held_height_ = 0;
   bool srgb_ = true;
   int channel_ = 0;         // 0 rgb, 1 r, 2 g, 3 b, 4 a
   int mapping_choice_ = 0;  // 0 auto, 1 colour, 2 depth, 3 id

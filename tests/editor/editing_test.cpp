@@ -10,6 +10,7 @@
 #include "editor/eval_policy.h"
 #include "editor/file_dialog.h"
 #include "editor/frame_stats.h"
+#include "editor/image_view.h"
 
 #include <gtest/gtest.h>
 
@@ -183,6 +184,39 @@ TEST_F(EditingTest, BypassWiresEvaluationAroundTheNodeAndIsSaved) {
   EXPECT_FALSE(doc.graph().editor.contains("bypassed"));
 }
 
+TEST_F(EditingTest, BackdropsFrameNodesMoveWithThemAndAreSaved) {
+  actions::select(state, {"a", "b"});
+  ASSERT_TRUE(actions::backdrop_around_selection(state, "smoothing"));
+  auto backdrops = read_backdrops(doc.graph());
+  ASSERT_EQ(backdrops.size(), 1u);
+  EXPECT_EQ(backdrops[0].label, "smoothing");
+  for (const char* id : {"a", "b"}) {
+    Rect r = node_rect(doc.graph(), registry(), id);
+    EXPECT_TRUE(backdrops[0].contains({r.min.x, r.min.y}) &&
+                backdrops[0].contains({r.max.x, r.max.y}))
+        << id;
+  }
+  EXPECT_FALSE(backdrops[0].contains(*doc.position("src")));
+  // Dragging it (one undo step) carries the nodes on it, not the others.
+  ASSERT_TRUE(doc.move_backdrop(0, {10, 5}, "backdrop"));
+  ASSERT_TRUE(doc.move_backdrop(0, {10, 5}, "backdrop"));
+  doc.end_gesture();
+  EXPECT_EQ(doc.position("a"), (Position{270, 10}));
+  EXPECT_EQ(doc.position("b"), (Position{520, 10}));
+  EXPECT_EQ(doc.position("src"), (Position{0, 0}));
+  ASSERT_TRUE(doc.set_backdrop_label(0, "opening"));
+  const std::string saved = doc.text_to_save();
+  auto json = nlohmann::json::parse(saved);
+  EXPECT_EQ(json["editor"]["backdrops"][0]["label"], "opening");
+  EXPECT_EQ(json["editor"]["backdrops"][0]["rect"].size(), 4u);
+  ASSERT_TRUE(doc.undo());  // label
+  ASSERT_TRUE(doc.undo());  // the whole drag
+  EXPECT_EQ(doc.position("a"), (Position{250, 0}));
+  EXPECT_EQ(read_backdrops(doc.graph())[0].at.x, backdrops[0].at.x);
+  ASSERT_TRUE(doc.undo());  // the backdrop
+  EXPECT_TRUE(read_backdrops(doc.graph()).empty());
+}
+
 TEST_F(EditingTest, AutoLayoutIsOneUndoStep) {
   ASSERT_TRUE(doc.move_nodes({{"a", {900, 900}}, {"b", {-400, 30}}}));
   ASSERT_TRUE(actions::auto_layout(state));
@@ -289,6 +323,33 @@ TEST(FileChooser, ListsFoldersThenGraphFilesWithoutSideFiles) {
   EXPECT_EQ(graphs[2].name, "b.json");
   EXPECT_EQ(list_folder(dir.string(), {}).size(), 4u) << "all files: notes.txt too";
   fs::remove_all(dir);
+}
+
+TEST(ImageView, FitsCentredZoomsAtTheCursorAndPans) {
+  ImageView view;
+  view.place(1280, 720, 640, 480);
+  EXPECT_FLOAT_EQ(view.zoom, 0.5f);
+  EXPECT_FLOAT_EQ(view.pan_y, (480 - 360) * 0.5f);
+  float x = 0;
+  float y = 0;
+  view.pixel_at(320, 240, &x, &y);
+  EXPECT_EQ(x, 640);
+  EXPECT_EQ(y, 360);
+  // The wheel at a point keeps the pixel under it; fitting stops until asked again.
+  view.pixel_at(100, 200, &x, &y);
+  view.zoom_to(100, 200, 4.0f);
+  float after_x = 0;
+  float after_y = 0;
+  view.pixel_at(100, 200, &after_x, &after_y);
+  EXPECT_EQ(after_x, x);
+  EXPECT_EQ(after_y, y);
+  EXPECT_FALSE(view.fit);
+  view.place(1280, 720, 640, 480);
+  EXPECT_FLOAT_EQ(view.zoom, 4.0f) << "not refitted while the user zooms";
+  view.pan_by(40, -10);
+  view.pixel_at(140, 190, &after_x, &after_y);
+  EXPECT_EQ(after_x, x);
+  EXPECT_EQ(after_y, y);
 }
 
 }  // namespace

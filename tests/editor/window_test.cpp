@@ -107,7 +107,7 @@ TEST_F(EditorWindowTest, ScriptedEditsSaveAndScreenshot) {
       {"actions",
        {
            {{"do", "add_node"}, {"type", "blur"}, {"id", "soft"}, {"at", {950, -300}}},
-           {{"do", "fit"}},
+           {{"do", "fit"}, {"whole", true}},  // every port on screen for the gestures
            {{"do", "drag_link"}, {"from", output}, {"to", "soft.image"}},
            {{"do", "drag_link"},
             {"from", scene + ".scene"},
