@@ -563,17 +563,24 @@ void EditorApp::draw_time_bar() {
   if (ImGui::ArrowButton("##next", ImGuiDir_Right)) actions::set_frame(state_, state_.frame + 1);
   ImGui::SameLine();
   int frame = state_.frame;
-  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 260);
+  double seconds = (state_.frame - settings.first_frame) / std::max(settings.fps, 1e-3);
+  const double ui_ms = frame_stats_.recent_ms();
+  char timing[160];
+  std::snprintf(
+      timing, sizeof timing, "t = %.2f s  %.0f fps  eval %.1f ms%s  UI %.1f ms (%.0f fps)", seconds,
+      settings.fps, viewer_->last_evaluation_ms(), viewer_->showing_draft() ? " (draft)" : "",
+      ui_ms, ui_ms > 0 ? 1000.0 / ui_ms : 0.0);
+  // The slider takes what the timing text leaves, so the text is never cut by the window edge.
+  ImGui::SetNextItemWidth(std::max(ImGui::GetContentRegionAvail().x -
+                                       ImGui::CalcTextSize(timing).x -
+                                       2 * ImGui::GetStyle().ItemSpacing.x,
+                                   80.0f));
   if (ImGui::SliderInt("##frame", &frame, settings.first_frame,
                        std::max(settings.first_frame, settings.last_frame), "frame %d")) {
     actions::set_frame(state_, frame);
   }
   ImGui::SameLine();
-  double seconds = (state_.frame - settings.first_frame) / std::max(settings.fps, 1e-3);
-  const double ui_ms = frame_stats_.recent_ms();
-  ImGui::Text("t = %.2f s  %.0f fps  eval %.1f ms%s  UI %.1f ms (%.0f fps)", seconds, settings.fps,
-              viewer_->last_evaluation_ms(), viewer_->showing_draft() ? " (draft)" : "", ui_ms,
-              ui_ms > 0 ? 1000.0 / ui_ms : 0.0);
+  ImGui::TextUnformatted(timing);
   // Status line: the file, then the last action's result cut to the width left (the whole
   // text on hover), so nothing is clipped by the window edge.
   ImGui::TextDisabled("%s%s", document_.path().empty() ? "(untitled)" : document_.path().c_str(),

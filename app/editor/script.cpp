@@ -164,7 +164,7 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
       "unknown action '" + kind +
       "' (add_node, link, unlink, set_param, move, select_output, "
       "set_output, delete, duplicate, select, undo, redo, save, frame, fit, add_menu, play, key, "
-      "copy, paste, rename, bypass, auto_layout, insert, backdrop)");
+      "copy, paste, rename, bypass, auto_layout, insert, backdrop, wait)");
 }
 
 }  // namespace
@@ -213,6 +213,10 @@ Status ScriptRunner::judge(EditorState& state, const Status& outcome) {
 
 Status ScriptRunner::step(EditorState& state, const ScriptHooks& hooks,
                           std::vector<MouseFrame>* gesture_frames) {
+  if (wait_frames_ > 0) {
+    --wait_frames_;
+    return Ok{};
+  }
   if (play_until_ >= 0) {
     // Playback runs at the editor's own pace; the action ends once that frame is on screen.
     const int shown = hooks.shown_frame ? hooks.shown_frame() : play_until_;
@@ -253,6 +257,13 @@ Status ScriptRunner::step(EditorState& state, const ScriptHooks& hooks,
       waiting_ = true;
       laid_out_ = false;
       ++next_;
+      return Ok{};
+    }
+    if (action.value("do", std::string()) == "wait") {
+      wait_frames_ = std::max(action.value("frames", 1), 0);
+      ++next_;
+      state.status = "waited " + std::to_string(wait_frames_) + " frames";
+      if (Status judged = judge(state, Ok{}); !judged) return judged;
       return Ok{};
     }
     if (action.value("do", std::string()) == "play") {

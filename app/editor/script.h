@@ -24,10 +24,10 @@
 // (opens the add-node menu, for screenshots), "key" {"chord": "ctrl+d"} (a key press as if released
 // before the next frame: the canvas keys act with the mouse over the canvas), "copy", "paste"
 // {"at"}, "rename" {"node", "to"}, "bypass" {"nodes"}, "auto_layout", "backdrop" {"nodes",
-// "label"}, "insert" {"type", "after": "node.port" | "on": "node.input", "at"}, "play" {"frames":
-// N} (plays until N frames later is on screen, at the editor's own pace). An action whose outcome
-// differs from "expect" ("ok" by default, or "refused") stops the script with a message naming the
-// action.
+// "label"}, "insert" {"type", "after": "node.port" | "on": "node.input", "at"}, "wait" {"frames":
+// N} (lets N UI frames pass), "play" {"frames": N} (plays until N frames later is on screen, at the
+// editor's own pace). An action whose outcome differs from "expect" ("ok" by default, or "refused")
+// stops the script with a message naming the action.
 #pragma once
 
 #include "editor_state.h"
@@ -78,7 +78,9 @@ class ScriptRunner {
   // Returns an error at the first unexpected outcome; finished() tells when all ran.
   Status step(EditorState& state, const ScriptHooks& hooks,
               std::vector<MouseFrame>* gesture_frames);
-  bool finished() const { return next_ >= actions_.size() && !waiting_ && play_until_ < 0; }
+  bool finished() const {
+    return next_ >= actions_.size() && !waiting_ && play_until_ < 0 && wait_frames_ == 0;
+  }
 
  private:
   Status judge(EditorState& state, const Status& outcome);
@@ -89,6 +91,7 @@ class ScriptRunner {
   int refused_before_ = 0;  // state.refused_count when the gesture began
   bool laid_out_ = false;   // a frame was drawn since the last ordinary action
   int play_until_ = -1;     // a "play" action waits for this frame to be shown
+  int wait_frames_ = 0;     // a "wait" action lets this many UI frames pass
 };
 
 // Runs every action in order without mouse actions (tests, or a script with no window).
