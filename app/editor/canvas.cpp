@@ -108,6 +108,15 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
   ImVec2 hi(origin_.x + size_.x, origin_.y + size_.y);
   draw->PushClipRect(lo, hi, true);
   draw->AddRectFilled(lo, hi, IM_COL32(32, 34, 38, 255));
+  if (backdrop_texture_ != 0 && backdrop_width_ > 0 && backdrop_height_ > 0) {
+    // The viewed image fitted into the canvas, dimmed so the nodes stay legible.
+    const float scale = std::min(size_.x / backdrop_width_, size_.y / backdrop_height_);
+    const ImVec2 extent(backdrop_width_ * scale, backdrop_height_ * scale);
+    const ImVec2 at(lo.x + (size_.x - extent.x) * 0.5f, lo.y + (size_.y - extent.y) * 0.5f);
+    draw->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(backdrop_texture_)), at,
+                   ImVec2(at.x + extent.x, at.y + extent.y), ImVec2(0, 1), ImVec2(1, 0),
+                   IM_COL32(255, 255, 255, 110));
+  }
   // Grid every 40 canvas units, so zoom is visible even on an empty graph.
   float step = 40.0f * view.zoom;
   if (step > 6.0f) {
@@ -212,14 +221,11 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
          footer);
     // The reason a node is marked, on hover: each message once.
     if (failed && ImGui::IsWindowHovered() && layout.rect.contains(vec(ImGui::GetMousePos()))) {
-      std::vector<std::string> reasons;
-      auto add = [&](const std::string& reason) {
-        if (!reason.empty() && std::find(reasons.begin(), reasons.end(), reason) == reasons.end())
-          reasons.push_back(reason);
-      };
-      if (type == nullptr) add("type '" + node.type + "' is not installed");
-      for (const auto& problem : problems) add(problem.message);
-      if (feedback.error_node == layout.id) add(feedback.error);
+      std::vector<std::string> messages;
+      if (type == nullptr) messages.push_back("type '" + node.type + "' is not installed");
+      for (const auto& problem : problems) messages.push_back(problem.message);
+      const auto reasons =
+          node_reasons(messages, feedback.error_node == layout.id ? feedback.error : "");
       std::string why;
       for (const auto& reason : reasons) why += (why.empty() ? "" : "\n") + reason;
       ImGui::SetTooltip("%s", why.c_str());
@@ -422,6 +428,22 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
   if (drag_ == Drag::kNodes && !left_down) {
     actions::end_gesture(state);
     drag_ = Drag::kNone;
+    // One unlinked node let go over a link is spliced into it (Blender's drop on a link).
+    if (drag_moved_ && drag_origins_.size() == 1) {
+      const std::string id = drag_origins_.begin()->first;
+      const Graph& graph = state.doc.graph();
+      bool linked = graph.nodes.count(id) && !graph.nodes.at(id).inputs.empty();
+      for (const auto& [other, node] : graph.nodes) {
+        for (const auto& [in, from] : node.inputs) linked = linked || from.node == id;
+      }
+      if (!linked) {
+        if (auto hit = link_at(graph, layouts, mouse, 8.0f, view.zoom); hit && hit->node != id) {
+          Status dropped = state.doc.splice_into_link(id, hit->node, hit->input);
+          actions::report(state, dropped,
+                          "dropped " + id + " on the link into " + hit->node + "." + hit->input);
+        }
+      }
+    }
   }
 }
 

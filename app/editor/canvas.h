@@ -57,6 +57,12 @@ class Canvas {
   // key presses (the canvas takes its own when the mouse is over it or it has focus).
   void draw(EditorState& state, const NodeFeedback& feedback,
             const std::vector<KeyChord>& chords = {});
+  // The viewer's picture drawn dimmed behind the nodes (Blender's backdrop); texture 0: none.
+  void set_backdrop_image(unsigned texture, int width, int height) {
+    backdrop_texture_ = texture;
+    backdrop_width_ = width;
+    backdrop_height_ = height;
+  }
   // Fonts rasterised at kTextRasterSizes (canvas_view.h), for crisp text at every zoom.
   void set_fonts(std::map<float, ImFont*> fonts) { fonts_ = std::move(fonts); }
   // The canvas as last drawn (screen space), for scripted mouse gestures.
@@ -111,6 +117,9 @@ class Canvas {
   bool label_backdrop_ = false;
   std::string label_text_;
   std::map<float, ImFont*> fonts_;
+  unsigned backdrop_texture_ = 0;
+  int backdrop_width_ = 0;
+  int backdrop_height_ = 0;
   Vec2 size_;
   Vec2 origin_;
   std::vector<NodeLayout> layouts_;

@@ -157,6 +157,29 @@ float text_raster_size(float pixels) {
   return kTextRasterSizes[std::size(kTextRasterSizes) - 1];
 }
 
+std::vector<std::string> node_reasons(const std::vector<std::string>& problems,
+                                      const std::string& evaluation_error) {
+  std::vector<std::string> reasons;
+  auto add = [&](std::string reason) {
+    const size_t json_fix = reason.find(": add \"inputs\"");
+    if (json_fix != std::string::npos) {
+      reason = reason.substr(0, json_fix) + ": drag a link from an output port onto it";
+    }
+    if (!reason.empty() && std::find(reasons.begin(), reasons.end(), reason) == reasons.end()) {
+      reasons.push_back(reason);
+    }
+  };
+  bool input_missing = false;
+  for (const auto& problem : problems) {
+    add(problem);
+    input_missing = input_missing || problem.find("is not connected") != std::string::npos;
+  }
+  if (!(input_missing && evaluation_error.find("is not connected") != std::string::npos)) {
+    add(evaluation_error);
+  }
+  return reasons;
+}
+
 Vec2 link_point(Vec2 from, Vec2 to, float zoom, float t) {
   // The cubic Bézier the canvas draws: tangents along x, half the span long.
   const float dx = std::max(std::fabs(to.x - from.x) * 0.5f, 30.0f * zoom);

@@ -111,6 +111,12 @@ inline constexpr float kTextRasterSizes[] = {4,  5,  6,  7,  8,  9,  10, 11, 12,
                                              14, 16, 18, 20, 23, 26, 29, 33, 37, 42};
 float text_raster_size(float pixels);
 
+// What a marked node's tooltip says: each reason once, in the editor's terms (a validation fix
+// written for the JSON file, such as `add "inputs": {...}`, becomes the canvas gesture), and
+// the evaluation's error left out when validation already says why the input is missing.
+std::vector<std::string> node_reasons(const std::vector<std::string>& problems,
+                                      const std::string& evaluation_error);
+
 // The link (target node, input) passing within `reach` of `screen`, if any.
 struct LinkHit {
   std::string node;

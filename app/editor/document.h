@@ -167,6 +167,9 @@ class Document {
   // A new node dropped on the link into `to_node.to_input`: source → new → to_node.
   Result<std::string> insert_node_on_link(const std::string& type, Position at,
                                           const std::string& to_node, const std::string& to_input);
+  // An unlinked node dropped onto the link into `to_node.to_input`: source → id → to_node.
+  Status splice_into_link(const std::string& id, const std::string& to_node,
+                          const std::string& to_input);
   // Renames a node; links, the output, its position and bypass follow.
   Status rename_node(const std::string& id, const std::string& new_id);
   // Bypassed nodes pass their first input of each output's type through (see with_bypass).

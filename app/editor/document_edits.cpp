@@ -296,6 +296,44 @@ Result<std::string> Document::insert_node_on_link(const std::string& type, Posit
                      std::make_pair(to_node, to_input));
 }
 
+Status Document::splice_into_link(const std::string& id, const std::string& to_node,
+                                  const std::string& to_input) {
+  auto node = graph_.nodes.find(id);
+  auto target = graph_.nodes.find(to_node);
+  if (node == graph_.nodes.end() || target == graph_.nodes.end() ||
+      !target->second.inputs.count(to_input)) {
+    return make_error("cannot drop '" + id + "' on the link into " + to_node + "." + to_input +
+                      ": there is no such link");
+  }
+  const PortRef source = target->second.inputs.at(to_input);
+  if (source.node == id || to_node == id) return make_error("'" + id + "' is on that link already");
+  const NodeType* type = registry_.find(node->second.type);
+  const NodeType* source_type = nullptr;
+  if (auto from = graph_.nodes.find(source.node); from != graph_.nodes.end()) {
+    source_type = registry_.find(from->second.type);
+  }
+  const PortInfo* port = source_type ? source_type->output(source.port) : nullptr;
+  if (type == nullptr || port == nullptr) {
+    return make_error("cannot drop '" + id + "' on that link: its types are unknown");
+  }
+  const std::string input = first_input_of_type(node->second.type, port->type);
+  const PortInfo* output = nullptr;
+  for (const auto& candidate : type->outputs) {
+    if (candidate.type == port->type && output == nullptr) output = &candidate;
+  }
+  if (input.empty() || output == nullptr) {
+    return make_error("cannot drop '" + id + "' on the link into " + to_node + "." + to_input +
+                      ": it has no input and output of that link's type");
+  }
+  Graph edited = graph_;
+  edited.nodes.at(id).inputs[input] = source;
+  edited.nodes.at(to_node).inputs[to_input] = PortRef{id, output->name};
+  std::string why = why_not_link(source, id, input);
+  if (!why.empty()) return make_error("cannot drop '" + id + "' on that link: " + why);
+  commit_edit("drop " + id + " on the link into " + to_node + "." + to_input, edited);
+  return Ok{};
+}
+
 Status Document::rename_node(const std::string& id, const std::string& new_id) {
   if (!graph_.nodes.count(id)) return make_error("cannot rename '" + id + "': no such node");
   if (new_id == id) return Ok{};

@@ -249,6 +249,14 @@ int EditorApp::run() {
     key_queue().push_back(*chord);  // as if pressed and released between two frames
     return Ok{};
   };
+  hooks.view = [this](const nlohmann::json& action) -> Status {
+    if (action.contains("backdrop")) canvas_backdrop_ = action.value("backdrop", false);
+    if (action.value("hold_a", false)) {
+      if (!viewer_->has_image()) return make_error("nothing to hold: the viewer shows no image");
+      viewer_->hold_for_wipe();
+    }
+    return Ok{};
+  };
   hooks.set_clipboard = [](const std::string& text) { ImGui::SetClipboardText(text.c_str()); };
   hooks.get_clipboard = [] {
     const char* text = ImGui::GetClipboardText();
@@ -408,6 +416,12 @@ void EditorApp::frame() {
 
   ImGui::BeginChild("##canvas", ImVec2(canvas_width, body_height), true,
                     ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  if (canvas_backdrop_) {
+    canvas_.set_backdrop_image(viewer_->display_texture(), viewer_->display_width(),
+                               viewer_->display_height());
+  } else {
+    canvas_.set_backdrop_image(0, 0, 0);
+  }
   canvas_.draw(state_, feedback_, chords_);
   ImGui::EndChild();
   ImGui::SameLine();
@@ -533,6 +547,7 @@ void EditorApp::draw_menu_bar() {
       state_.canvas.zoom_to(canvas_.origin(), centre, 1.0f);
     }
     if (ImGui::MenuItem("Auto-layout", "L")) (void)actions::auto_layout(state_);
+    ImGui::MenuItem("Viewer image behind nodes", nullptr, &canvas_backdrop_);
     if (ImGui::MenuItem("Next output", "C")) actions::cycle_output(state_, +1);
     if (ImGui::MenuItem("Graph output")) state_.viewed.reset();
     ImGui::Separator();

@@ -78,6 +78,7 @@ class EditorApp {
   GLFWwindow* worker_window_ = nullptr;  // invisible; its context is the evaluation thread's
   FrameStats frame_stats_;
   std::vector<KeyChord> chords_;  // this frame's key presses
+  bool canvas_backdrop_ = false;  // View > Viewer image behind nodes
   std::unique_ptr<GlContext> context_;
   std::unique_ptr<Viewer> viewer_;
   Canvas canvas_;

@@ -138,6 +138,10 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
     return actions::toggle_bypass(state);
   }
   if (kind == "auto_layout") return actions::auto_layout(state);
+  if (kind == "view") {
+    if (!hooks.view) throw std::invalid_argument("view options need the editor window");
+    return hooks.view(action);
+  }
   if (kind == "backdrop") {
     actions::select(state, nodes_field(action));
     return actions::backdrop_around_selection(state,
@@ -164,7 +168,7 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
       "unknown action '" + kind +
       "' (add_node, link, unlink, set_param, move, select_output, "
       "set_output, delete, duplicate, select, undo, redo, save, frame, fit, add_menu, play, key, "
-      "copy, paste, rename, bypass, auto_layout, insert, backdrop, wait)");
+      "copy, paste, rename, bypass, auto_layout, insert, backdrop, wait, view)");
 }
 
 }  // namespace

@@ -61,6 +61,9 @@ struct ScriptHooks {
   // The system clipboard (the window's); without them a stand-in inside the script runner.
   std::function<void(const std::string&)> set_clipboard;
   std::function<std::string()> get_clipboard;
+  // View options: {"backdrop": bool} shows the viewer's image behind the nodes,
+  // {"hold_a": true} keeps the viewer's picture as A of the wipe compare.
+  std::function<Status(const nlohmann::json&)> view;
   // Turns a mouse action into input frames from the canvas's current layout; an error when a
   // node or port it names is not on the canvas.
   std::function<Result<std::vector<MouseFrame>>(const nlohmann::json&)> gesture;

@@ -71,6 +71,12 @@ class Viewer {
   // A drag of a graph whose full evaluation takes longer than this (ms) shows drafts.
   void set_gesture_budget_ms(double ms) { gesture_budget_ms_ = ms; }
   bool has_image() const { return has_image_; }
+  // Keeps the picture shown now as A of the wipe compare (any output: view another one next).
+  void hold_for_wipe();
+  // The displayed (8-bit, mapped) picture, for the canvas backdrop; 0 when none.
+  unsigned display_texture() const { return display_ ? display_.get() : 0; }
+  int display_width() const { return display_width_; }
+  int display_height() const { return display_height_; }
 
  private:
   enum class Mapping { kColor = 0, kDepth = 1, kId = 2 };
@@ -79,8 +85,7 @@ class Viewer {
   void measure_range();
   bool ensure_program();
   void take_finished();
-  // Keeps the picture shown now as A of the wipe compare.
-  void hold_for_wipe();
+
   void draw_progress(ImVec2 at, float width) const;
 
   // What one evaluation was asked for; a new request goes out when the wanted one differs.

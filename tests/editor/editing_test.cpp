@@ -130,6 +130,16 @@ TEST_F(EditingTest, InsertOnALinkSplicesOnlyThatLink) {
   EXPECT_FALSE(doc.insert_node_on_link("filter", {0, 0}, "src", "image").ok());
 }
 
+TEST_F(EditingTest, AnUnlinkedNodeDroppedOnALinkIsSplicedIn) {
+  ASSERT_TRUE(doc.add_node("filter", {375, 200}, "loose").ok());
+  ASSERT_TRUE(doc.splice_into_link("loose", "b", "image"));
+  EXPECT_EQ(doc.graph().nodes.at("loose").inputs.at("image"), (PortRef{"a", "image"}));
+  EXPECT_EQ(doc.graph().nodes.at("b").inputs.at("image"), (PortRef{"loose", "image"}));
+  EXPECT_FALSE(doc.splice_into_link("loose", "b", "image").ok()) << "already on it";
+  ASSERT_TRUE(doc.undo());
+  EXPECT_EQ(doc.graph().nodes.at("b").inputs.at("image"), (PortRef{"a", "image"}));
+}
+
 TEST_F(EditingTest, LinksOnTheCanvasAreHitAlongTheirCurve) {
   CanvasView view;
   auto layouts = layout_graph(doc.graph(), registry(), view, {0, 0});
@@ -269,6 +279,20 @@ TEST_F(EditingTest, LayoutIsNotPartOfTheEvaluationKey) {
             evaluation_key(doc.graph(), output));
   EXPECT_EQ(upstream_nodes(doc.graph(), PortRef{"a", "image"}),
             (std::set<std::string>{"src", "a"}));
+}
+
+TEST(NodeTooltip, SaysEachReasonOnceInTheEditorsTerms) {
+  const auto reasons = node_reasons(
+      {"required input \"image\" (image) is not connected: add \"inputs\": {\"image\": "
+       "\"<node>.<port>\"}"},
+      "node 'tint' (tint): required input 'image' is not connected");
+  ASSERT_EQ(reasons.size(), 1u);
+  EXPECT_EQ(reasons[0],
+            "required input \"image\" (image) is not connected: drag a link from an output port "
+            "onto it");
+  const auto twice = node_reasons({"bad value", "bad value"}, "bad value");
+  EXPECT_EQ(twice.size(), 1u);
+  EXPECT_EQ(node_reasons({}, "shader failed").size(), 1u);
 }
 
 TEST(EvalPolicy, DraftOnlyWhenTheFullEvaluationCannotKeepUp) {
