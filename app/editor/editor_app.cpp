@@ -278,6 +278,11 @@ int EditorApp::run() {
                 !(viewer_ && viewer_->refine_pending());
     if (idle) {
       glfwWaitEventsTimeout(0.25);  // wake for autosave and hot reload polls
+    } else if (const double left = 1.0 / 60.0 - (glfwGetTime() - last_frame_start);
+               !scripted && left > 0.0) {
+      // Busy (evaluating, playing): input is answered at once, otherwise at most 60 frames a
+      // second, so a spinning UI does not take the CPU the evaluation thread needs.
+      glfwWaitEventsTimeout(left);
     } else {
       glfwPollEvents();
     }
