@@ -148,7 +148,15 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
       const PortSpot* out = find_spot(from->outputs, source.port);
       const PortSpot* in = find_spot(target->inputs, port);
       if (out == nullptr || in == nullptr) continue;
-      draw_link(draw, out->at, in->at, port_colour(out->type), view.zoom);
+      // Through its reroute dots, if any.
+      Vec2 from_at = out->at;
+      for (const Position& dot : read_reroutes(graph, id, port)) {
+        Vec2 at = view.to_screen(origin_, {dot.x, dot.y});
+        draw_link(draw, from_at, at, port_colour(out->type), view.zoom);
+        draw->AddCircleFilled(im(at), 5.0f * view.zoom + 1.0f, port_colour(out->type));
+        from_at = at;
+      }
+      draw_link(draw, from_at, in->at, port_colour(out->type), view.zoom);
     }
   }
 
@@ -297,13 +305,31 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
     return;
   }
 
-  // Left button: press starts a link, node or box drag.
+  // Left button: press starts a link, node, dot or box drag.
   if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
     press_at_ = mouse;
     drag_moved_ = false;
     auto port = port_at(layouts, mouse, reach);
     auto node = node_at(layouts, mouse);
-    if (port && !port->spot.is_input) {
+    auto dot = reroute_at(state.doc.graph(), view, origin, mouse, reach);
+    const bool twice = ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
+    if (dot && !port && !node) {
+      if (twice) {
+        actions::report(state, state.doc.remove_reroute(dot->node, dot->input, dot->index),
+                        "removed a dot");
+      } else {
+        dragged_dot_ = *dot;
+        drag_ = Drag::kDot;
+      }
+    } else if (twice && !port && !node &&
+               link_at(state.doc.graph(), layouts, mouse, 6.0f, view.zoom)) {
+      // A double-click on a link adds a reroute dot there.
+      auto hit = link_at(state.doc.graph(), layouts, mouse, 6.0f, view.zoom);
+      Vec2 at = view.to_canvas(origin, mouse);
+      actions::report(state, state.doc.add_reroute(hit->node, hit->input, {at.x, at.y}),
+                      "added a dot to the link into " + hit->node + "." + hit->input);
+      drag_ = Drag::kNone;
+    } else if (port && !port->spot.is_input) {
       drag_ = Drag::kLink;
       link_from_ = {port->node, port->spot.port};
     } else if (port && port->spot.is_input) {
@@ -359,6 +385,18 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
                    start.y + (mouse.y - press_at_.y) / view.zoom};
     }
     (void)actions::move(state, moved, /*gesture=*/true);
+  }
+
+  if (drag_ == Drag::kDot) {
+    if (left_down && drag_moved_) {
+      Vec2 at = view.to_canvas(origin, mouse);
+      (void)state.doc.move_reroute(dragged_dot_.node, dragged_dot_.input, dragged_dot_.index,
+                                   {std::round(at.x), std::round(at.y)}, "dot");
+    }
+    if (!left_down) {
+      actions::end_gesture(state);
+      drag_ = Drag::kNone;
+    }
   }
 
   if (drag_ == Drag::kBackdrop) {

@@ -13,6 +13,7 @@
 //   Ctrl+C / Ctrl+V, D, F2, L, B            copy / paste (system clipboard, graph JSON), bypass,
 //                                          rename, auto-layout, backdrop around the selection
 //   drag a backdrop's title bar            moves it with the nodes on it; double-click: label
+//   double-click a link / a dot            adds a reroute dot there / removes it; drag a dot
 //   minimap (bottom right)                 click or drag to move the view
 //
 // Keys act while the mouse is over the canvas (no click needed) and come from a queue of key
@@ -83,7 +84,7 @@ class Canvas {
   }
 
  private:
-  enum class Drag { kNone, kNodes, kLink, kBox, kPan, kBackdrop };
+  enum class Drag { kNone, kNodes, kLink, kBox, kPan, kBackdrop, kDot };
 
   void handle_mouse(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin);
   void handle_keys(EditorState& state, const std::vector<KeyChord>& chords);
@@ -115,6 +116,7 @@ class Canvas {
   size_t backdrop_ = 0;  // the backdrop being dragged or labelled
   Vec2 backdrop_moved_;  // whole canvas units already applied during the drag
   bool label_backdrop_ = false;
+  RerouteHit dragged_dot_;
   std::string label_text_;
   std::map<float, ImFont*> fonts_;
   unsigned backdrop_texture_ = 0;

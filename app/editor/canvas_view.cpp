@@ -212,9 +212,33 @@ std::optional<LinkHit> link_at(const Graph& graph, const std::vector<NodeLayout>
       const PortSpot* out = spot(from->outputs, source.port);
       const PortSpot* in = spot(target->inputs, input);
       if (out == nullptr || in == nullptr) continue;
-      for (int i = 0; i <= 32; ++i) {
-        Vec2 p = link_point(out->at, in->at, zoom, i / 32.0f);
-        if (std::hypot(p.x - screen.x, p.y - screen.y) <= reach) return LinkHit{id, input};
+      // The curve runs through the reroute dots; their screen places follow from the ports'.
+      std::vector<Vec2> points = {out->at};
+      const Vec2 origin{target->rect.min.x - node_position(graph, id).x * zoom,
+                        target->rect.min.y - node_position(graph, id).y * zoom};
+      for (const Position& dot : read_reroutes(graph, id, input)) {
+        points.push_back({origin.x + dot.x * zoom, origin.y + dot.y * zoom});
+      }
+      points.push_back(in->at);
+      for (size_t segment = 0; segment + 1 < points.size(); ++segment) {
+        for (int i = 0; i <= 32; ++i) {
+          Vec2 p = link_point(points[segment], points[segment + 1], zoom, i / 32.0f);
+          if (std::hypot(p.x - screen.x, p.y - screen.y) <= reach) return LinkHit{id, input};
+        }
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<RerouteHit> reroute_at(const Graph& graph, const CanvasView& view, Vec2 origin,
+                                     Vec2 screen, float reach) {
+  for (const auto& [id, node] : graph.nodes) {
+    for (const auto& [input, source] : node.inputs) {
+      const auto dots = read_reroutes(graph, id, input);
+      for (size_t i = 0; i < dots.size(); ++i) {
+        Vec2 at = view.to_screen(origin, {dots[i].x, dots[i].y});
+        if (std::hypot(at.x - screen.x, at.y - screen.y) <= reach) return RerouteHit{id, input, i};
       }
     }
   }

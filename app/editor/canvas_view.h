@@ -117,7 +117,17 @@ float text_raster_size(float pixels);
 std::vector<std::string> node_reasons(const std::vector<std::string>& problems,
                                       const std::string& evaluation_error);
 
-// The link (target node, input) passing within `reach` of `screen`, if any.
+// The reroute dot within `reach` of `screen`: the link it belongs to and its index.
+struct RerouteHit {
+  std::string node;
+  std::string input;
+  size_t index = 0;
+};
+std::optional<RerouteHit> reroute_at(const Graph& graph, const CanvasView& view, Vec2 origin,
+                                     Vec2 screen, float reach);
+
+// The link (target node, input) passing within `reach` of `screen` (through its reroute dots),
+// if any.
 struct LinkHit {
   std::string node;
   std::string input;

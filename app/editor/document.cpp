@@ -422,12 +422,12 @@ void Document::commit(Change change) {
   bool merge = gesture_open_ && !change.coalesce_key.empty() && !undo_.empty() &&
                undo_.back().coalesce_key == change.coalesce_key;
   apply_side(change.after, change.output_after, change.settings_after);
-  if (change.backdrops_after) apply_backdrops(*change.backdrops_after);
+  if (change.extras_after) apply_extras(*change.extras_after);
   if (merge) {
     Change& last = undo_.back();
-    if (change.backdrops_after) {
-      if (!last.backdrops_before) last.backdrops_before = change.backdrops_before;
-      last.backdrops_after = change.backdrops_after;
+    if (change.extras_after) {
+      if (!last.extras_before) last.extras_before = change.extras_before;
+      last.extras_after = change.extras_after;
     }
     // The merged step undoes to the state before the gesture began.
     for (auto& [id, state] : change.before) last.before.try_emplace(id, state);
@@ -448,7 +448,7 @@ bool Document::undo() {
   Change change = std::move(undo_.back());
   undo_.pop_back();
   apply_side(change.before, change.output_before, change.settings_before);
-  if (change.backdrops_before) apply_backdrops(*change.backdrops_before);
+  if (change.extras_before) apply_extras(*change.extras_before);
   redo_.push_back(std::move(change));
   gesture_open_ = false;
   return true;
@@ -459,7 +459,7 @@ bool Document::redo() {
   Change change = std::move(redo_.back());
   redo_.pop_back();
   apply_side(change.after, change.output_after, change.settings_after);
-  if (change.backdrops_after) apply_backdrops(*change.backdrops_after);
+  if (change.extras_after) apply_extras(*change.extras_after);
   undo_.push_back(std::move(change));
   gesture_open_ = false;
   return true;

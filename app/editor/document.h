@@ -55,9 +55,9 @@ struct Change {
   std::optional<PortRef> output_after;
   Settings settings_before;
   Settings settings_after;
-  // editor.backdrops before and after, when the change touches them.
-  std::optional<nlohmann::json> backdrops_before;
-  std::optional<nlohmann::json> backdrops_after;
+  // editor.backdrops and editor.reroutes before and after, when the change touches them.
+  std::optional<nlohmann::json> extras_before;
+  std::optional<nlohmann::json> extras_after;
   std::string coalesce_key;  // non-empty: later edits with the same key merge into this one
   uint64_t serial = 0;       // unique per change, for the dirty flag
 };
@@ -186,6 +186,12 @@ class Document {
   // Moves the backdrop and the nodes inside it by (dx, dy). Pass a coalesce key for a drag.
   Status move_backdrop(size_t index, Position by, const std::string& coalesce_key = "");
 
+  // ---- Reroute dots: points a link is drawn through (editor.reroutes) ---------------------
+  Status add_reroute(const std::string& node, const std::string& input, Position at);
+  Status move_reroute(const std::string& node, const std::string& input, size_t index, Position to,
+                      const std::string& coalesce_key = "");
+  Status remove_reroute(const std::string& node, const std::string& input, size_t index);
+
  private:
   NodeState state_of(const std::string& id) const;
   void apply_side(const std::map<std::string, NodeState>& side, const std::optional<PortRef>& out,
@@ -204,8 +210,8 @@ class Document {
   // settings) as one change.
   void commit_edit(const std::string& label, const Graph& edited,
                    const std::string& coalesce_key = "");
-  // editor.backdrops = value (null: none).
-  void apply_backdrops(const nlohmann::json& value);
+  // editor[key] = value for each key of `value` (null: removed).
+  void apply_extras(const nlohmann::json& value);
   // The first input of `type_node` that accepts an output of `type`, or "".
   std::string first_input_of_type(const std::string& node_type, aq_port_type type) const;
 
@@ -249,6 +255,13 @@ struct Backdrop {
 // Backdrops live in graph.editor["backdrops"] = [{"label", "rect": [x, y, w, h]}...].
 std::vector<Backdrop> read_backdrops(const Graph& graph);
 void write_backdrops(Graph& graph, const std::vector<Backdrop>& backdrops);
+
+// Reroute dots of the link into node.input, in graph.editor["reroutes"]["node.input"] =
+// {"from": "<source>", "dots": [[x, y]...]}; dots made for a link since relinked are ignored.
+std::vector<Position> read_reroutes(const Graph& graph, const std::string& node,
+                                    const std::string& input);
+void write_reroutes(Graph& graph, const std::string& node, const std::string& input,
+                    const std::vector<Position>& dots);
 
 // Bypass marks live in graph.editor["bypassed"][id] = true.
 bool read_bypassed(const Graph& graph, const std::string& id);

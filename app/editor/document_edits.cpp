@@ -80,12 +80,14 @@ Graph with_bypass(const Graph& graph, const Registry& registry) {
   return out;
 }
 
-void Document::apply_backdrops(const nlohmann::json& value) {
+void Document::apply_extras(const nlohmann::json& value) {
   if (!graph_.editor.is_object()) graph_.editor = nlohmann::json::object();
-  if (value.is_null()) {
-    graph_.editor.erase("backdrops");
-  } else {
-    graph_.editor["backdrops"] = value;
+  for (const auto& [key, member] : value.items()) {
+    if (member.is_null()) {
+      graph_.editor.erase(key);
+    } else {
+      graph_.editor[key] = member;
+    }
   }
   touch();
 }
@@ -95,14 +97,18 @@ void Document::commit_edit(const std::string& label, const Graph& edited,
   Change change;
   change.label = label;
   change.coalesce_key = coalesce_key;
-  auto backdrops_of = [](const Graph& graph) {
-    return graph.editor.is_object() && graph.editor.contains("backdrops")
-               ? graph.editor["backdrops"]
-               : nlohmann::json();
+  // Editor data that belongs to no node: backdrops and reroute dots.
+  auto extras_of = [](const Graph& graph) {
+    nlohmann::json extras = nlohmann::json::object();
+    for (const char* key : {"backdrops", "reroutes"}) {
+      extras[key] = graph.editor.is_object() && graph.editor.contains(key) ? graph.editor[key]
+                                                                           : nlohmann::json();
+    }
+    return extras;
   };
-  if (backdrops_of(graph_) != backdrops_of(edited)) {
-    change.backdrops_before = backdrops_of(graph_);
-    change.backdrops_after = backdrops_of(edited);
+  if (extras_of(graph_) != extras_of(edited)) {
+    change.extras_before = extras_of(graph_);
+    change.extras_after = extras_of(edited);
   }
   std::set<std::string> ids;
   for (const auto& [id, node] : graph_.nodes) ids.insert(id);
@@ -473,6 +479,79 @@ Status Document::move_backdrop(size_t index, Position by, const std::string& coa
   moved.at = {moved.at.x + by.x, moved.at.y + by.y};
   write_backdrops(edited, backdrops);
   commit_edit("move backdrop " + moved.label, edited, coalesce_key);
+  return Ok{};
+}
+
+std::vector<Position> read_reroutes(const Graph& graph, const std::string& node,
+                                    const std::string& input) {
+  std::vector<Position> dots;
+  auto target = graph.nodes.find(node);
+  if (target == graph.nodes.end() || !target->second.inputs.count(input)) return dots;
+  if (!graph.editor.is_object() || !graph.editor.contains("reroutes")) return dots;
+  const auto& all = graph.editor["reroutes"];
+  auto it = all.is_object() ? all.find(node + "." + input) : all.end();
+  if (it == all.end() || !it->is_object()) return dots;
+  // Dots drawn for a link that has since been relinked elsewhere are ignored.
+  if (it->value("from", std::string()) != target->second.inputs.at(input).str()) return dots;
+  for (const auto& dot : it->value("dots", nlohmann::json::array())) {
+    if (dot.is_array() && dot.size() == 2 && dot[0].is_number() && dot[1].is_number()) {
+      dots.push_back({dot[0].get<float>(), dot[1].get<float>()});
+    }
+  }
+  return dots;
+}
+
+void write_reroutes(Graph& graph, const std::string& node, const std::string& input,
+                    const std::vector<Position>& dots) {
+  if (!graph.editor.is_object()) graph.editor = nlohmann::json::object();
+  nlohmann::json& all = graph.editor["reroutes"];
+  if (!all.is_object()) all = nlohmann::json::object();
+  const std::string key = node + "." + input;
+  if (dots.empty()) {
+    all.erase(key);
+  } else {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& dot : dots) list.push_back({std::llround(dot.x), std::llround(dot.y)});
+    all[key] = {{"from", graph.nodes.at(node).inputs.at(input).str()}, {"dots", list}};
+  }
+  if (all.empty()) graph.editor.erase("reroutes");
+}
+
+Status Document::add_reroute(const std::string& node, const std::string& input, Position at) {
+  auto target = graph_.nodes.find(node);
+  if (target == graph_.nodes.end() || !target->second.inputs.count(input)) {
+    return make_error("cannot add a dot to the link into " + node + "." + input +
+                      ": there is no such link");
+  }
+  Graph edited = graph_;
+  auto dots = read_reroutes(graph_, node, input);
+  // Keep the dots in order along the link: from the source's end, by x.
+  dots.push_back(at);
+  std::stable_sort(dots.begin(), dots.end(),
+                   [](const Position& a, const Position& b) { return a.x < b.x; });
+  write_reroutes(edited, node, input, dots);
+  commit_edit("dot on the link into " + node + "." + input, edited);
+  return Ok{};
+}
+
+Status Document::move_reroute(const std::string& node, const std::string& input, size_t index,
+                              Position to, const std::string& coalesce_key) {
+  auto dots = read_reroutes(graph_, node, input);
+  if (index >= dots.size()) return make_error("no such dot on the link into " + node + "." + input);
+  Graph edited = graph_;
+  dots[index] = to;
+  write_reroutes(edited, node, input, dots);
+  commit_edit("move a dot", edited, coalesce_key);
+  return Ok{};
+}
+
+Status Document::remove_reroute(const std::string& node, const std::string& input, size_t index) {
+  auto dots = read_reroutes(graph_, node, input);
+  if (index >= dots.size()) return make_error("no such dot on the link into " + node + "." + input);
+  Graph edited = graph_;
+  dots.erase(dots.begin() + static_cast<long>(index));
+  write_reroutes(edited, node, input, dots);
+  commit_edit("remove a dot", edited);
   return Ok{};
 }
 

@@ -138,6 +138,12 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
     return actions::toggle_bypass(state);
   }
   if (kind == "auto_layout") return actions::auto_layout(state);
+  if (kind == "dot") {
+    PortRef to = port_field(action, "to");
+    Status added = state.doc.add_reroute(to.node, to.port, position_field(action, "at", {0, 0}));
+    actions::report(state, added, "added a dot to the link into " + to.str());
+    return added;
+  }
   if (kind == "view") {
     if (!hooks.view) throw std::invalid_argument("view options need the editor window");
     return hooks.view(action);
@@ -168,7 +174,7 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
       "unknown action '" + kind +
       "' (add_node, link, unlink, set_param, move, select_output, "
       "set_output, delete, duplicate, select, undo, redo, save, frame, fit, add_menu, play, key, "
-      "copy, paste, rename, bypass, auto_layout, insert, backdrop, wait, view)");
+      "copy, paste, rename, bypass, auto_layout, insert, backdrop, wait, view, dot)");
 }
 
 }  // namespace

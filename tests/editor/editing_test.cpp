@@ -227,6 +227,36 @@ TEST_F(EditingTest, BackdropsFrameNodesMoveWithThemAndAreSaved) {
   EXPECT_TRUE(read_backdrops(doc.graph()).empty());
 }
 
+TEST_F(EditingTest, RerouteDotsBendALinkAndFollowIt) {
+  ASSERT_TRUE(doc.add_reroute("b", "image", {400, 200}));
+  ASSERT_TRUE(doc.add_reroute("b", "image", {300, 200}));
+  auto dots = read_reroutes(doc.graph(), "b", "image");
+  ASSERT_EQ(dots.size(), 2u);
+  EXPECT_EQ(dots[0], (Position{300, 200})) << "ordered from the source's side";
+  EXPECT_EQ(doc.graph().editor["reroutes"]["b.image"]["from"], "a.image");
+  // The curve goes through them: a point on the dot's way is on the link.
+  CanvasView view;
+  auto layouts = layout_graph(doc.graph(), registry(), view, {0, 0});
+  auto through = link_at(doc.graph(), layouts, view.to_screen({0, 0}, {350, 200}), 4.0f, 1.0f);
+  ASSERT_TRUE(through.has_value());
+  EXPECT_EQ(through->node, "b");
+  auto hit = reroute_at(doc.graph(), view, {0, 0}, view.to_screen({0, 0}, {400, 200}), 6.0f);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->index, 1u);
+  ASSERT_TRUE(doc.move_reroute("b", "image", 1, {420, 220}, "dot"));
+  ASSERT_TRUE(doc.move_reroute("b", "image", 1, {440, 240}, "dot"));
+  doc.end_gesture();
+  EXPECT_EQ(read_reroutes(doc.graph(), "b", "image")[1], (Position{440, 240}));
+  ASSERT_TRUE(doc.undo());  // the whole drag
+  EXPECT_EQ(read_reroutes(doc.graph(), "b", "image")[1], (Position{400, 200}));
+  // Relinked elsewhere: the old dots no longer apply.
+  ASSERT_TRUE(doc.link({"src", "image"}, "b", "image"));
+  EXPECT_TRUE(read_reroutes(doc.graph(), "b", "image").empty());
+  ASSERT_TRUE(doc.undo());
+  ASSERT_TRUE(doc.remove_reroute("b", "image", 0));
+  EXPECT_EQ(read_reroutes(doc.graph(), "b", "image").size(), 1u);
+}
+
 TEST_F(EditingTest, AutoLayoutIsOneUndoStep) {
   ASSERT_TRUE(doc.move_nodes({{"a", {900, 900}}, {"b", {-400, 30}}}));
   ASSERT_TRUE(actions::auto_layout(state));
