@@ -280,6 +280,11 @@ TEST_F(EditingTest, DuplicatesDoNotCoverTheirOriginals) {
   }
 }
 
+TEST_F(EditingTest, TheStatusLineShowsASliderValueAsTyped) {
+  ASSERT_TRUE(actions::set_param(state, "a", "amount", static_cast<double>(0.9f), true));
+  EXPECT_EQ(state.status, "a.amount = 0.9");
+}
+
 TEST_F(EditingTest, DeselectingClearsTheSelectionCountFromTheStatusLine) {
   actions::select(state, {"a"});
   EXPECT_EQ(state.status, "1 node(s) selected");
