@@ -52,7 +52,8 @@ template <class Json>
 void write_object_members(const Json& object, int indent, std::string* out, bool expand) {
   const std::string pad(static_cast<size_t>(indent) + 2, ' ');
   bool first = true;
-  for (const auto& [key, member] : object.items()) {  // nlohmann objects iterate sorted
+  // nlohmann::json iterates its keys sorted, ordered_json in the order they were added.
+  for (const auto& [key, member] : object.items()) {
     *out += first ? "\n" : ",\n";
     first = false;
     *out += pad + string_literal(key) + ": ";
