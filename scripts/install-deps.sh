@@ -10,6 +10,7 @@ packages=(
   libassimp-dev libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
   pybind11-dev python3-pybind11 python3-dev python3-pytest python3-numpy python3-matplotlib
   slurm-wlm munge libplplot-dev plplot-driver-cairo
+  fonts-dejavu-core
 )
 
 missing=()

@@ -50,10 +50,6 @@ void draw_link(ImDrawList* draw, Vec2 from, Vec2 to, ImU32 colour, float zoom) {
                        colour, std::max(1.5f, 2.5f * zoom));
 }
 
-void text_at(ImDrawList* draw, Vec2 at, float zoom, ImU32 colour, const std::string& text) {
-  draw->AddText(ImGui::GetFont(), ImGui::GetFontSize() * zoom, im(at), colour, text.c_str());
-}
-
 const NodeLayout* find_layout(const std::vector<NodeLayout>& layouts, const std::string& id) {
   for (const auto& layout : layouts) {
     if (layout.id == id) return &layout;
@@ -70,15 +66,40 @@ const PortSpot* find_spot(const std::vector<PortSpot>& spots, const std::string&
 
 }  // namespace
 
-void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
+void Canvas::text(ImDrawList* draw, Vec2 at, float zoom, ImU32 colour,
+                  const std::string& label) const {
+  const float pixels = kTextSize * zoom;
+  if (pixels < 4.0f) return;  // too small to read: a blur of pixels helps nobody
+  auto font = fonts_.find(text_raster_size(pixels));
+  ImFont* chosen = font != fonts_.end() ? font->second : ImGui::GetFont();
+  // Whole pixels: a glyph placed between pixels is resampled and goes soft.
+  draw->AddText(chosen, pixels, ImVec2(std::round(at.x), std::round(at.y)), colour, label.c_str());
+}
+
+Vec2 Canvas::text_size(float zoom, const std::string& label) const {
+  const float pixels = kTextSize * zoom;
+  auto font = fonts_.find(text_raster_size(pixels));
+  ImFont* chosen = font != fonts_.end() ? font->second : ImGui::GetFont();
+  return vec(chosen->CalcTextSizeA(pixels, FLT_MAX, 0, label.c_str()));
+}
+
+void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
+                  const std::vector<KeyChord>& chords) {
   const Graph& graph = state.doc.graph();
   const Registry& registry = state.doc.registry();
   ImVec2 available = ImGui::GetContentRegionAvail();
   size_ = {std::max(available.x, 50.0f), std::max(available.y, 50.0f)};
   origin_ = vec(ImGui::GetCursorScreenPos());
   CanvasView& view = state.canvas;
+  const Rect bounds = graph_bounds(graph, registry);
   if (fit_requested_) {
-    view.fit(graph_bounds(graph, registry), size_);
+    // Readable zoom; the output node is kept in view when the graph is wider than the canvas.
+    std::optional<Vec2> focus;
+    if (graph.output && graph.nodes.count(graph.output->node)) {
+      Position at = node_position(graph, graph.output->node);
+      focus = Vec2{at.x, at.y};
+    }
+    view.fit(bounds, size_, focus, fit_whole_ ? CanvasView::kMinZoom : CanvasView::kReadableZoom);
     fit_requested_ = false;
   }
 
@@ -87,6 +108,15 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
   ImVec2 hi(origin_.x + size_.x, origin_.y + size_.y);
   draw->PushClipRect(lo, hi, true);
   draw->AddRectFilled(lo, hi, IM_COL32(32, 34, 38, 255));
+  if (backdrop_texture_ != 0 && backdrop_width_ > 0 && backdrop_height_ > 0) {
+    // The viewed image fitted into the canvas, dimmed so the nodes stay legible.
+    const float scale = std::min(size_.x / backdrop_width_, size_.y / backdrop_height_);
+    const ImVec2 extent(backdrop_width_ * scale, backdrop_height_ * scale);
+    const ImVec2 at(lo.x + (size_.x - extent.x) * 0.5f, lo.y + (size_.y - extent.y) * 0.5f);
+    draw->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(backdrop_texture_)), at,
+                   ImVec2(at.x + extent.x, at.y + extent.y), ImVec2(0, 1), ImVec2(1, 0),
+                   IM_COL32(255, 255, 255, 110));
+  }
   // Grid every 40 canvas units, so zoom is visible even on an empty graph.
   float step = 40.0f * view.zoom;
   if (step > 6.0f) {
@@ -107,6 +137,8 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
   std::stable_partition(layouts.begin(), layouts.end(),
                         [&](const NodeLayout& l) { return !state.selection.count(l.id); });
 
+  draw_backdrops(state, draw);
+
   // Links.
   for (const auto& [id, node] : graph.nodes) {
     const NodeLayout* target = find_layout(layouts, id);
@@ -116,7 +148,15 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
       const PortSpot* out = find_spot(from->outputs, source.port);
       const PortSpot* in = find_spot(target->inputs, port);
       if (out == nullptr || in == nullptr) continue;
-      draw_link(draw, out->at, in->at, port_colour(out->type), view.zoom);
+      // Through its reroute dots, if any.
+      Vec2 from_at = out->at;
+      for (const Position& dot : read_reroutes(graph, id, port)) {
+        Vec2 at = view.to_screen(origin_, {dot.x, dot.y});
+        draw_link(draw, from_at, at, port_colour(out->type), view.zoom);
+        draw->AddCircleFilled(im(at), 5.0f * view.zoom + 1.0f, port_colour(out->type));
+        from_at = at;
+      }
+      draw_link(draw, from_at, in->at, port_colour(out->type), view.zoom);
     }
   }
 
@@ -130,8 +170,9 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
     auto problems = state.doc.problems_of(layout.id);
     bool failed = !problems.empty() || feedback.error_node == layout.id || type == nullptr;
     bool selected = state.selection.count(layout.id) > 0;
-    draw->AddRectFilled(im(layout.rect.min), im(layout.rect.max), IM_COL32(58, 60, 66, 240),
-                        rounding);
+    const bool bypassed = state.doc.bypassed(layout.id);
+    draw->AddRectFilled(im(layout.rect.min), im(layout.rect.max),
+                        bypassed ? IM_COL32(44, 44, 48, 240) : IM_COL32(58, 60, 66, 240), rounding);
     draw->AddRectFilled(im(layout.header.min), im(layout.header.max),
                         type ? category_colour(type->category) : IM_COL32(120, 40, 40, 255),
                         rounding, ImDrawFlags_RoundCornersTop);
@@ -142,15 +183,20 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
                   failed || selected ? 2.5f : 1.0f);
     std::string title = layout.id == node.type ? layout.id : layout.id + " (" + node.type + ")";
     if (failed) title = "! " + title;
-    text_at(draw, {layout.header.min.x + 6 * z, layout.header.min.y + 4 * z}, z,
-            IM_COL32(245, 245, 245, 255), title);
+    text(draw, {layout.header.min.x + 6 * z, layout.header.min.y + 4 * z}, z,
+         IM_COL32(245, 245, 245, 255), title);
+    if (bypassed) {
+      // Nuke's mark of a disabled node: a diagonal across it.
+      draw->AddLine(im(layout.rect.min), im(layout.rect.max), IM_COL32(230, 170, 60, 220),
+                    2.0f * z);
+    }
     for (const auto& spot : layout.inputs) {
       bool linked = node.inputs.count(spot.port) > 0;
       draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z,
                             linked ? port_colour(spot.type) : IM_COL32(70, 70, 76, 255));
       draw->AddCircle(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type), 0, 1.5f);
-      text_at(draw, {spot.at.x + 9 * z, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
-              spot.port);
+      text(draw, {spot.at.x + 9 * z, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
+           spot.port);
     }
     for (const auto& spot : layout.outputs) {
       draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type));
@@ -158,15 +204,18 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
         draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 4) * z,
                         IM_COL32(255, 255, 255, 255), 0, 2.0f);
       }
-      ImVec2 text_size =
-          ImGui::GetFont()->CalcTextSizeA(ImGui::GetFontSize() * z, FLT_MAX, 0, spot.port.c_str());
-      text_at(draw, {spot.at.x - 9 * z - text_size.x, spot.at.y - 7 * z}, z,
-              IM_COL32(210, 210, 215, 255), spot.port);
+      const Vec2 label = text_size(z, spot.port);
+      text(draw, {spot.at.x - 9 * z - label.x, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
+           spot.port);
     }
     // Footer: GPU time of the last evaluation.
     std::string footer;
     auto timing = feedback.timings.find(layout.id);
-    if (timing != feedback.timings.end()) {
+    if (bypassed) {
+      footer = "bypassed";
+    } else if (feedback.error_node == layout.id) {
+      footer = "failed";
+    } else if (timing != feedback.timings.end()) {
       char text[64];
       std::snprintf(text, sizeof text, "gpu %.2f ms%s", timing->second.gpu_ms,
                     timing->second.cached ? "  (cached)" : "");
@@ -174,26 +223,37 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
     } else {
       footer = "not evaluated";
     }
-    text_at(draw, {layout.rect.min.x + 6 * z, layout.rect.max.y - NodeMetrics::kFooter * z}, z,
-            IM_COL32(150, 200, 150, 255), footer);
-    // The reason a node is marked, on hover.
+    text(draw, {layout.rect.min.x + 6 * z, layout.rect.max.y - NodeMetrics::kFooter * z}, z,
+         feedback.error_node == layout.id ? IM_COL32(255, 120, 110, 255)
+                                          : IM_COL32(150, 200, 150, 255),
+         footer);
+    // The reason a node is marked, on hover: each message once.
     if (failed && ImGui::IsWindowHovered() && layout.rect.contains(vec(ImGui::GetMousePos()))) {
+      std::vector<std::string> messages;
+      if (type == nullptr) messages.push_back("type '" + node.type + "' is not installed");
+      for (const auto& problem : problems) messages.push_back(problem.message);
+      const auto reasons =
+          node_reasons(messages, feedback.error_node == layout.id ? feedback.error : "");
       std::string why;
-      if (type == nullptr) why += "type '" + node.type + "' is not installed\n";
-      for (const auto& problem : problems) why += problem.message + "\n";
-      if (feedback.error_node == layout.id) why += feedback.error;
+      for (const auto& reason : reasons) why += (why.empty() ? "" : "\n") + reason;
       ImGui::SetTooltip("%s", why.c_str());
     }
   }
 
   handle_mouse(state, layouts, origin_);
   layouts_ = std::move(layouts);
+  draw_minimap(state, bounds);
   draw->PopClipRect();
-  if (ImGui::IsWindowFocused(ImGuiFocusedFlags_ChildWindows) && !ImGui::GetIO().WantTextInput) {
-    handle_keys(state);
+  // Keys act on hover: no click into the canvas first.
+  const bool over = ImGui::IsWindowHovered(ImGuiHoveredFlags_ChildWindows |
+                                           ImGuiHoveredFlags_AllowWhenBlockedByActiveItem);
+  if ((over || ImGui::IsWindowFocused(ImGuiFocusedFlags_ChildWindows)) &&
+      !ImGui::GetIO().WantTextInput && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) {
+    handle_keys(state, chords);
   }
   draw_add_menu(state);
   draw_node_menu(state);
+  draw_rename(state);
 }
 
 void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin) {
@@ -224,19 +284,52 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
         Vec2 at = view.to_canvas(origin, mouse);
         add_at_ = {at.x, at.y};
         add_filter_.clear();
+        add_on_link_ = link_at(state.doc.graph(), layouts, mouse, 6.0f, view.zoom);
         ImGui::OpenPopup("add_node");
       }
     }
     drag_ = Drag::kNone;
   }
 
-  // Left button: press starts a link, node or box drag.
+  const Minimap map =
+      minimap_for(graph_bounds(state.doc.graph(), state.doc.registry()), origin, size_);
+  if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && map.box.contains(mouse)) {
+    minimap_drag_ = true;
+  }
+  if (minimap_drag_) {
+    if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+      centre_on(view, map.to_canvas(mouse), size_);
+    } else {
+      minimap_drag_ = false;
+    }
+    return;
+  }
+
+  // Left button: press starts a link, node, dot or box drag.
   if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
     press_at_ = mouse;
     drag_moved_ = false;
     auto port = port_at(layouts, mouse, reach);
     auto node = node_at(layouts, mouse);
-    if (port && !port->spot.is_input) {
+    auto dot = reroute_at(state.doc.graph(), view, origin, mouse, reach);
+    const bool twice = ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
+    if (dot && !port && !node) {
+      if (twice) {
+        actions::report(state, state.doc.remove_reroute(dot->node, dot->input, dot->index),
+                        "removed a dot");
+      } else {
+        dragged_dot_ = *dot;
+        drag_ = Drag::kDot;
+      }
+    } else if (twice && !port && !node &&
+               link_at(state.doc.graph(), layouts, mouse, 6.0f, view.zoom)) {
+      // A double-click on a link adds a reroute dot there.
+      auto hit = link_at(state.doc.graph(), layouts, mouse, 6.0f, view.zoom);
+      Vec2 at = view.to_canvas(origin, mouse);
+      actions::report(state, state.doc.add_reroute(hit->node, hit->input, {at.x, at.y}),
+                      "added a dot to the link into " + hit->node + "." + hit->input);
+      drag_ = Drag::kNone;
+    } else if (port && !port->spot.is_input) {
       drag_ = Drag::kLink;
       link_from_ = {port->node, port->spot.port};
     } else if (port && port->spot.is_input) {
@@ -247,6 +340,15 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
         link_from_ = linked->second;
         (void)actions::unlink(state, port->node, port->spot.port);
         drag_ = Drag::kLink;
+      }
+    } else if (!node && backdrop_title_at(state, mouse)) {
+      backdrop_ = *backdrop_title_at(state, mouse);
+      backdrop_moved_ = {0, 0};
+      drag_ = Drag::kBackdrop;
+      if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
+        label_backdrop_ = true;
+        label_text_ = read_backdrops(state.doc.graph())[backdrop_].label;
+        drag_ = Drag::kNone;
       }
     } else if (node) {
       if (io.KeyCtrl) {
@@ -266,7 +368,7 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
         drag_origins_[id] = node_position(state.doc.graph(), id);
       }
     } else {
-      if (!io.KeyCtrl) state.selection.clear();
+      if (!io.KeyCtrl) actions::clear_selection(state);
       drag_ = Drag::kBox;
     }
   }
@@ -283,6 +385,34 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
                    start.y + (mouse.y - press_at_.y) / view.zoom};
     }
     (void)actions::move(state, moved, /*gesture=*/true);
+  }
+
+  if (drag_ == Drag::kDot) {
+    if (left_down && drag_moved_) {
+      Vec2 at = view.to_canvas(origin, mouse);
+      (void)state.doc.move_reroute(dragged_dot_.node, dragged_dot_.input, dragged_dot_.index,
+                                   {std::round(at.x), std::round(at.y)}, "dot");
+    }
+    if (!left_down) {
+      actions::end_gesture(state);
+      drag_ = Drag::kNone;
+    }
+  }
+
+  if (drag_ == Drag::kBackdrop) {
+    if (left_down && drag_moved_) {
+      const Vec2 total{std::round((mouse.x - press_at_.x) / view.zoom),
+                       std::round((mouse.y - press_at_.y) / view.zoom)};
+      const Position step{total.x - backdrop_moved_.x, total.y - backdrop_moved_.y};
+      if (step.x != 0 || step.y != 0) {
+        (void)state.doc.move_backdrop(backdrop_, step, "backdrop");
+        backdrop_moved_ = total;
+      }
+    }
+    if (!left_down) {
+      actions::end_gesture(state);
+      drag_ = Drag::kNone;
+    }
   }
 
   if (drag_ == Drag::kLink) {
@@ -336,31 +466,194 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
   if (drag_ == Drag::kNodes && !left_down) {
     actions::end_gesture(state);
     drag_ = Drag::kNone;
+    // One unlinked node let go over a link is spliced into it (Blender's drop on a link).
+    if (drag_moved_ && drag_origins_.size() == 1) {
+      const std::string id = drag_origins_.begin()->first;
+      const Graph& graph = state.doc.graph();
+      bool linked = graph.nodes.count(id) && !graph.nodes.at(id).inputs.empty();
+      for (const auto& [other, node] : graph.nodes) {
+        for (const auto& [in, from] : node.inputs) linked = linked || from.node == id;
+      }
+      if (!linked) {
+        if (auto hit = link_at(graph, layouts, mouse, 8.0f, view.zoom); hit && hit->node != id) {
+          Status dropped = state.doc.splice_into_link(id, hit->node, hit->input);
+          actions::report(state, dropped,
+                          "dropped " + id + " on the link into " + hit->node + "." + hit->input);
+        }
+      }
+    }
   }
 }
 
-void Canvas::handle_keys(EditorState& state) {
-  ImGuiIO& io = ImGui::GetIO();
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Delete)) ||
-      ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Backspace))) {
-    if (!state.selection.empty()) (void)actions::delete_selection(state);
+void Canvas::handle_keys(EditorState& state, const std::vector<KeyChord>& chords) {
+  const Vec2 mouse = vec(ImGui::GetIO().MousePos);
+  const bool over = Rect{origin_, {origin_.x + size_.x, origin_.y + size_.y}}.contains(mouse);
+  const Vec2 anchor = over ? mouse : Vec2{origin_.x + size_.x * 0.5f, origin_.y + size_.y * 0.5f};
+  for (const KeyChord& chord : chords) {
+    const bool plain = !chord.ctrl && !chord.alt;
+    switch (chord.key) {
+      case GLFW_KEY_DELETE:
+      case GLFW_KEY_BACKSPACE:
+        if (!state.selection.empty()) (void)actions::delete_selection(state);
+        break;
+      case GLFW_KEY_D:
+        if (chord.ctrl) {
+          (void)actions::duplicate_selection(state);
+        } else if (plain) {
+          (void)actions::toggle_bypass(state);
+        }
+        break;
+      case GLFW_KEY_C:
+        if (chord.ctrl) {
+          std::string copied = actions::copy_selection(state);
+          if (!copied.empty()) ImGui::SetClipboardText(copied.c_str());
+        } else if (plain) {
+          actions::cycle_output(state, chord.shift ? -1 : +1);
+        }
+        break;
+      case GLFW_KEY_V:
+        if (chord.ctrl) {
+          const char* text = ImGui::GetClipboardText();
+          Vec2 at = state.canvas.to_canvas(origin_, anchor);
+          (void)actions::paste(state, text != nullptr ? text : "", Position{at.x, at.y});
+        }
+        break;
+      case GLFW_KEY_F:
+        if (plain) request_fit();
+        break;
+      case GLFW_KEY_1:
+        if (plain) state.canvas.zoom_to(origin_, anchor, 1.0f);
+        break;
+      case GLFW_KEY_L:
+        if (plain) (void)actions::auto_layout(state);
+        break;
+      case GLFW_KEY_B:
+        if (plain) (void)actions::backdrop_around_selection(state);
+        break;
+      case GLFW_KEY_F2:
+        if (state.selection.size() == 1) {
+          rename_node_ = *state.selection.begin();
+          rename_text_ = rename_node_;
+        }
+        break;
+      case GLFW_KEY_TAB:
+        if (plain) request_add_menu();
+        break;
+      default:
+        break;
+    }
   }
-  if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_D, false)) {
-    (void)actions::duplicate_selection(state);
+}
+
+void Canvas::draw_minimap(EditorState& state, const Rect& bounds) {
+  const Graph& graph = state.doc.graph();
+  if (graph.nodes.empty()) return;
+  const CanvasView& view = state.canvas;
+  // Only when part of the graph is out of view.
+  Vec2 lo = view.to_screen(origin_, bounds.min);
+  Vec2 hi = view.to_screen(origin_, bounds.max);
+  if (lo.x >= origin_.x && lo.y >= origin_.y && hi.x <= origin_.x + size_.x &&
+      hi.y <= origin_.y + size_.y) {
+    return;
   }
-  if (!io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_F, false)) request_fit();
-  if (!io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_C)) {
-    actions::cycle_output(state, io.KeyShift ? -1 : +1);
+  const Minimap map = minimap_for(bounds, origin_, size_);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(im(map.box.min), im(map.box.max), IM_COL32(20, 21, 24, 220), 4.0f);
+  draw->AddRect(im(map.box.min), im(map.box.max), IM_COL32(90, 92, 100, 255), 4.0f);
+  for (const auto& [id, node] : graph.nodes) {
+    Rect rect = node_rect(graph, state.doc.registry(), id);
+    draw->AddRectFilled(
+        im(map.to_minimap(rect.min)), im(map.to_minimap(rect.max)),
+        state.selection.count(id) ? IM_COL32(255, 220, 120, 255) : IM_COL32(140, 145, 160, 255));
   }
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Tab), false)) request_add_menu();
-  if (!io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_1, false)) state.canvas.zoom = 1.0f;
+  // The part of the canvas on screen.
+  Vec2 view_min = view.to_canvas(origin_, origin_);
+  Vec2 view_max = view.to_canvas(origin_, {origin_.x + size_.x, origin_.y + size_.y});
+  draw->PushClipRect(im(map.box.min), im(map.box.max), true);
+  draw->AddRect(im(map.to_minimap(view_min)), im(map.to_minimap(view_max)),
+                IM_COL32(255, 255, 255, 200), 0.0f, 0, 1.5f);
+  draw->PopClipRect();
+}
+
+std::optional<size_t> Canvas::backdrop_title_at(const EditorState& state, Vec2 screen) const {
+  const auto backdrops = read_backdrops(state.doc.graph());
+  const CanvasView& view = state.canvas;
+  for (size_t i = backdrops.size(); i-- > 0;) {
+    const Backdrop& b = backdrops[i];
+    Vec2 lo = view.to_screen(origin_, {b.at.x, b.at.y});
+    Rect title{lo, {lo.x + b.width * view.zoom, lo.y + 30.0f * view.zoom}};
+    if (title.contains(screen)) return i;
+  }
+  return std::nullopt;
+}
+
+void Canvas::draw_backdrops(EditorState& state, ImDrawList* draw) {
+  const CanvasView& view = state.canvas;
+  const float z = view.zoom;
+  const auto backdrops = read_backdrops(state.doc.graph());
+  for (const auto& b : backdrops) {
+    Vec2 lo = view.to_screen(origin_, {b.at.x, b.at.y});
+    Vec2 hi = view.to_screen(origin_, {b.at.x + b.width, b.at.y + b.height});
+    draw->AddRectFilled(im(lo), im(hi), IM_COL32(70, 80, 96, 110), 6.0f * z);
+    draw->AddRectFilled(im(lo), ImVec2(hi.x, lo.y + 30.0f * z), IM_COL32(88, 102, 124, 200),
+                        6.0f * z, ImDrawFlags_RoundCornersTop);
+    draw->AddRect(im(lo), im(hi), IM_COL32(120, 140, 170, 200), 6.0f * z);
+    text(draw, {lo.x + 8 * z, lo.y + 6 * z}, z * 1.4f, IM_COL32(235, 240, 250, 255), b.label);
+  }
+  if (label_backdrop_ && !ImGui::IsPopupOpen("backdrop_label")) {
+    ImGui::OpenPopup("backdrop_label");
+  }
+  if (ImGui::BeginPopup("backdrop_label")) {
+    if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+    if (ImGui::InputText("label", &label_text_, ImGuiInputTextFlags_EnterReturnsTrue)) {
+      (void)state.doc.set_backdrop_label(backdrop_, label_text_);
+      label_backdrop_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    if (ImGui::Button("delete backdrop")) {
+      (void)state.doc.remove_backdrop(backdrop_);
+      label_backdrop_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  } else {
+    label_backdrop_ = false;
+  }
+}
+
+void Canvas::draw_rename(EditorState& state) {
+  if (!rename_node_.empty() && !ImGui::IsPopupOpen("rename_node")) {
+    ImGui::OpenPopup("rename_node");
+  }
+  if (!ImGui::BeginPopup("rename_node")) {
+    rename_node_.clear();
+    return;
+  }
+  ImGui::Text("rename %s", rename_node_.c_str());
+  if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+  if (ImGui::InputText("##rename", &rename_text_, ImGuiInputTextFlags_EnterReturnsTrue)) {
+    if (actions::rename(state, rename_node_, rename_text_)) {
+      rename_node_.clear();
+      ImGui::CloseCurrentPopup();
+    }
+  }
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+    rename_node_.clear();
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
 }
 
 void Canvas::draw_add_menu(EditorState& state) {
   if (add_menu_requested_) {
-    Vec2 centre =
-        state.canvas.to_canvas(origin_, {origin_.x + size_.x * 0.5f, origin_.y + size_.y * 0.5f});
-    add_at_ = {centre.x, centre.y};
+    // At the cursor when it is over the canvas (Tab), else at the centre (menu bar).
+    const Vec2 mouse = vec(ImGui::GetIO().MousePos);
+    const bool over = Rect{origin_, {origin_.x + size_.x, origin_.y + size_.y}}.contains(mouse);
+    const Vec2 anchor = over ? mouse : Vec2{origin_.x + size_.x * 0.5f, origin_.y + size_.y * 0.5f};
+    Vec2 at = state.canvas.to_canvas(origin_, anchor);
+    add_at_ = {at.x, at.y};
+    add_on_link_ =
+        over ? link_at(state.doc.graph(), layouts_, mouse, 6.0f, state.canvas.zoom) : std::nullopt;
     add_filter_ = requested_filter_;
     ImGui::OpenPopup("add_node");
     add_menu_requested_ = false;
@@ -394,7 +687,13 @@ void Canvas::draw_add_menu(EditorState& state) {
   }
   if (by_category.empty()) ImGui::TextDisabled("no node matches");
   if (!chosen.empty()) {
-    (void)actions::add_node(state, chosen, add_at_);
+    if (add_on_link_) {
+      (void)actions::insert_on_link(state, chosen, add_at_, add_on_link_->node,
+                                    add_on_link_->input);
+    } else {
+      (void)actions::add_node_at_cursor(state, chosen, add_at_);
+    }
+    add_on_link_.reset();
     ImGui::CloseCurrentPopup();
   }
   ImGui::EndPopup();
@@ -419,6 +718,17 @@ void Canvas::draw_node_menu(EditorState& state) {
       }
     }
     ImGui::Separator();
+    if (ImGui::MenuItem("rename...", "F2")) {
+      rename_node_ = id;
+      rename_text_ = id;
+    }
+    if (ImGui::MenuItem(state.doc.bypassed(id) ? "enable" : "bypass", "D")) {
+      (void)actions::toggle_bypass(state);
+    }
+    if (ImGui::MenuItem("copy", "Ctrl+C")) {
+      std::string copied = actions::copy_selection(state);
+      if (!copied.empty()) ImGui::SetClipboardText(copied.c_str());
+    }
     if (ImGui::MenuItem("duplicate", "Ctrl+D")) (void)actions::duplicate_selection(state);
     if (ImGui::MenuItem("delete", "Del")) (void)actions::delete_selection(state);
   }

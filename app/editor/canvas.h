@@ -6,8 +6,19 @@
 //   click an output port / double-click    view that output in the viewer
 //   left drag on a node / empty space      move the selection / box-select (Ctrl adds)
 //   middle or right drag, wheel            pan, zoom around the cursor
-//   right click / Tab                      add-node menu (searchable, by category) or node menu
-//   Delete, Ctrl+D, F, C / Shift+C          delete, duplicate, fit, cycle the viewed output
+//   right click / Tab                      add-node menu at the cursor (searchable, by category):
+//                                          inserted after the one selected node, or onto the
+//                                          link under the cursor; or the node menu
+//   Delete, Ctrl+D, F, 1, C / Shift+C       delete, duplicate, fit, 1:1 at the cursor, cycle output
+//   Ctrl+C / Ctrl+V, D, F2, L, B            copy / paste (system clipboard, graph JSON), bypass,
+//                                          rename, auto-layout, backdrop around the selection
+//   drag a backdrop's title bar            moves it with the nodes on it; double-click: label
+//   double-click a link / a dot            adds a reroute dot there / removes it; drag a dot
+//   minimap (bottom right)                 click or drag to move the view
+//
+// Keys act while the mouse is over the canvas (no click needed) and come from a queue of key
+// presses the window collected (KeyChord), so a chord pressed and released between two frames
+// still counts.
 //
 // Every change goes through editor_actions.h.
 #pragma once
@@ -16,6 +27,7 @@
 #include "editor_state.h"
 
 #include <aquarelle/core/evaluator.h>
+#include <imgui.h>
 
 #include <map>
 #include <optional>
@@ -26,6 +38,14 @@ namespace aq::editor {
 
 // What the canvas shows on nodes besides the graph: timings and evaluation errors. A node the
 // last evaluation reused keeps the time it took when it last ran, marked cached.
+// One key press as GLFW reported it, with the modifiers held at that moment.
+struct KeyChord {
+  int key = 0;  // GLFW_KEY_*
+  bool ctrl = false;
+  bool shift = false;
+  bool alt = false;
+};
+
 struct NodeFeedback {
   std::map<std::string, NodeTiming> timings;
   std::string error_node;
@@ -34,14 +54,29 @@ struct NodeFeedback {
 
 class Canvas {
  public:
-  // Draws into the current ImGui window's remaining content region.
-  void draw(EditorState& state, const NodeFeedback& feedback);
+  // Draws into the current ImGui window's remaining content region; `chords` are this frame's
+  // key presses (the canvas takes its own when the mouse is over it or it has focus).
+  void draw(EditorState& state, const NodeFeedback& feedback,
+            const std::vector<KeyChord>& chords = {});
+  // The viewer's picture drawn dimmed behind the nodes (Blender's backdrop); texture 0: none.
+  void set_backdrop_image(unsigned texture, int width, int height) {
+    backdrop_texture_ = texture;
+    backdrop_width_ = width;
+    backdrop_height_ = height;
+  }
+  // Fonts rasterised at kTextRasterSizes (canvas_view.h), for crisp text at every zoom.
+  void set_fonts(std::map<float, ImFont*> fonts) { fonts_ = std::move(fonts); }
   // The canvas as last drawn (screen space), for scripted mouse gestures.
   const std::vector<NodeLayout>& layouts() const { return layouts_; }
   Vec2 origin() const { return origin_; }
   Vec2 size() const { return size_; }
   // Fit all nodes into view on the next draw.
-  void request_fit() { fit_requested_ = true; }
+  // `whole`: every node in view however small (View > Show whole graph, scripts); otherwise at
+  // a readable zoom.
+  void request_fit(bool whole = false) {
+    fit_requested_ = true;
+    fit_whole_ = whole;
+  }
   // Opens the add-node menu at the canvas centre (menu bar, Tab).
   void request_add_menu(const std::string& filter = "") {
     add_menu_requested_ = true;
@@ -49,10 +84,16 @@ class Canvas {
   }
 
  private:
-  enum class Drag { kNone, kNodes, kLink, kBox, kPan };
+  enum class Drag { kNone, kNodes, kLink, kBox, kPan, kBackdrop, kDot };
 
   void handle_mouse(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin);
-  void handle_keys(EditorState& state);
+  void handle_keys(EditorState& state, const std::vector<KeyChord>& chords);
+  void draw_minimap(EditorState& state, const Rect& bounds);
+  void draw_rename(EditorState& state);
+  void draw_backdrops(EditorState& state, ImDrawList* draw);
+  std::optional<size_t> backdrop_title_at(const EditorState& state, Vec2 screen) const;
+  void text(ImDrawList* draw, Vec2 at, float zoom, ImU32 colour, const std::string& text) const;
+  Vec2 text_size(float zoom, const std::string& text) const;
   void draw_add_menu(EditorState& state);
   void draw_node_menu(EditorState& state);
 
@@ -65,8 +106,22 @@ class Canvas {
   Position add_at_;
   std::string add_filter_;
   bool fit_requested_ = true;
+  bool fit_whole_ = false;
   bool add_menu_requested_ = false;
   std::string requested_filter_;
+  std::optional<LinkHit> add_on_link_;  // the add menu opened over a link: insert on it
+  std::string rename_node_;             // the rename prompt's node ("" when closed)
+  std::string rename_text_;
+  bool minimap_drag_ = false;
+  size_t backdrop_ = 0;  // the backdrop being dragged or labelled
+  Vec2 backdrop_moved_;  // whole canvas units already applied during the drag
+  bool label_backdrop_ = false;
+  RerouteHit dragged_dot_;
+  std::string label_text_;
+  std::map<float, ImFont*> fonts_;
+  unsigned backdrop_texture_ = 0;
+  int backdrop_width_ = 0;
+  int backdrop_height_ = 0;
   Vec2 size_;
   Vec2 origin_;
   std::vector<NodeLayout> layouts_;

@@ -16,15 +16,30 @@ void CanvasView::zoom_at(Vec2 origin, Vec2 screen, float factor) {
   pan.y = screen.y - origin.y - anchor.y * zoom;
 }
 
-void CanvasView::fit(Rect bounds, Vec2 size) {
+void CanvasView::zoom_to(Vec2 origin, Vec2 screen, float new_zoom) {
+  zoom_at(origin, screen, new_zoom / zoom);
+}
+
+void CanvasView::fit(Rect bounds, Vec2 size, std::optional<Vec2> focus, float min_zoom) {
   constexpr float kMargin = 30.0f;
   float w = std::max(bounds.max.x - bounds.min.x, 1.0f);
   float h = std::max(bounds.max.y - bounds.min.y, 1.0f);
   float zx = (size.x - 2 * kMargin) / w;
   float zy = (size.y - 2 * kMargin) / h;
-  zoom = std::clamp(std::min(zx, zy), kMinZoom, 1.5f);
-  pan.x = (size.x - w * zoom) * 0.5f - bounds.min.x * zoom;
-  pan.y = (size.y - h * zoom) * 0.5f - bounds.min.y * zoom;
+  zoom = std::clamp(std::min(zx, zy), min_zoom, 1.5f);
+  // Centred along an axis that fits; from the left or top end along one that does not.
+  auto place = [&](float extent, float screen, float low) {
+    if (extent * zoom <= screen - 2 * kMargin) return (screen - extent * zoom) * 0.5f - low * zoom;
+    return kMargin - low * zoom;
+  };
+  pan.x = place(w, size.x, bounds.min.x);
+  pan.y = place(h, size.y, bounds.min.y);
+  if (focus) {
+    // Bring the focus point in if the end shown first leaves it out.
+    Vec2 at{pan.x + focus->x * zoom, pan.y + focus->y * zoom};
+    if (at.x > size.x - kMargin) pan.x -= at.x - (size.x - kMargin) + NodeMetrics::kWidth * zoom;
+    if (at.y > size.y - kMargin) pan.y -= at.y - (size.y - kMargin) + 80.0f * zoom;
+  }
 }
 
 NodeLayout layout_node(const std::string& id, const Node& node, const NodeType* type,
@@ -98,6 +113,158 @@ Rect graph_bounds(const Graph& graph, const Registry& registry) {
     bounds.max.y = std::max(bounds.max.y, layout.rect.max.y);
   }
   return bounds;
+}
+
+Rect node_rect(const Graph& graph, const Registry& registry, const std::string& id) {
+  CanvasView identity;
+  identity.pan = {0, 0};
+  identity.zoom = 1.0f;
+  auto node = graph.nodes.find(id);
+  if (node == graph.nodes.end()) return {};
+  return layout_node(id, node->second, registry.find(node->second.type), node_position(graph, id),
+                     identity, {0, 0})
+      .rect;
+}
+
+Position free_spot(const Graph& graph, const Registry& registry, const std::string& type,
+                   Position at) {
+  constexpr float kGap = 20.0f;
+  CanvasView identity;
+  identity.pan = {0, 0};
+  identity.zoom = 1.0f;
+  const Node probe{type, {}, {}};
+  std::vector<Rect> others;
+  for (const auto& layout : layout_graph(graph, registry, identity, {0, 0})) {
+    others.push_back(layout.rect);
+  }
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    Rect rect = layout_node("", probe, registry.find(type), at, identity, {0, 0}).rect;
+    Rect padded{{rect.min.x - kGap, rect.min.y - kGap}, {rect.max.x + kGap, rect.max.y + kGap}};
+    const Rect* hit = nullptr;
+    for (const auto& other : others) {
+      if (padded.overlaps(other)) hit = &other;
+    }
+    if (hit == nullptr) return at;
+    at.y = hit->max.y + kGap + 1.0f;
+  }
+  return at;
+}
+
+float text_raster_size(float pixels) {
+  for (float size : kTextRasterSizes) {
+    if (size >= pixels) return size;
+  }
+  return kTextRasterSizes[std::size(kTextRasterSizes) - 1];
+}
+
+std::vector<std::string> node_reasons(const std::vector<std::string>& problems,
+                                      const std::string& evaluation_error) {
+  std::vector<std::string> reasons;
+  auto add = [&](std::string reason) {
+    const size_t json_fix = reason.find(": add \"inputs\"");
+    if (json_fix != std::string::npos) {
+      reason = reason.substr(0, json_fix) + ": drag a link from an output port onto it";
+    }
+    if (!reason.empty() && std::find(reasons.begin(), reasons.end(), reason) == reasons.end()) {
+      reasons.push_back(reason);
+    }
+  };
+  bool input_missing = false;
+  for (const auto& problem : problems) {
+    add(problem);
+    input_missing = input_missing || problem.find("is not connected") != std::string::npos;
+  }
+  if (!(input_missing && evaluation_error.find("is not connected") != std::string::npos)) {
+    add(evaluation_error);
+  }
+  return reasons;
+}
+
+Vec2 link_point(Vec2 from, Vec2 to, float zoom, float t) {
+  // The cubic Bézier the canvas draws: tangents along x, half the span long.
+  const float dx = std::max(std::fabs(to.x - from.x) * 0.5f, 30.0f * zoom);
+  const Vec2 c1{from.x + dx, from.y};
+  const Vec2 c2{to.x - dx, to.y};
+  const float u = 1.0f - t;
+  const float a = u * u * u, b = 3 * u * u * t, c = 3 * u * t * t, d = t * t * t;
+  return {a * from.x + b * c1.x + c * c2.x + d * to.x, a * from.y + b * c1.y + c * c2.y + d * to.y};
+}
+
+std::optional<LinkHit> link_at(const Graph& graph, const std::vector<NodeLayout>& layouts,
+                               Vec2 screen, float reach, float zoom) {
+  auto find = [&](const std::string& id) -> const NodeLayout* {
+    for (const auto& layout : layouts) {
+      if (layout.id == id) return &layout;
+    }
+    return nullptr;
+  };
+  auto spot = [](const std::vector<PortSpot>& spots, const std::string& port) -> const PortSpot* {
+    for (const auto& s : spots) {
+      if (s.port == port) return &s;
+    }
+    return nullptr;
+  };
+  for (const auto& [id, node] : graph.nodes) {
+    const NodeLayout* target = find(id);
+    for (const auto& [input, source] : node.inputs) {
+      const NodeLayout* from = find(source.node);
+      if (target == nullptr || from == nullptr) continue;
+      const PortSpot* out = spot(from->outputs, source.port);
+      const PortSpot* in = spot(target->inputs, input);
+      if (out == nullptr || in == nullptr) continue;
+      // The curve runs through the reroute dots; their screen places follow from the ports'.
+      std::vector<Vec2> points = {out->at};
+      const Vec2 origin{target->rect.min.x - node_position(graph, id).x * zoom,
+                        target->rect.min.y - node_position(graph, id).y * zoom};
+      for (const Position& dot : read_reroutes(graph, id, input)) {
+        points.push_back({origin.x + dot.x * zoom, origin.y + dot.y * zoom});
+      }
+      points.push_back(in->at);
+      for (size_t segment = 0; segment + 1 < points.size(); ++segment) {
+        for (int i = 0; i <= 32; ++i) {
+          Vec2 p = link_point(points[segment], points[segment + 1], zoom, i / 32.0f);
+          if (std::hypot(p.x - screen.x, p.y - screen.y) <= reach) return LinkHit{id, input};
+        }
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<RerouteHit> reroute_at(const Graph& graph, const CanvasView& view, Vec2 origin,
+                                     Vec2 screen, float reach) {
+  for (const auto& [id, node] : graph.nodes) {
+    for (const auto& [input, source] : node.inputs) {
+      const auto dots = read_reroutes(graph, id, input);
+      for (size_t i = 0; i < dots.size(); ++i) {
+        Vec2 at = view.to_screen(origin, {dots[i].x, dots[i].y});
+        if (std::hypot(at.x - screen.x, at.y - screen.y) <= reach) return RerouteHit{id, input, i};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+Minimap minimap_for(Rect bounds, Vec2 origin, Vec2 size) {
+  constexpr float kWidth = 180.0f;
+  constexpr float kMargin = 10.0f;
+  Minimap map;
+  const float w = std::max(bounds.max.x - bounds.min.x, 1.0f);
+  const float h = std::max(bounds.max.y - bounds.min.y, 1.0f);
+  const float box_w = std::min(kWidth, size.x * 0.3f);
+  const float box_h = std::min(box_w * 0.6f, size.y * 0.3f);
+  map.box = {{origin.x + size.x - box_w - kMargin, origin.y + size.y - box_h - kMargin},
+             {origin.x + size.x - kMargin, origin.y + size.y - kMargin}};
+  map.scale = std::min((box_w - 8.0f) / w, (box_h - 8.0f) / h);
+  // Centre the graph in the box.
+  map.canvas_min = {bounds.min.x - ((box_w / map.scale) - w) * 0.5f,
+                    bounds.min.y - ((box_h / map.scale) - h) * 0.5f};
+  return map;
+}
+
+void centre_on(CanvasView& view, Vec2 canvas, Vec2 size) {
+  view.pan.x = size.x * 0.5f - canvas.x * view.zoom;
+  view.pan.y = size.y * 0.5f - canvas.y * view.zoom;
 }
 
 std::optional<PortHit> port_at(const std::vector<NodeLayout>& layouts, Vec2 screen, float reach) {

@@ -36,6 +36,8 @@ struct CanvasView {
   float zoom = 1.0f;
   static constexpr float kMinZoom = 0.2f;
   static constexpr float kMaxZoom = 3.0f;
+  // Fit never goes below this: node text stays readable and the user pans the rest.
+  static constexpr float kReadableZoom = 0.7f;
 
   Vec2 to_screen(Vec2 origin, Vec2 canvas) const {
     return {origin.x + pan.x + canvas.x * zoom, origin.y + pan.y + canvas.y * zoom};
@@ -45,8 +47,13 @@ struct CanvasView {
   }
   // Zooms by `factor` keeping the canvas point under `screen` where it is.
   void zoom_at(Vec2 origin, Vec2 screen, float factor);
-  // Pan and zoom so that `bounds` (canvas units) fills `size` (screen) with a margin.
-  void fit(Rect bounds, Vec2 size);
+  // Sets the zoom keeping the canvas point under `screen` where it is (`1` zooms 1:1 there).
+  void zoom_to(Vec2 origin, Vec2 screen, float new_zoom);
+  // Pan and zoom so that `bounds` (canvas units) fills `size` (screen) with a margin, at a
+  // readable zoom at least: a graph too big for that shows its left end (`focus`, a canvas
+  // point, when given, is kept in view), the rest a pan away.
+  void fit(Rect bounds, Vec2 size, std::optional<Vec2> focus = std::nullopt,
+           float min_zoom = kReadableZoom);
 };
 
 // Node geometry in canvas units.
@@ -88,6 +95,66 @@ Position node_position(const Graph& graph, const std::string& id);
 
 // Canvas-unit bounds of all nodes (empty graph: a unit box at the origin).
 Rect graph_bounds(const Graph& graph, const Registry& registry);
+// Canvas-unit rectangle of one node.
+Rect node_rect(const Graph& graph, const Registry& registry, const std::string& id);
+// Where a new node of `type` wanted at `at` goes: there, or moved down until it overlaps no
+// other node (with a small gap).
+Position free_spot(const Graph& graph, const Registry& registry, const std::string& type,
+                   Position at);
+
+// Canvas text is drawn at kTextSize * zoom pixels from a font rasterised at one of
+// kTextRasterSizes: the smallest at least that large, so glyphs are only ever shrunk, by less
+// than the step between sizes, never magnified (magnified bitmaps blur, shrunk ones by a lot
+// alias).
+inline constexpr float kTextSize = 13.0f;
+inline constexpr float kTextRasterSizes[] = {4,  5,  6,  7,  8,  9,  10, 11, 12, 13,
+                                             14, 16, 18, 20, 23, 26, 29, 33, 37, 42};
+float text_raster_size(float pixels);
+
+// What a marked node's tooltip says: each reason once, in the editor's terms (a validation fix
+// written for the JSON file, such as `add "inputs": {...}`, becomes the canvas gesture), and
+// the evaluation's error left out when validation already says why the input is missing.
+std::vector<std::string> node_reasons(const std::vector<std::string>& problems,
+                                      const std::string& evaluation_error);
+
+// The reroute dot within `reach` of `screen`: the link it belongs to and its index.
+struct RerouteHit {
+  std::string node;
+  std::string input;
+  size_t index = 0;
+};
+std::optional<RerouteHit> reroute_at(const Graph& graph, const CanvasView& view, Vec2 origin,
+                                     Vec2 screen, float reach);
+
+// The link (target node, input) passing within `reach` of `screen` (through its reroute dots),
+// if any.
+struct LinkHit {
+  std::string node;
+  std::string input;
+};
+std::optional<LinkHit> link_at(const Graph& graph, const std::vector<NodeLayout>& layouts,
+                               Vec2 screen, float reach, float zoom);
+// The link's curve from an output to an input (the canvas draws the same one).
+Vec2 link_point(Vec2 from, Vec2 to, float zoom, float t);
+
+// The minimap: the graph bounds scaled into a corner box of the canvas, and the view's
+// rectangle in it. A click at a minimap point centres the view there.
+struct Minimap {
+  Rect box;         // screen
+  float scale = 1;  // minimap pixels per canvas unit
+  Vec2 canvas_min;  // canvas point at box.min (after centring)
+  Vec2 to_minimap(Vec2 canvas) const {
+    return {box.min.x + (canvas.x - canvas_min.x) * scale,
+            box.min.y + (canvas.y - canvas_min.y) * scale};
+  }
+  Vec2 to_canvas(Vec2 screen) const {
+    return {canvas_min.x + (screen.x - box.min.x) / scale,
+            canvas_min.y + (screen.y - box.min.y) / scale};
+  }
+};
+Minimap minimap_for(Rect graph_bounds, Vec2 origin, Vec2 size);
+// Pans `view` so the canvas point `canvas` sits at the centre of a canvas of `size`.
+void centre_on(CanvasView& view, Vec2 canvas, Vec2 size);
 
 struct PortHit {
   std::string node;

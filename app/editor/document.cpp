@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -61,8 +62,8 @@ void write_position(Graph& graph, const std::string& id, const std::optional<Pos
   nlohmann::json& positions = graph.editor["positions"];
   if (!positions.is_object()) positions = nlohmann::json::object();
   if (position) {
-    // Whole canvas units keep the saved file short and diffs quiet.
-    positions[id] = {std::round(position->x), std::round(position->y)};
+    // Whole canvas units, written as integers, keep the saved file short and diffs quiet.
+    positions[id] = {std::llround(position->x), std::llround(position->y)};
   } else {
     positions.erase(id);
   }
@@ -168,13 +169,31 @@ std::map<std::string, Position> automatic_positions(const Graph& graph) {
   return out;
 }
 
-void place_unplaced_nodes(Graph& graph) {
+std::vector<std::string> place_unplaced_nodes(Graph& graph) {
   std::map<std::string, Position> automatic;
+  std::vector<std::string> placed;
   for (const auto& [id, node] : graph.nodes) {
     if (read_position(graph, id)) continue;
     if (automatic.empty()) automatic = automatic_positions(graph);
     write_position(graph, id, automatic[id]);
+    placed.push_back(id);
   }
+  return placed;
+}
+
+nlohmann::json shortest_number(const nlohmann::json& value) {
+  if (!value.is_number_float()) return value;
+  const double wide = value.get<double>();
+  const float narrow = static_cast<float>(wide);
+  if (!std::isfinite(wide) || static_cast<double>(narrow) != wide) return value;
+  // The value came from a float (an ImGui slider): its shortest float text, read as a double,
+  // is what the user typed or saw ("0.3", not 0.30000001192092896).
+  char text[64];
+  auto [end, error] = std::to_chars(text, text + sizeof text, narrow);
+  if (error != std::errc{}) return value;
+  double shortest = 0;
+  std::from_chars(text, end, shortest);
+  return shortest;
 }
 
 // ---- Document ------------------------------------------------------------------------------
@@ -198,6 +217,8 @@ void Document::reset_history() {
 
 void Document::new_graph(const std::string& path) {
   graph_ = Graph{};
+  file_text_.clear();
+  auto_placed_.clear();
   graph_.source_path = path;
   path_ = path;
   reset_history();
@@ -217,9 +238,11 @@ Status Document::open(const std::string& path) {
   ReadResult read = read_graph_text(text.str(), registry_, path);
   graph_ = std::move(read.graph);
   graph_.source_path = path;
+  file_text_ = text.str();
   // A graph written by hand has no positions: place them once, so the canvas does not
-  // rearrange itself while links are edited. Not an edit: the file is not marked changed.
-  place_unplaced_nodes(graph_);
+  // rearrange itself while links are edited. Not an edit: the file is not marked changed,
+  // and saving it unedited leaves them out.
+  auto_placed_ = place_unplaced_nodes(graph_);
   path_ = path;
   std::error_code ignored;
   disk_time_ = fs::last_write_time(path, ignored);
@@ -234,17 +257,42 @@ Status Document::save() {
   auto on_disk = fs::last_write_time(path_, error);
   if (!error && on_disk != disk_time_ && !overwrite_confirmed_) {
     overwrite_confirmed_ = true;
-    return make_error("'" + path_ + "' was changed on disk since it was opened: Save again to "
+    return make_error("'" + path_ +
+                      "' was changed on disk since it was opened: Save again to "
                       "overwrite it, or Save As to keep both");
   }
-  return save_as(path_);
+  return save_as(path_, /*replace=*/true);
 }
 
-Status Document::save_as(const std::string& path) {
+bool Document::would_replace(const std::string& path) const {
+  std::error_code error;
+  if (!fs::exists(path, error)) return false;
+  if (path_.empty()) return true;
+  return !fs::equivalent(path, path_, error);
+}
+
+std::string Document::text_to_save() const {
   Graph to_save = graph_;
-  to_save.source_path = path;
-  Status saved = save_graph_file(to_save, path);
+  // Positions placed automatically at open are not the user's until the graph is edited.
+  if (!can_undo() && !saved_unknown_) {
+    for (const auto& id : auto_placed_) write_position(to_save, id, std::nullopt);
+    if (to_save.editor.is_object() && to_save.editor.contains("positions") &&
+        to_save.editor["positions"].empty()) {
+      to_save.editor.erase("positions");
+    }
+  }
+  return write_graph_text(to_save, file_text_);
+}
+
+Status Document::save_as(const std::string& path, bool replace) {
+  if (!replace && would_replace(path)) {
+    return make_error("'" + path +
+                      "' exists already: confirm to replace it, or choose another name");
+  }
+  const std::string text = text_to_save();
+  Status saved = save_graph_text(text, path);
   if (!saved) return saved;
+  file_text_ = text;
   std::string old_autosave = autosave_path();
   path_ = path;
   graph_.source_path = path;
@@ -272,7 +320,7 @@ std::string Document::autosave_path() const {
 
 Result<bool> Document::autosave() {
   if (!dirty() || autosaved_revision_ == revision_) return false;
-  Status written = save_graph_file(graph_, autosave_path());
+  Status written = save_graph_text(text_to_save(), autosave_path());
   if (!written) return make_error("autosave failed: " + written.message());
   autosaved_revision_ = revision_;
   return true;
@@ -349,6 +397,7 @@ NodeState Document::state_of(const std::string& id) const {
   auto it = graph_.nodes.find(id);
   if (it != graph_.nodes.end()) state.node = it->second;
   state.position = read_position(graph_, id);
+  state.bypassed = read_bypassed(graph_, id);
   return state;
 }
 
@@ -361,6 +410,7 @@ void Document::apply_side(const std::map<std::string, NodeState>& side,
       graph_.nodes.erase(id);
     }
     write_position(graph_, id, state.position);
+    write_bypassed(graph_, id, state.bypassed);
   }
   graph_.output = output;
   graph_.settings = settings;
@@ -372,8 +422,13 @@ void Document::commit(Change change) {
   bool merge = gesture_open_ && !change.coalesce_key.empty() && !undo_.empty() &&
                undo_.back().coalesce_key == change.coalesce_key;
   apply_side(change.after, change.output_after, change.settings_after);
+  if (change.extras_after) apply_extras(*change.extras_after);
   if (merge) {
     Change& last = undo_.back();
+    if (change.extras_after) {
+      if (!last.extras_before) last.extras_before = change.extras_before;
+      last.extras_after = change.extras_after;
+    }
     // The merged step undoes to the state before the gesture began.
     for (auto& [id, state] : change.before) last.before.try_emplace(id, state);
     for (auto& [id, state] : change.after) last.after[id] = state;
@@ -393,6 +448,7 @@ bool Document::undo() {
   Change change = std::move(undo_.back());
   undo_.pop_back();
   apply_side(change.before, change.output_before, change.settings_before);
+  if (change.extras_before) apply_extras(*change.extras_before);
   redo_.push_back(std::move(change));
   gesture_open_ = false;
   return true;
@@ -403,6 +459,7 @@ bool Document::redo() {
   Change change = std::move(redo_.back());
   redo_.pop_back();
   apply_side(change.after, change.output_after, change.settings_after);
+  if (change.extras_after) apply_extras(*change.extras_after);
   undo_.push_back(std::move(change));
   gesture_open_ = false;
   return true;
@@ -658,6 +715,10 @@ Status Document::set_param(const std::string& node, const std::string& param,
     // Ints arrive from sliders and scripts as 3.0 as often as 3; store them whole.
     if (info->type == AQ_PARAM_INT)
       stored = static_cast<int64_t>(std::llround(value.get<double>()));
+    if (info->type == AQ_PARAM_FLOAT) stored = shortest_number(value);
+    if ((info->type == AQ_PARAM_VEC3 || info->type == AQ_PARAM_COLOR) && value.is_array()) {
+      for (auto& component : stored) component = shortest_number(component);
+    }
   }
   NodeState after = state_of(node);
   if (stored.is_null()) {

@@ -23,10 +23,11 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <optional>
-#include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace aq::editor {
@@ -42,6 +43,7 @@ struct Position {
 struct NodeState {
   std::optional<Node> node;
   std::optional<Position> position;
+  bool bypassed = false;  // editor.bypassed[id]: the node passes its input through
 };
 
 // What one edit changed; applying `after` redoes it, applying `before` undoes it.
@@ -53,6 +55,9 @@ struct Change {
   std::optional<PortRef> output_after;
   Settings settings_before;
   Settings settings_after;
+  // editor.backdrops and editor.reroutes before and after, when the change touches them.
+  std::optional<nlohmann::json> extras_before;
+  std::optional<nlohmann::json> extras_after;
   std::string coalesce_key;  // non-empty: later edits with the same key merge into this one
   uint64_t serial = 0;       // unique per change, for the dirty flag
 };
@@ -71,8 +76,15 @@ class Document {
   void new_graph(const std::string& path = "");
   // Canonical, atomic writes through aq::save_graph_file; clears the dirty flag and removes
   // the autosave side file.
+  // Saving patches the text the graph was read from (aq::write_graph_text with the original):
+  // an unedited graph saves to the same bytes, an edit changes only the lines it concerns.
   Status save();
-  Status save_as(const std::string& path);
+  // Refuses to replace an existing file other than the graph's own unless `replace` (the user
+  // confirmed): would_replace() says when the editor must ask first.
+  Status save_as(const std::string& path, bool replace = false);
+  bool would_replace(const std::string& path) const;
+  // The text save() would write now.
+  std::string text_to_save() const;
   const std::string& path() const { return path_; }
   bool dirty() const;
 
@@ -126,6 +138,8 @@ class Document {
   Status set_settings(const Settings& settings);
   // Ends a continuous gesture: the next edit starts a new undo step even with the same key.
   void end_gesture() { gesture_open_ = false; }
+  // A continuous gesture (slider or node drag) is under way.
+  bool in_gesture() const { return gesture_open_; }
 
   // ---- Undo and redo -------------------------------------------------------------------
   bool can_undo() const { return !undo_.empty(); }
@@ -138,6 +152,46 @@ class Document {
   // A free node id for `type` ("blur", then "blur2", "blur3"...).
   std::string free_id(const std::string& type) const;
 
+  // ---- Nuke-style editing: each one undo step ---------------------------------------------
+  // The nodes as graph JSON text (the system clipboard's content): their definitions, the
+  // links among them and into them, their positions.
+  std::string copy_nodes(const std::vector<std::string>& ids) const;
+  // Adds the nodes of a copied text: fresh ids where taken (links among them follow), links to
+  // nodes this graph lacks dropped; their top-left lands at `at` when given, else 40 units
+  // right of and below where they were. Returns the new ids.
+  Result<std::vector<std::string>> paste_nodes(const std::string& text,
+                                               std::optional<Position> at = std::nullopt);
+  // A new node at `at` wired after `after`: its first input of that output's type reads it, and
+  // everything that read `after` (links, the graph output) now reads the new node.
+  Result<std::string> insert_node_after(const std::string& type, Position at, const PortRef& after);
+  // A new node dropped on the link into `to_node.to_input`: source → new → to_node.
+  Result<std::string> insert_node_on_link(const std::string& type, Position at,
+                                          const std::string& to_node, const std::string& to_input);
+  // An unlinked node dropped onto the link into `to_node.to_input`: source → id → to_node.
+  Status splice_into_link(const std::string& id, const std::string& to_node,
+                          const std::string& to_input);
+  // Renames a node; links, the output, its position and bypass follow.
+  Status rename_node(const std::string& id, const std::string& new_id);
+  // Bypassed nodes pass their first input of each output's type through (see with_bypass).
+  Status set_bypassed(const std::vector<std::string>& ids, bool bypassed);
+  bool bypassed(const std::string& id) const;
+  // Moves every node to the automatic layout (columns by depth).
+  Status auto_layout();
+
+  // ---- Backdrops: labelled frames behind groups of nodes (editor.backdrops) ---------------
+  // A backdrop around the nodes (with a margin and a title bar); returns its index.
+  Result<size_t> add_backdrop(const std::vector<std::string>& around, const std::string& label);
+  Status set_backdrop_label(size_t index, const std::string& label);
+  Status remove_backdrop(size_t index);
+  // Moves the backdrop and the nodes inside it by (dx, dy). Pass a coalesce key for a drag.
+  Status move_backdrop(size_t index, Position by, const std::string& coalesce_key = "");
+
+  // ---- Reroute dots: points a link is drawn through (editor.reroutes) ---------------------
+  Status add_reroute(const std::string& node, const std::string& input, Position at);
+  Status move_reroute(const std::string& node, const std::string& input, size_t index, Position to,
+                      const std::string& coalesce_key = "");
+  Status remove_reroute(const std::string& node, const std::string& input, size_t index);
+
  private:
   NodeState state_of(const std::string& id) const;
   void apply_side(const std::map<std::string, NodeState>& side, const std::optional<PortRef>& out,
@@ -147,10 +201,25 @@ class Document {
   void reset_history();
   void touch() { ++revision_; }
   bool depends_on(const std::string& node, const std::string& upstream) const;
+  // A new node wired after `after`; every reader of it moves to the new node, or only the
+  // link into only_link (node, input).
+  Result<std::string> insert_node(
+      const std::string& type, Position at, const PortRef& after,
+      const std::optional<std::pair<std::string, std::string>>& only_link);
+  // Records the difference between the graph and `edited` (nodes, positions, bypass, output,
+  // settings) as one change.
+  void commit_edit(const std::string& label, const Graph& edited,
+                   const std::string& coalesce_key = "");
+  // editor[key] = value for each key of `value` (null: removed).
+  void apply_extras(const nlohmann::json& value);
+  // The first input of `type_node` that accepts an output of `type`, or "".
+  std::string first_input_of_type(const std::string& node_type, aq_port_type type) const;
 
   const Registry& registry_;
   Graph graph_;
   std::string path_;
+  std::string file_text_;                 // the text last read or written, patched on save
+  std::vector<std::string> auto_placed_;  // nodes placed at open, not by the user
   // The file's modification time when opened or last saved: save() refuses once to overwrite
   // a file someone else changed since, and a second save() is the user's confirmation.
   std::filesystem::file_time_type disk_time_{};
@@ -174,7 +243,40 @@ void write_position(Graph& graph, const std::string& id, const std::optional<Pos
 // Positions for nodes in columns by their longest path from a source (for graphs written by
 // hand), and writing them for the nodes that have none.
 std::map<std::string, Position> automatic_positions(const Graph& graph);
-void place_unplaced_nodes(Graph& graph);
+struct Backdrop {
+  std::string label;
+  Position at;  // top-left, canvas units
+  float width = 0;
+  float height = 0;
+  bool contains(Position p) const {
+    return p.x >= at.x && p.y >= at.y && p.x <= at.x + width && p.y <= at.y + height;
+  }
+};
+// Backdrops live in graph.editor["backdrops"] = [{"label", "rect": [x, y, w, h]}...].
+std::vector<Backdrop> read_backdrops(const Graph& graph);
+void write_backdrops(Graph& graph, const std::vector<Backdrop>& backdrops);
+
+// Reroute dots of the link into node.input, in graph.editor["reroutes"]["node.input"] =
+// {"from": "<source>", "dots": [[x, y]...]}; dots made for a link since relinked are ignored.
+std::vector<Position> read_reroutes(const Graph& graph, const std::string& node,
+                                    const std::string& input);
+void write_reroutes(Graph& graph, const std::string& node, const std::string& input,
+                    const std::vector<Position>& dots);
+
+// Bypass marks live in graph.editor["bypassed"][id] = true.
+bool read_bypassed(const Graph& graph, const std::string& id);
+void write_bypassed(Graph& graph, const std::string& id, bool bypassed);
+// The graph evaluation sees: every link from a bypassed node goes to the source of that node's
+// first input of the same port type (a chain of bypassed nodes is followed); a bypassed node
+// with no such input is left as it is.
+Graph with_bypass(const Graph& graph, const Registry& registry);
+
+// Returns the ids it placed.
+std::vector<std::string> place_unplaced_nodes(Graph& graph);
+
+// A float parameter value that came from a float (an ImGui slider or field) as the shortest
+// decimal that reads back to the same float: 0.30000001192092896 → 0.3. Other values as given.
+nlohmann::json shortest_number(const nlohmann::json& value);
 
 // The JSON shape a parameter value must have, or why `value` does not fit `param`.
 std::string why_bad_param_value(const ParamInfo& param, const nlohmann::json& value);

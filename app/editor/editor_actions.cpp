@@ -78,9 +78,16 @@ Status set_param(EditorState& state, const std::string& node, const std::string&
                  const nlohmann::json& value, bool gesture) {
   Status set =
       state.doc.set_param(node, param, value, gesture ? "param:" + node + "." + param : "");
+  // The value as stored (the shortest decimal of a slider's float), not as the widget held it.
+  nlohmann::json shown = value;
+  if (auto it = state.doc.graph().nodes.find(node); set && it != state.doc.graph().nodes.end()) {
+    if (auto stored = it->second.params.find(param); stored != it->second.params.end()) {
+      shown = stored->second;
+    }
+  }
   report(state, set,
          value.is_null() ? node + "." + param + " reset to its default"
-                         : node + "." + param + " = " + value.dump());
+                         : node + "." + param + " = " + shown.dump());
   return set;
 }
 
@@ -100,7 +107,19 @@ Status delete_selection(EditorState& state) {
 }
 
 Status duplicate_selection(EditorState& state) {
-  auto copies = state.doc.duplicate_nodes({state.selection.begin(), state.selection.end()});
+  // Copies go below the originals, clear of them (Nuke offsets them; overlapping hides them).
+  const Graph& graph = state.doc.graph();
+  float top = 1e30f;
+  float bottom = -1e30f;
+  for (const auto& id : state.selection) {
+    auto node = graph.nodes.find(id);
+    if (node == graph.nodes.end()) continue;
+    Rect rect = node_rect(graph, state.doc.registry(), id);
+    top = std::min(top, rect.min.y);
+    bottom = std::max(bottom, rect.max.y);
+  }
+  const Position offset{30.0f, bottom > top ? bottom - top + 30.0f : 40.0f};
+  auto copies = state.doc.duplicate_nodes({state.selection.begin(), state.selection.end()}, offset);
   if (!copies) {
     report(state, copies.error(), "");
     return copies.error();
@@ -117,6 +136,96 @@ void select(EditorState& state, const std::vector<std::string>& ids, bool add) {
   }
   state.status = std::to_string(state.selection.size()) + " node(s) selected";
   state.status_is_error = false;
+}
+
+void clear_selection(EditorState& state) {
+  state.selection.clear();
+  if (state.status.ends_with("selected")) state.status.clear();
+}
+
+Result<std::string> add_node_at_cursor(EditorState& state, const std::string& type, Position at) {
+  const Graph& graph = state.doc.graph();
+  at = free_spot(graph, state.doc.registry(), type, at);
+  if (state.selection.size() == 1) {
+    const std::string after = *state.selection.begin();
+    const NodeType* after_type = nullptr;
+    if (auto node = graph.nodes.find(after); node != graph.nodes.end()) {
+      after_type = state.doc.registry().find(node->second.type);
+    }
+    if (after_type != nullptr && !after_type->outputs.empty()) {
+      auto inserted =
+          state.doc.insert_node_after(type, at, {after, after_type->outputs.front().name});
+      if (inserted) {
+        state.selection = {*inserted};
+        report(state, Ok{}, "inserted " + *inserted + " after " + after);
+        return inserted;
+      }
+      // A node that cannot take the selected output is added unlinked, as without selection.
+    }
+  }
+  return add_node(state, type, at);
+}
+
+Result<std::string> insert_on_link(EditorState& state, const std::string& type, Position at,
+                                   const std::string& to_node, const std::string& to_input) {
+  auto inserted = state.doc.insert_node_on_link(type, at, to_node, to_input);
+  if (inserted) {
+    state.selection = {*inserted};
+    report(state, Ok{}, "inserted " + *inserted + " on the link into " + to_node + "." + to_input);
+  } else {
+    report(state, inserted.error(), "");
+  }
+  return inserted;
+}
+
+std::string copy_selection(EditorState& state) {
+  if (state.selection.empty()) {
+    report(state, make_error("nothing to copy: select nodes first"), "");
+    return "";
+  }
+  report(state, Ok{}, "copied " + std::to_string(state.selection.size()) + " node(s)");
+  return state.doc.copy_nodes({state.selection.begin(), state.selection.end()});
+}
+
+Status paste(EditorState& state, const std::string& text, std::optional<Position> at) {
+  auto pasted = state.doc.paste_nodes(text, at);
+  if (!pasted) {
+    report(state, pasted.error(), "");
+    return pasted.error();
+  }
+  state.selection = {pasted->begin(), pasted->end()};
+  report(state, Ok{}, "pasted " + std::to_string(pasted->size()) + " node(s)");
+  return Ok{};
+}
+
+Status rename(EditorState& state, const std::string& id, const std::string& new_id) {
+  Status renamed = state.doc.rename_node(id, new_id);
+  if (renamed && state.selection.erase(id)) state.selection.insert(new_id);
+  if (renamed && state.viewed && state.viewed->node == id) state.viewed->node = new_id;
+  report(state, renamed, "renamed " + id + " to " + new_id);
+  return renamed;
+}
+
+Status toggle_bypass(EditorState& state) {
+  std::vector<std::string> ids(state.selection.begin(), state.selection.end());
+  const bool all = !ids.empty() && std::all_of(ids.begin(), ids.end(), [&](const auto& id) {
+    return state.doc.bypassed(id);
+  });
+  Status done = state.doc.set_bypassed(ids, !all);
+  report(state, done, (all ? "enabled " : "bypassed ") + std::to_string(ids.size()) + " node(s)");
+  return done;
+}
+
+Status backdrop_around_selection(EditorState& state, const std::string& label) {
+  auto added = state.doc.add_backdrop({state.selection.begin(), state.selection.end()}, label);
+  report(state, added ? Status(Ok{}) : Status(added.error()), "backdrop '" + label + "' added");
+  return added ? Status(Ok{}) : Status(added.error());
+}
+
+Status auto_layout(EditorState& state) {
+  Status done = state.doc.auto_layout();
+  report(state, done, "laid out " + std::to_string(state.doc.graph().nodes.size()) + " nodes");
+  return done;
 }
 
 Status select_output(EditorState& state, const PortRef& output) {
@@ -179,8 +288,8 @@ Status save(EditorState& state) {
   return saved;
 }
 
-Status save_as(EditorState& state, const std::string& path) {
-  Status saved = state.doc.save_as(path);
+Status save_as(EditorState& state, const std::string& path, bool replace) {
+  Status saved = state.doc.save_as(path, replace);
   report(state, saved, "saved " + path);
   return saved;
 }

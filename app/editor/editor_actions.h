@@ -10,6 +10,7 @@
 
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,26 @@ Status delete_nodes(EditorState& state, const std::vector<std::string>& ids);
 Status delete_selection(EditorState& state);
 Status duplicate_selection(EditorState& state);
 void select(EditorState& state, const std::vector<std::string>& ids, bool add = false);
+// Empties the selection (a click on empty canvas); the status line forgets the selection count.
+void clear_selection(EditorState& state);
+
+// Tab / the add menu: with one node selected, the new node is inserted after it (wired from its
+// first output, its readers moved to the new node); otherwise it is added unlinked. Either way
+// at `at` (the cursor), moved down until it overlaps no other node.
+Result<std::string> add_node_at_cursor(EditorState& state, const std::string& type, Position at);
+// Drops a new node onto the link into `to_node.to_input`.
+Result<std::string> insert_on_link(EditorState& state, const std::string& type, Position at,
+                                   const std::string& to_node, const std::string& to_input);
+// The selection as graph JSON (for the system clipboard); "" when nothing is selected.
+std::string copy_selection(EditorState& state);
+// Pastes graph JSON; the pasted nodes become the selection, their top-left at `at` if given.
+Status paste(EditorState& state, const std::string& text, std::optional<Position> at);
+Status rename(EditorState& state, const std::string& id, const std::string& new_id);
+// Bypasses the selection, or enables it again when every selected node is bypassed.
+Status toggle_bypass(EditorState& state);
+Status auto_layout(EditorState& state);
+// A labelled backdrop around the selection.
+Status backdrop_around_selection(EditorState& state, const std::string& label = "Backdrop");
 
 // The viewer shows `output` (any node's any output); the graph's own output is unchanged.
 Status select_output(EditorState& state, const PortRef& output);
@@ -42,7 +63,8 @@ Status set_graph_output(EditorState& state, const PortRef& output);
 bool undo(EditorState& state);
 bool redo(EditorState& state);
 Status save(EditorState& state);
-Status save_as(EditorState& state, const std::string& path);
+// Refused when `path` is another existing file, unless `replace` (the user confirmed).
+Status save_as(EditorState& state, const std::string& path, bool replace = false);
 Status open(EditorState& state, const std::string& path);
 void new_graph(EditorState& state);
 void set_frame(EditorState& state, int frame);

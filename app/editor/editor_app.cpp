@@ -15,9 +15,12 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <optional>
 #include <system_error>
 #include <vector>
 
@@ -33,6 +36,55 @@ constexpr int kFramesBeforeScreenshot = 3;  // ImGui settles its layout over a c
 
 void* gl_proc(const char* name) {
   return reinterpret_cast<void*>(glfwGetProcAddress(name));
+}
+
+// Key presses as GLFW reports them, in order, with the modifiers of the moment: ImGui 1.86 only
+// sees whether a key is down when a frame starts, so a chord pressed and released in between
+// (a fast ctrl+shift+s) would be lost.
+std::vector<KeyChord>& key_queue() {
+  static std::vector<KeyChord> queue;
+  return queue;
+}
+
+void on_key(GLFWwindow*, int key, int, int action, int mods) {
+  if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+  key_queue().push_back({key, (mods & GLFW_MOD_CONTROL) != 0, (mods & GLFW_MOD_SHIFT) != 0,
+                         (mods & GLFW_MOD_ALT) != 0});
+}
+
+// "ctrl+shift+s" → the chord; nullopt for a name it does not know.
+std::optional<KeyChord> parse_chord(const std::string& text) {
+  KeyChord chord;
+  std::string rest = text;
+  for (;;) {
+    size_t plus = rest.find('+');
+    if (plus == std::string::npos || plus + 1 == rest.size()) break;
+    std::string modifier = rest.substr(0, plus);
+    if (modifier == "ctrl")
+      chord.ctrl = true;
+    else if (modifier == "shift")
+      chord.shift = true;
+    else if (modifier == "alt")
+      chord.alt = true;
+    else
+      return std::nullopt;
+    rest = rest.substr(plus + 1);
+  }
+  static const std::map<std::string, int> kNamed = {{"tab", GLFW_KEY_TAB},
+                                                    {"delete", GLFW_KEY_DELETE},
+                                                    {"space", GLFW_KEY_SPACE},
+                                                    {"f2", GLFW_KEY_F2},
+                                                    {"f5", GLFW_KEY_F5},
+                                                    {"escape", GLFW_KEY_ESCAPE},
+                                                    {"backspace", GLFW_KEY_BACKSPACE}};
+  if (auto named = kNamed.find(rest); named != kNamed.end()) {
+    chord.key = named->second;
+  } else if (rest.size() == 1 && std::isalnum(static_cast<unsigned char>(rest[0]))) {
+    chord.key = std::toupper(static_cast<unsigned char>(rest[0]));  // GLFW_KEY_A == 'A'
+  } else {
+    return std::nullopt;
+  }
+  return chord;
 }
 
 bool is_shader_file(const fs::path& path) {
@@ -72,7 +124,8 @@ EditorApp::EditorApp(const Registry& registry, EditorOptions options)
     : registry_(registry), options_(std::move(options)), document_(registry), state_(document_) {}
 
 EditorApp::~EditorApp() {
-  viewer_.reset();  // GL objects go while the context still exists
+  viewer_.reset();  // joins the evaluation thread; GL objects go while the contexts exist
+  if (worker_window_ != nullptr) glfwDestroyWindow(worker_window_);
   if (window_ != nullptr) {
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
@@ -109,10 +162,49 @@ Status EditorApp::create_window() {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini dropped in the user's folder
   ImGui::StyleColorsDark();
+  load_canvas_fonts();
+  glfwSetKeyCallback(window_, &on_key);  // ImGui's backend chains to it
   ImGui_ImplGlfw_InitForOpenGL(window_, true);
   ImGui_ImplOpenGL3_Init("#version 450 core");
-  viewer_ = std::make_unique<Viewer>(*context_, registry_);
+  // The evaluation thread's context: an invisible window's, sharing textures with this one.
+  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  worker_window_ = glfwCreateWindow(16, 16, "aquarelle evaluation", nullptr, window_);
+  glfwDefaultWindowHints();
+  glfwMakeContextCurrent(window_);
+  GLFWwindow* shared = worker_window_;
+  auto worker = std::make_unique<EvalWorker>(
+      registry_,
+      [shared] {
+        if (shared == nullptr) return false;
+        glfwMakeContextCurrent(shared);
+        return glfwGetCurrentContext() == shared;
+      },
+      [] { glfwMakeContextCurrent(nullptr); }, &gl_proc);
+  viewer_ = std::make_unique<Viewer>(std::move(worker));
   return Ok{};
+}
+
+void EditorApp::load_canvas_fonts() {
+  ImGuiIO& io = ImGui::GetIO();
+  io.Fonts->AddFontDefault();  // the UI's font stays ImGui's own
+  const char* kFontFile = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // fonts-dejavu-core
+  std::error_code error;
+  const bool have_file = fs::exists(kFontFile, error);
+  std::map<float, ImFont*> fonts;
+  for (float size : kTextRasterSizes) {
+    ImFontConfig config;
+    config.OversampleH = 2;
+    config.OversampleV = 1;
+    config.PixelSnapH = true;
+    if (have_file) {
+      fonts[size] =
+          io.Fonts->AddFontFromFileTTF(kFontFile, size, &config, io.Fonts->GetGlyphRangesDefault());
+    } else {
+      config.SizePixels = size;  // ImGui's own font, rasterised at this size
+      fonts[size] = io.Fonts->AddFontDefault(&config);
+    }
+  }
+  canvas_.set_fonts(std::move(fonts));
 }
 
 int EditorApp::run() {
@@ -148,8 +240,29 @@ int EditorApp::run() {
     runner_ = std::make_unique<ScriptRunner>(*read);
   }
   ScriptHooks hooks;
-  hooks.fit = [this] { canvas_.request_fit(); };
+  hooks.fit = [this](bool whole) { canvas_.request_fit(whole); };
   hooks.add_menu = [this](const std::string& filter) { canvas_.request_add_menu(filter); };
+  hooks.key = [this](const std::string& text) -> Status {
+    auto chord = parse_chord(text);
+    if (!chord)
+      return make_error("unknown key chord '" + text + "' (e.g. \"ctrl+shift+s\", \"tab\")");
+    key_queue().push_back(*chord);  // as if pressed and released between two frames
+    return Ok{};
+  };
+  hooks.view = [this](const nlohmann::json& action) -> Status {
+    if (action.contains("backdrop")) canvas_backdrop_ = action.value("backdrop", false);
+    if (action.value("hold_a", false)) {
+      if (!viewer_->has_image()) return make_error("nothing to hold: the viewer shows no image");
+      viewer_->hold_for_wipe();
+    }
+    return Ok{};
+  };
+  hooks.set_clipboard = [](const std::string& text) { ImGui::SetClipboardText(text.c_str()); };
+  hooks.get_clipboard = [] {
+    const char* text = ImGui::GetClipboardText();
+    return std::string(text != nullptr ? text : "");
+  };
+  hooks.shown_frame = [this] { return viewer_->settled() ? viewer_->shown_frame() : -1; };
   hooks.gesture = [this](const nlohmann::json& action) {
     return plan_gesture(action, canvas_.layouts(), canvas_.origin(), canvas_.size());
   };
@@ -159,11 +272,17 @@ int EditorApp::run() {
   int frames_since_script = -1;
   bool scripted = !options_.script.empty() || !options_.screenshot.empty() || options_.quit;
   double last_time = glfwGetTime();
+  double last_frame_start = last_time;
   while (running_) {
     bool idle = !state_.playing && !scripted && pending_ == Pending::kNone &&
                 !(viewer_ && viewer_->refine_pending());
     if (idle) {
       glfwWaitEventsTimeout(0.25);  // wake for autosave and hot reload polls
+    } else if (const double left = 1.0 / 60.0 - (glfwGetTime() - last_frame_start);
+               !scripted && left > 0.0) {
+      // Busy (evaluating, playing): input is answered at once, otherwise at most 60 frames a
+      // second, so a spinning UI does not take the CPU the evaluation thread needs.
+      glfwWaitEventsTimeout(left);
     } else {
       glfwPollEvents();
     }
@@ -175,6 +294,7 @@ int EditorApp::run() {
     advance_time(now - last_time);
     last_time = now;
 
+    const bool evaluating = viewer_->busy();
     frame();
 
     // The script starts once the first frame has laid out the canvas, then advances a step per
@@ -190,7 +310,10 @@ int EditorApp::run() {
         frames_since_script = 0;
       }
     }
-    if (frames_since_script >= 0) ++frames_since_script;
+    // The screenshot waits for the image of the last edit (evaluated on the worker).
+    if (frames_since_script >= 0 && (viewer_->settled() || frames_since_script < 1)) {
+      ++frames_since_script;
+    }
     if (frames_since_script == kFramesBeforeScreenshot) {
       if (!options_.screenshot.empty()) {
         Status shot = write_screenshot(options_.screenshot);
@@ -203,6 +326,9 @@ int EditorApp::run() {
     }
     glfwSwapBuffers(window_);
     ++frame_index;
+    const double frame_end = glfwGetTime();
+    if (frame_index > 1) frame_stats_.add((frame_end - last_frame_start) * 1000.0, evaluating);
+    last_frame_start = frame_end;
 
     if (!scripted && now - last_autosave_ > kAutosaveSeconds) {
       last_autosave_ = now;
@@ -214,6 +340,7 @@ int EditorApp::run() {
       poll_hot_reload();
     }
   }
+  if (scripted) std::fprintf(stderr, "aquarelle edit: %s\n", frame_stats_.summary().c_str());
   if (!viewer_->error().empty() && options_.quit) {
     std::fprintf(stderr, "aquarelle edit: viewer: %s\n", viewer_->error().c_str());
   }
@@ -229,6 +356,8 @@ void EditorApp::advance_time(double seconds) {
   play_accumulator_ += seconds;
   double frame_time = 1.0 / std::max(settings.fps, 1e-3);
   if (play_accumulator_ < frame_time) return;
+  // The next frame once the current one is on screen: playback shows every frame.
+  if (!viewer_->settled()) return;
   // When evaluation is slower than real time, show the next frame rather than skipping ahead.
   play_accumulator_ = 0;
   int next = state_.frame + 1;
@@ -239,7 +368,10 @@ void EditorApp::advance_time(double seconds) {
 void EditorApp::update_feedback() {
   feedback_.error = viewer_->error();
   feedback_.error_node = viewer_->error_node();
+  // A node that failed shows "failed", not the time of an older run.
+  if (!feedback_.error_node.empty()) feedback_.timings.erase(feedback_.error_node);
   for (const auto& timing : viewer_->timings()) {
+    if (timing.node == feedback_.error_node) continue;
     auto known = feedback_.timings.find(timing.node);
     if (timing.cached && known != feedback_.timings.end()) {
       known->second.cached = true;  // keep the time it took when it last ran
@@ -269,6 +401,8 @@ void EditorApp::frame() {
     mouse_frames_.erase(mouse_frames_.begin());
   }
   ImGui::NewFrame();
+  chords_ = std::move(key_queue());
+  key_queue().clear();
   handle_shortcuts();
   draw_menu_bar();
 
@@ -287,7 +421,13 @@ void EditorApp::frame() {
 
   ImGui::BeginChild("##canvas", ImVec2(canvas_width, body_height), true,
                     ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
-  canvas_.draw(state_, feedback_);
+  if (canvas_backdrop_) {
+    canvas_.set_backdrop_image(viewer_->display_texture(), viewer_->display_width(),
+                               viewer_->display_height());
+  } else {
+    canvas_.set_backdrop_image(0, 0, 0);
+  }
+  canvas_.draw(state_, feedback_, chords_);
   ImGui::EndChild();
   ImGui::SameLine();
   ImGui::BeginGroup();
@@ -318,31 +458,44 @@ void EditorApp::frame() {
 }
 
 void EditorApp::handle_shortcuts() {
-  ImGuiIO& io = ImGui::GetIO();
-  if (io.WantTextInput || !io.KeyCtrl) {
-    if (!io.WantTextInput && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false)) {
-      state_.playing = !state_.playing;
+  const bool typing = ImGui::GetIO().WantTextInput;
+  for (const KeyChord& chord : chords_) {
+    if (!chord.ctrl) {
+      if (typing) continue;
+      if (chord.key == GLFW_KEY_SPACE) state_.playing = !state_.playing;
+      if (chord.key == GLFW_KEY_F5) {
+        viewer_->clear_caches();
+        viewer_->update(state_, /*force=*/true);
+      }
+      continue;
     }
-    if (!io.WantTextInput && ImGui::IsKeyPressed(GLFW_KEY_F5, false)) {
-      viewer_->evaluator().clear();
-      viewer_->update(state_, /*force=*/true);
+    switch (chord.key) {
+      case GLFW_KEY_Z:
+        chord.shift ? (void)actions::redo(state_) : (void)actions::undo(state_);
+        break;
+      case GLFW_KEY_Y:
+        actions::redo(state_);
+        break;
+      case GLFW_KEY_S:
+        if (chord.shift) {
+          file_dialog_.open("Save graph as", document_.path());
+        } else {
+          save_or_save_as();
+        }
+        break;
+      case GLFW_KEY_O:
+        request(Pending::kOpen);
+        break;
+      case GLFW_KEY_N:
+        request(Pending::kNew);
+        break;
+      case GLFW_KEY_Q:
+        request(Pending::kQuit);
+        break;
+      default:
+        break;
     }
-    return;
   }
-  if (ImGui::IsKeyPressed(GLFW_KEY_Z)) {
-    io.KeyShift ? actions::redo(state_) : actions::undo(state_);
-  }
-  if (ImGui::IsKeyPressed(GLFW_KEY_Y)) actions::redo(state_);
-  if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) {
-    if (io.KeyShift) {
-      file_dialog_.open("Save graph as", document_.path());
-    } else {
-      save_or_save_as();
-    }
-  }
-  if (ImGui::IsKeyPressed(GLFW_KEY_O, false)) request(Pending::kOpen);
-  if (ImGui::IsKeyPressed(GLFW_KEY_N, false)) request(Pending::kNew);
-  if (ImGui::IsKeyPressed(GLFW_KEY_Q, false)) request(Pending::kQuit);
 }
 
 void EditorApp::save_or_save_as() {
@@ -379,23 +532,39 @@ void EditorApp::draw_menu_bar() {
     if (ImGui::MenuItem("Duplicate", "Ctrl+D", false, any))
       (void)actions::duplicate_selection(state_);
     if (ImGui::MenuItem("Delete", "Del", false, any)) (void)actions::delete_selection(state_);
+    if (ImGui::MenuItem("Copy", "Ctrl+C", false, any)) {
+      std::string copied = actions::copy_selection(state_);
+      if (!copied.empty()) ImGui::SetClipboardText(copied.c_str());
+    }
+    if (ImGui::MenuItem("Paste", "Ctrl+V")) {
+      const char* text = ImGui::GetClipboardText();
+      (void)actions::paste(state_, text != nullptr ? text : "", std::nullopt);
+    }
+    if (ImGui::MenuItem("Bypass / enable", "D", false, any)) (void)actions::toggle_bypass(state_);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
     if (ImGui::MenuItem("Fit graph", "F")) canvas_.request_fit();
-    if (ImGui::MenuItem("Zoom 1:1", "1")) state_.canvas.zoom = 1.0f;
+    if (ImGui::MenuItem("Show whole graph")) canvas_.request_fit(/*whole=*/true);
+    if (ImGui::MenuItem("Zoom 1:1", "1")) {
+      Vec2 centre{canvas_.origin().x + canvas_.size().x * 0.5f,
+                  canvas_.origin().y + canvas_.size().y * 0.5f};
+      state_.canvas.zoom_to(canvas_.origin(), centre, 1.0f);
+    }
+    if (ImGui::MenuItem("Auto-layout", "L")) (void)actions::auto_layout(state_);
+    ImGui::MenuItem("Viewer image behind nodes", nullptr, &canvas_backdrop_);
     if (ImGui::MenuItem("Next output", "C")) actions::cycle_output(state_, +1);
     if (ImGui::MenuItem("Graph output")) state_.viewed.reset();
     ImGui::Separator();
     if (ImGui::MenuItem("Shader hot reload", nullptr, &hot_reload_)) {
-      viewer_->evaluator().set_shader_hot_reload(hot_reload_);
-      viewer_->evaluator().clear();
+      viewer_->set_shader_hot_reload(hot_reload_);
+      viewer_->clear_caches();
       newest_shader_ = {};
       last_reload_poll_ = 0;
       viewer_->update(state_, /*force=*/true);
     }
     if (ImGui::MenuItem("Reload shaders now", "F5")) {
-      viewer_->evaluator().clear();
+      viewer_->clear_caches();
       viewer_->update(state_, /*force=*/true);
     }
     ImGui::EndMenu();
@@ -414,22 +583,42 @@ void EditorApp::draw_time_bar() {
   if (ImGui::ArrowButton("##next", ImGuiDir_Right)) actions::set_frame(state_, state_.frame + 1);
   ImGui::SameLine();
   int frame = state_.frame;
-  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 260);
+  double seconds = (state_.frame - settings.first_frame) / std::max(settings.fps, 1e-3);
+  const double ui_ms = frame_stats_.recent_ms();
+  char timing[160];
+  std::snprintf(
+      timing, sizeof timing, "t = %.2f s  %.0f fps  eval %.1f ms%s  UI %.1f ms (%.0f fps)", seconds,
+      settings.fps, viewer_->last_evaluation_ms(), viewer_->showing_draft() ? " (draft)" : "",
+      ui_ms, ui_ms > 0 ? 1000.0 / ui_ms : 0.0);
+  // The slider takes what the timing text leaves, so the text is never cut by the window edge.
+  ImGui::SetNextItemWidth(std::max(ImGui::GetContentRegionAvail().x -
+                                       ImGui::CalcTextSize(timing).x -
+                                       2 * ImGui::GetStyle().ItemSpacing.x,
+                                   80.0f));
   if (ImGui::SliderInt("##frame", &frame, settings.first_frame,
                        std::max(settings.first_frame, settings.last_frame), "frame %d")) {
     actions::set_frame(state_, frame);
   }
   ImGui::SameLine();
-  double seconds = (state_.frame - settings.first_frame) / std::max(settings.fps, 1e-3);
-  ImGui::Text("t = %.2f s  %.0f fps  eval %.1f ms%s", seconds, settings.fps,
-              viewer_->last_evaluation_ms(),
-              viewer_->refine_pending() ? " (draft while editing)" : "");
-  // Status line.
+  ImGui::TextUnformatted(timing);
+  // Status line: the file, then the last action's result cut to the width left (the whole
+  // text on hover), so nothing is clipped by the window edge.
   ImGui::TextDisabled("%s%s", document_.path().empty() ? "(untitled)" : document_.path().c_str(),
                       document_.dirty() ? " *" : "");
   ImGui::SameLine();
   ImVec4 colour = state_.status_is_error ? ImVec4(1, 0.45f, 0.4f, 1) : ImVec4(0.7f, 0.85f, 0.7f, 1);
-  ImGui::TextColored(colour, "%s", state_.status.c_str());
+  std::string status = state_.status.substr(0, state_.status.find('\n'));
+  const float room = ImGui::GetContentRegionAvail().x;
+  if (ImGui::CalcTextSize(status.c_str()).x > room) {
+    while (!status.empty() && ImGui::CalcTextSize((status + "...").c_str()).x > room) {
+      status.pop_back();
+    }
+    status += "...";
+  }
+  ImGui::TextColored(colour, "%s", status.c_str());
+  if (ImGui::IsItemHovered() && status != state_.status) {
+    ImGui::SetTooltip("%s", state_.status.c_str());
+  }
 }
 
 void EditorApp::request(Pending pending) {
@@ -510,6 +699,25 @@ void EditorApp::draw_modals() {
     ImGui::EndPopup();
   }
 
+  if (ImGui::BeginPopupModal("Replace file?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("%s exists already.\nReplace it with this graph?", replace_path_.c_str());
+    if (ImGui::Button("Replace")) {
+      ImGui::CloseCurrentPopup();
+      if (actions::save_as(state_, replace_path_, /*replace=*/true) && save_as_then_continue_) {
+        perform(pending_);
+      }
+      save_as_then_continue_ = false;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) {
+      ImGui::CloseCurrentPopup();
+      actions::report(state_, Ok{}, "not saved: " + replace_path_ + " kept as it was");
+      save_as_then_continue_ = false;
+      pending_ = Pending::kNone;
+    }
+    ImGui::EndPopup();
+  }
+
   std::string chosen;
   std::string title = file_dialog_.title();
   if (file_dialog_.draw(&chosen)) {
@@ -518,6 +726,10 @@ void EditorApp::draw_modals() {
         canvas_.request_fit();
         if (document_.has_recovery()) ask_recovery_ = true;
       }
+    } else if (document_.would_replace(chosen)) {
+      replace_path_ = chosen;  // asked below; the pending action waits for the answer
+      ImGui::OpenPopup("Replace file?");
+      return;
     } else if (actions::save_as(state_, chosen) && save_as_then_continue_) {
       perform(pending_);
     }
@@ -553,7 +765,7 @@ void EditorApp::poll_hot_reload() {
   }
   if (newest > newest_shader_) {
     newest_shader_ = newest;
-    viewer_->evaluator().clear();
+    viewer_->clear_caches();
     viewer_->update(state_, /*force=*/true);
     actions::report(state_, Ok{}, "shaders reloaded");
   }

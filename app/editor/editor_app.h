@@ -2,7 +2,8 @@
 // ImGui on top, and the frame loop that lays out the menu bar, the canvas, the viewer, the
 // parameter panel, the time bar and the modal prompts (unsaved changes, crash recovery).
 //
-//   frame: poll events ─► advance time ─► viewer.update (evaluate if anything changed)
+//   frame: poll events ─► advance time ─► viewer.update (take the worker's finished image; ask
+//          for a new one if what it depends on changed)
 //          ─► ImGui: menus, canvas, viewer, parameters, time bar ─► render ─► [screenshot] ─► swap
 #pragma once
 
@@ -10,6 +11,7 @@
 #include "document.h"
 #include "editor_state.h"
 #include "file_dialog.h"
+#include "frame_stats.h"
 #include "param_panel.h"
 #include "script.h"
 #include "viewer.h"
@@ -57,6 +59,7 @@ class EditorApp {
   void draw_time_bar();
   void draw_modals();
   void handle_shortcuts();
+  void load_canvas_fonts();
   void advance_time(double seconds);
   void update_feedback();
   void poll_hot_reload();
@@ -72,6 +75,10 @@ class EditorApp {
   Document document_;
   EditorState state_;
   GLFWwindow* window_ = nullptr;
+  GLFWwindow* worker_window_ = nullptr;  // invisible; its context is the evaluation thread's
+  FrameStats frame_stats_;
+  std::vector<KeyChord> chords_;  // this frame's key presses
+  bool canvas_backdrop_ = false;  // View > Viewer image behind nodes
   std::unique_ptr<GlContext> context_;
   std::unique_ptr<Viewer> viewer_;
   Canvas canvas_;
@@ -85,6 +92,7 @@ class EditorApp {
   bool ask_unsaved_ = false;
   bool ask_recovery_ = false;
   bool save_as_then_continue_ = false;
+  std::string replace_path_;  // Save As named an existing file: asking before replacing it
   bool running_ = true;
   double play_accumulator_ = 0;
   double last_autosave_ = 0;

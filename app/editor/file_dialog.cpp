@@ -7,16 +7,49 @@
 #include <algorithm>
 #include <filesystem>
 #include <system_error>
-#include <vector>
 
 namespace aq::editor {
 
 namespace fs = std::filesystem;
 
-void FileDialog::open(const std::string& title, const std::string& path) {
-  title_ = title;
+std::vector<FolderEntry> list_folder(const std::string& folder,
+                                     const std::vector<std::string>& extensions) {
+  std::vector<FolderEntry> entries;
   std::error_code error;
-  path_ = path.empty() ? fs::current_path(error).string() + "/" : path;
+  for (const auto& entry : fs::directory_iterator(folder.empty() ? "." : folder, error)) {
+    std::string name = entry.path().filename().string();
+    if (name.empty() || name[0] == '.') continue;
+    const bool is_folder = entry.is_directory(error);
+    if (!is_folder) {
+      if (name.ends_with(".autosave.json")) continue;  // side files, offered at open
+      const bool wanted =
+          extensions.empty() || std::any_of(extensions.begin(), extensions.end(),
+                                            [&](const auto& ext) { return name.ends_with(ext); });
+      if (!wanted) continue;
+    }
+    entries.push_back({name, is_folder});
+  }
+  std::sort(entries.begin(), entries.end(), [](const FolderEntry& a, const FolderEntry& b) {
+    if (a.is_folder != b.is_folder) return a.is_folder;
+    return a.name < b.name;
+  });
+  return entries;
+}
+
+void FileDialog::open(const std::string& title, const std::string& path,
+                      std::vector<std::string> extensions) {
+  title_ = title;
+  extensions_ = std::move(extensions);
+  all_files_ = false;
+  std::error_code error;
+  fs::path start = path.empty() ? fs::current_path(error) : fs::absolute(path, error);
+  if (fs::is_directory(start, error)) {
+    folder_ = start.string();
+    path_ = "";
+  } else {
+    folder_ = start.parent_path().string();
+    path_ = start.filename().string();
+  }
   pending_open_ = true;
 }
 
@@ -26,45 +59,65 @@ bool FileDialog::draw(std::string* chosen) {
     ImGui::OpenPopup(title_.c_str());
     pending_open_ = false;
   }
-  ImGui::SetNextWindowSize(ImVec2(560, 420), ImGuiCond_Appearing);
+  ImGui::SetNextWindowSize(ImVec2(600, 440), ImGuiCond_Appearing);
   if (!ImGui::BeginPopupModal(title_.c_str())) return false;
   bool accepted = false;
-  ImGui::SetNextItemWidth(-1);
-  if (ImGui::InputText("##path", &path_, ImGuiInputTextFlags_EnterReturnsTrue)) accepted = true;
-
   std::error_code error;
-  fs::path folder =
-      fs::is_directory(path_, error) ? fs::path(path_) : fs::path(path_).parent_path();
-  if (folder.empty()) folder = ".";
-  std::vector<fs::directory_entry> entries;
-  for (const auto& entry : fs::directory_iterator(folder, error)) entries.push_back(entry);
-  std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
-    if (a.is_directory() != b.is_directory()) return a.is_directory();
-    return a.path().filename() < b.path().filename();
-  });
+  ImGui::TextDisabled("folder");
+  ImGui::SameLine();
+  ImGui::TextUnformatted(folder_.c_str());
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::InputTextWithHint("##name", "file name", &path_,
+                               ImGuiInputTextFlags_EnterReturnsTrue)) {
+    accepted = true;
+  }
+
+  const auto entries = list_folder(folder_, all_files_ ? std::vector<std::string>{} : extensions_);
+  std::string enter;  // a folder to go into after the list is drawn
   ImGui::BeginChild("##entries", ImVec2(0, -ImGui::GetFrameHeightWithSpacing()), true);
-  if (ImGui::Selectable("../")) path_ = fs::absolute(folder, error).parent_path().string() + "/";
+  if (ImGui::Selectable("../", false, ImGuiSelectableFlags_AllowDoubleClick) &&
+      ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
+    enter = fs::path(folder_).parent_path().string();
+  }
   for (const auto& entry : entries) {
-    std::string name = entry.path().filename().string();
-    if (name.empty() || name[0] == '.') continue;
-    bool is_folder = entry.is_directory(error);
-    if (ImGui::Selectable((name + (is_folder ? "/" : "")).c_str(), false,
-                          ImGuiSelectableFlags_AllowDoubleClick)) {
-      path_ = entry.path().string() + (is_folder ? "/" : "");
-      if (!is_folder && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) accepted = true;
+    const std::string label = entry.name + (entry.is_folder ? "/" : "");
+    const bool selected = !entry.is_folder && entry.name == path_;
+    if (ImGui::Selectable(label.c_str(), selected, ImGuiSelectableFlags_AllowDoubleClick)) {
+      const bool twice = ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
+      if (entry.is_folder) {
+        // One click only selects, so the list does not change under a double-click's second click.
+        if (twice) enter = (fs::path(folder_) / entry.name).string();
+      } else {
+        path_ = entry.name;
+        if (twice) accepted = true;
+      }
     }
   }
+  if (entries.empty()) ImGui::TextDisabled("no graph files here");
   ImGui::EndChild();
+  if (!enter.empty()) {
+    folder_ = fs::weakly_canonical(enter, error).string();
+  }
   if (ImGui::Button("OK")) accepted = true;
   ImGui::SameLine();
   bool cancelled =
       ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape));
-  if (accepted && !fs::is_directory(path_, error)) {
-    *chosen = path_;
+  if (!extensions_.empty()) {
+    ImGui::SameLine();
+    ImGui::Checkbox("all files", &all_files_);
+  }
+  std::string full = fs::path(path_).is_absolute() ? path_ : (fs::path(folder_) / path_).string();
+  if (accepted && fs::is_directory(full, error)) {
+    folder_ = fs::weakly_canonical(full, error).string();  // a folder typed: go there
+    path_.clear();
+    accepted = false;
+  } else if (accepted && path_.empty()) {
+    accepted = false;
+  }
+  if (accepted) {
+    *chosen = full;
     ImGui::CloseCurrentPopup();
     title_.clear();
-  } else if (accepted) {
-    accepted = false;  // a folder: keep browsing
   }
   if (cancelled) {
     ImGui::CloseCurrentPopup();

@@ -151,7 +151,7 @@ void ParamPanel::draw_node(EditorState& state, const std::string& id,
           if (ImGui::Button("...")) {
             file_target_ = id + "\n" + param.name;
             fs::path start = fs::path(state.doc.path()).parent_path() / text;
-            file_dialog_.open("Choose a file for " + id + "." + param.name, start.string());
+            file_dialog_.open("Choose a file for " + id + "." + param.name, start.string(), {});
           }
           ImGui::SameLine();
         }

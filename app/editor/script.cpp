@@ -3,6 +3,7 @@
 
 #include "editor_actions.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -49,6 +50,12 @@ std::vector<std::string> nodes_field(const nlohmann::json& action) {
   return ids;
 }
 
+// Without a window (run_script) copy and paste go through this stand-in for the clipboard.
+std::string& clipboard() {
+  static std::string text;
+  return text;
+}
+
 Status status_of(bool done, const std::string& why) {
   return done ? Status(Ok{}) : Status(make_error(why));
 }
@@ -91,8 +98,9 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
   if (kind == "undo") return status_of(actions::undo(state), "nothing to undo");
   if (kind == "redo") return status_of(actions::redo(state), "nothing to redo");
   if (kind == "save") {
-    return action.contains("path") ? actions::save_as(state, text_field(action, "path"))
-                                   : actions::save(state);
+    return action.contains("path")
+               ? actions::save_as(state, text_field(action, "path"), action.value("replace", false))
+               : actions::save(state);
   }
   if (kind == "frame") {
     if (!action.contains("frame") || !action["frame"].is_number_integer()) {
@@ -105,14 +113,68 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
     if (hooks.add_menu) hooks.add_menu(action.value("filter", std::string()));
     return Ok{};
   }
+  if (kind == "key") {
+    if (!hooks.key) throw std::invalid_argument("key presses need the editor window");
+    return hooks.key(text_field(action, "chord"));
+  }
+  if (kind == "copy") {
+    std::string copied = actions::copy_selection(state);
+    if (copied.empty()) return make_error(state.status);
+    clipboard() = copied;
+    if (hooks.set_clipboard) hooks.set_clipboard(copied);
+    return Ok{};
+  }
+  if (kind == "paste") {
+    std::string text = hooks.get_clipboard ? hooks.get_clipboard() : clipboard();
+    std::optional<Position> at;
+    if (action.contains("at")) at = position_field(action, "at", {});
+    return actions::paste(state, text, at);
+  }
+  if (kind == "rename") {
+    return actions::rename(state, text_field(action, "node"), text_field(action, "to"));
+  }
+  if (kind == "bypass") {
+    actions::select(state, nodes_field(action));
+    return actions::toggle_bypass(state);
+  }
+  if (kind == "auto_layout") return actions::auto_layout(state);
+  if (kind == "dot") {
+    PortRef to = port_field(action, "to");
+    Status added = state.doc.add_reroute(to.node, to.port, position_field(action, "at", {0, 0}));
+    actions::report(state, added, "added a dot to the link into " + to.str());
+    return added;
+  }
+  if (kind == "view") {
+    if (!hooks.view) throw std::invalid_argument("view options need the editor window");
+    return hooks.view(action);
+  }
+  if (kind == "backdrop") {
+    actions::select(state, nodes_field(action));
+    return actions::backdrop_around_selection(state,
+                                              action.value("label", std::string("Backdrop")));
+  }
+  if (kind == "insert") {
+    Position at = position_field(action, "at", {0, 0});
+    std::string type = text_field(action, "type");
+    if (action.contains("on")) {
+      PortRef on = port_field(action, "on");
+      auto inserted = actions::insert_on_link(state, type, at, on.node, on.port);
+      return inserted ? Status(Ok{}) : Status(inserted.error());
+    }
+    PortRef after = port_field(action, "after");
+    actions::select(state, {after.node});
+    auto inserted = actions::add_node_at_cursor(state, type, at);
+    return inserted ? Status(Ok{}) : Status(inserted.error());
+  }
   if (kind == "fit") {
-    if (hooks.fit) hooks.fit();
+    if (hooks.fit) hooks.fit(action.value("whole", false));
     return Ok{};
   }
   throw std::invalid_argument(
       "unknown action '" + kind +
       "' (add_node, link, unlink, set_param, move, select_output, "
-      "set_output, delete, duplicate, select, undo, redo, save, frame, fit, add_menu)");
+      "set_output, delete, duplicate, select, undo, redo, save, frame, fit, add_menu, play, key, "
+      "copy, paste, rename, bypass, auto_layout, insert, backdrop, wait, view, dot)");
 }
 
 }  // namespace
@@ -161,6 +223,19 @@ Status ScriptRunner::judge(EditorState& state, const Status& outcome) {
 
 Status ScriptRunner::step(EditorState& state, const ScriptHooks& hooks,
                           std::vector<MouseFrame>* gesture_frames) {
+  if (wait_frames_ > 0) {
+    --wait_frames_;
+    return Ok{};
+  }
+  if (play_until_ >= 0) {
+    // Playback runs at the editor's own pace; the action ends once that frame is on screen.
+    const int shown = hooks.shown_frame ? hooks.shown_frame() : play_until_;
+    if (shown < play_until_ && state.playing) return Ok{};
+    state.playing = false;
+    play_until_ = -1;
+    state.status = "played to frame " + std::to_string(state.frame);
+    if (Status judged = judge(state, Ok{}); !judged) return judged;
+  }
   if (waiting_) {
     if (!gesture_frames->empty()) return Ok{};  // still playing
     waiting_ = false;
@@ -194,6 +269,27 @@ Status ScriptRunner::step(EditorState& state, const ScriptHooks& hooks,
       ++next_;
       return Ok{};
     }
+    if (action.value("do", std::string()) == "wait") {
+      wait_frames_ = std::max(action.value("frames", 1), 0);
+      ++next_;
+      state.status = "waited " + std::to_string(wait_frames_) + " frames";
+      if (Status judged = judge(state, Ok{}); !judged) return judged;
+      return Ok{};
+    }
+    if (action.value("do", std::string()) == "play") {
+      const int frames = action.value("frames", 1);
+      const Settings& settings = state.doc.graph().settings;
+      play_until_ = std::min(state.frame + std::max(frames, 1), settings.last_frame);
+      ++next_;
+      if (!hooks.shown_frame) {  // no window: the frame is simply set
+        state.frame = play_until_;
+        play_until_ = -1;
+        if (Status judged = judge(state, Ok{}); !judged) return judged;
+        continue;
+      }
+      state.playing = true;
+      return Ok{};
+    }
     Status outcome = Ok{};
     state.status.clear();
     try {
@@ -204,6 +300,8 @@ Status ScriptRunner::step(EditorState& state, const ScriptHooks& hooks,
     ++next_;
     laid_out_ = false;
     if (Status judged = judge(state, outcome); !judged) return judged;
+    // A key press is handled by the next frame: the following actions wait for it.
+    if (action.value("do", std::string()) == "key") return Ok{};
   }
   return Ok{};
 }

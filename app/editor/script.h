@@ -20,9 +20,14 @@
 //   {"do": "wheel", "steps": 2}                                     zoom at the canvas centre
 //
 // Also: "delete" / "duplicate" / "select" {"nodes": [...]}, "set_output" {"output"},
-// "frame" {"frame"}, "fit", "add_menu" {"filter"} (opens the add-node menu, for screenshots). An
-// action whose outcome differs from "expect" ("ok" by default, or "refused") stops the script with
-// a message naming the action.
+// "frame" {"frame"}, "fit" {"whole": true for every node however small}, "add_menu" {"filter"}
+// (opens the add-node menu, for screenshots), "key" {"chord": "ctrl+d"} (a key press as if released
+// before the next frame: the canvas keys act with the mouse over the canvas), "copy", "paste"
+// {"at"}, "rename" {"node", "to"}, "bypass" {"nodes"}, "auto_layout", "backdrop" {"nodes",
+// "label"}, "insert" {"type", "after": "node.port" | "on": "node.input", "at"}, "dot" {"to":
+// "node.input", "at"}, "wait" {"frames": N} (lets N UI frames pass), "play" {"frames": N} (plays
+// until N frames later is on screen, at the editor's own pace). An action whose outcome differs
+// from "expect" ("ok" by default, or "refused") stops the script with a message naming the action.
 #pragma once
 
 #include "editor_state.h"
@@ -47,8 +52,18 @@ struct MouseFrame {
 };
 
 struct ScriptHooks {
-  std::function<void()> fit;                         // View > Fit, which needs the canvas
+  std::function<void(bool whole)> fit;  // View > Fit (whole: every node, however small)
   std::function<void(const std::string&)> add_menu;  // opens the add-node menu (screenshots)
+  // The frame of the image on screen once the viewer is settled, -1 while it evaluates.
+  std::function<int()> shown_frame;
+  // Presses a key chord ("ctrl+shift+s") as if pressed and released between two frames.
+  std::function<Status(const std::string&)> key;
+  // The system clipboard (the window's); without them a stand-in inside the script runner.
+  std::function<void(const std::string&)> set_clipboard;
+  std::function<std::string()> get_clipboard;
+  // View options: {"backdrop": bool} shows the viewer's image behind the nodes,
+  // {"hold_a": true} keeps the viewer's picture as A of the wipe compare.
+  std::function<Status(const nlohmann::json&)> view;
   // Turns a mouse action into input frames from the canvas's current layout; an error when a
   // node or port it names is not on the canvas.
   std::function<Result<std::vector<MouseFrame>>(const nlohmann::json&)> gesture;
@@ -66,7 +81,9 @@ class ScriptRunner {
   // Returns an error at the first unexpected outcome; finished() tells when all ran.
   Status step(EditorState& state, const ScriptHooks& hooks,
               std::vector<MouseFrame>* gesture_frames);
-  bool finished() const { return next_ >= actions_.size() && !waiting_; }
+  bool finished() const {
+    return next_ >= actions_.size() && !waiting_ && play_until_ < 0 && wait_frames_ == 0;
+  }
 
  private:
   Status judge(EditorState& state, const Status& outcome);
@@ -76,6 +93,8 @@ class ScriptRunner {
   bool waiting_ = false;    // a gesture is being played
   int refused_before_ = 0;  // state.refused_count when the gesture began
   bool laid_out_ = false;   // a frame was drawn since the last ordinary action
+  int play_until_ = -1;     // a "play" action waits for this frame to be shown
+  int wait_frames_ = 0;     // a "wait" action lets this many UI frames pass
 };
 
 // Runs every action in order without mouse actions (tests, or a script with no window).

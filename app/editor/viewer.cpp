@@ -2,6 +2,7 @@
 #include "viewer.h"
 
 #include "editor_actions.h"
+#include "eval_policy.h"
 
 #include <glad/gl.h>
 #include <imgui.h>
@@ -118,13 +119,15 @@ float linear_to_srgb(float c) {
   return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
-Viewer::Viewer(GlContext& context, const Registry& registry) : evaluator_(context, registry) {}
+Viewer::Viewer(std::unique_ptr<EvalWorker> worker) : worker_(std::move(worker)) {}
 
-Viewer::~Viewer() = default;
+Viewer::~Viewer() {
+  worker_.reset();  // joins the thread; an image it made and nobody took is deleted there
+}
 
 Viewer::Mapping Viewer::current_mapping() const {
-  if (!result_) return Mapping::kColor;
-  const aq_image& image = result_->image;
+  if (!has_image_) return Mapping::kColor;
+  const aq_image& image = image_;
   if (image.format == AQ_FORMAT_R32UI) return Mapping::kId;  // only an id mapping can read it
   if (mapping_choice_ == 1) return Mapping::kColor;
   if (mapping_choice_ == 2) return Mapping::kDepth;
@@ -137,69 +140,93 @@ Viewer::Mapping Viewer::current_mapping() const {
   return is_single_channel_float(image.format) ? Mapping::kDepth : Mapping::kColor;
 }
 
-void Viewer::update(const EditorState& state, bool force) {
-  using Clock = std::chrono::steady_clock;
-  std::optional<PortRef> output = state.shown_output();
-  const bool edited =
-      state.doc.revision() != evaluated_revision_ || state.frame != evaluated_frame_;
-  const auto now = Clock::now();
-  if (edited) last_edit_ = now;
-  // A draft shown during an interactive edit is refined once the edits pause.
-  const bool refine = showing_draft_ && !edited && now - last_edit_ > kRefineAfter;
-  bool changed = force || edited || output != evaluated_output_ || refine;
-  if (!changed) return;
-  // Interactive edits (slider drags, playback) of a graph slower than a UI frame evaluate at
-  // draft quality, a quarter of the size through the proxy mechanism, and refine when idle.
-  const bool draft = edited && !force && output == evaluated_output_ &&
-                     last_full_ms_ > ui_frame_budget_ms_ &&
-                     state.doc.graph().settings.quality != "draft";
-  evaluated_revision_ = state.doc.revision();
-  evaluated_output_ = output;
-  evaluated_frame_ = state.frame;
-  display_stale_ = true;
-  if (!output) {
-    result_.reset();
-    error_ = state.doc.graph().nodes.empty() ? "" : "nothing to view: click an output port";
-    error_node_.clear();
-    return;
+void Viewer::take_finished() {
+  std::optional<EvalFinished> done = worker_->take_finished();
+  if (!done) return;
+  ++finished_count_;
+  Wanted wanted;
+  if (auto asked = in_flight_.find(done->tag); asked != in_flight_.end()) {
+    wanted = asked->second;
+    // Everything asked before this one was superseded (the worker keeps only the newest).
+    in_flight_.erase(in_flight_.begin(), std::next(asked));
   }
-  EvalOptions options;
-  options.frame = state.frame;
-  options.retain_outputs = true;
-  options.measure_gpu_time = true;
-  options.finish_each_node = true;  // per-node times on the canvas must be each node's own
-  auto start = std::chrono::steady_clock::now();
-  Result<TextureRef> evaluated = Error{};
-  if (preview_divisor_ > 1 || draft) {
-    // A throwaway copy for this evaluation only; edits still go to the one document graph.
-    Graph preview = state.doc.graph();
-    preview.settings.width = std::max(1, preview.settings.width / preview_divisor_);
-    preview.settings.height = std::max(1, preview.settings.height / preview_divisor_);
-    if (draft) preview.settings.quality = "draft";
-    evaluated = evaluator_.evaluate(preview, options, output);
-  } else {
-    evaluated = evaluator_.evaluate(state.doc.graph(), options, output);
-  }
-  last_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-  showing_draft_ = draft;
-  if (!draft) last_full_ms_ = last_ms_;
-  // Leave GL as ImGui's renderer expects it.
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (!evaluated) {
-    result_.reset();
-    error_ = evaluated.message();
+  last_ms_ = done->ms;
+  timings_ = std::move(done->timings);
+  run_counts_ = std::move(done->run_counts);
+  if (!done->error.empty()) {
+    // The last good image stays on screen with the error over it.
+    error_ = done->error;
     error_node_ = node_named_in(error_);
     return;
   }
   error_.clear();
   error_node_.clear();
-  result_ = *evaluated;
+  shown_texture_.reset(done->texture);
+  image_ = done->image;
+  has_image_ = true;
+  shown_frame_ = wanted.frame;
+  evaluated_output_ = wanted.output;
+  showing_draft_ = wanted.draft;
+  if (!wanted.draft) last_full_ms_ = done->ms;
+  display_stale_ = true;
   if (range_from_image_) measure_range();
 }
 
+void Viewer::update(const EditorState& state, bool force) {
+  take_finished();
+  // Bypassed nodes are wired around before evaluation (they pass their input through).
+  const Graph graph = with_bypass(state.doc.graph(), state.doc.registry());
+  std::optional<PortRef> output = state.shown_output();
+  if (!output) {
+    shown_texture_.reset();
+    has_image_ = false;
+    requested_.reset();
+    evaluated_output_.reset();
+    error_ = graph.nodes.empty() ? "" : "nothing to view: click an output port";
+    error_node_.clear();
+    settled_ = !worker_->busy();
+    return;
+  }
+  DraftInputs draft_inputs;
+  draft_inputs.gesture = state.doc.in_gesture();
+  draft_inputs.playing = state.playing;
+  draft_inputs.fps = graph.settings.fps;
+  draft_inputs.last_full_ms = last_full_ms_;
+  draft_inputs.graph_is_draft = graph.settings.quality == "draft";
+  draft_inputs.gesture_budget_ms = gesture_budget_ms_;
+  Wanted wanted;
+  wanted.key = evaluation_key(graph, output);
+  wanted.frame = state.frame;
+  wanted.divisor = preview_divisor_;
+  wanted.draft = evaluate_as_draft(draft_inputs);
+  wanted.output = output;
+  const bool ask = force || !requested_ || !(*requested_ == wanted);
+  settled_ = !ask && !worker_->busy();
+  if (!ask) return;
+
+  EvalRequest request;
+  request.graph = graph;  // a copy: edits go on in the document while the worker runs
+  request.output = output;
+  request.options.frame = state.frame;
+  request.options.retain_outputs = true;
+  request.options.measure_gpu_time = true;
+  request.options.finish_each_node = true;  // per-node times on the canvas must be each node's own
+  if (preview_divisor_ > 1 || wanted.draft) {
+    Settings& settings = request.graph.settings;
+    settings.width = std::max(1, settings.width / preview_divisor_);
+    settings.height = std::max(1, settings.height / preview_divisor_);
+    if (wanted.draft) settings.quality = "draft";
+  }
+  request.tag = next_tag_++;
+  in_flight_[request.tag] = wanted;
+  requested_ = wanted;
+  worker_->submit(std::move(request));
+  take_finished();  // an inline worker has it already
+}
+
 void Viewer::measure_range() {
-  if (!result_ || !is_single_channel_float(result_->image.format)) return;
-  const aq_image& image = result_->image;
+  if (!has_image_ || !is_single_channel_float(image_.format)) return;
+  const aq_image& image = image_;
   std::vector<float> values(static_cast<size_t>(image.width) * image.height);
   GLenum format = image.format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : GL_RED;
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -265,8 +292,8 @@ bool Viewer::ensure_program() {
 }
 
 void Viewer::render_display_texture() {
-  if (!result_ || !ensure_program()) return;
-  const aq_image& image = result_->image;
+  if (!has_image_ || !ensure_program()) return;
+  const aq_image& image = image_;
   if (!display_ || display_width_ != image.width || display_height_ != image.height) {
     GLuint texture = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &texture);
@@ -315,6 +342,42 @@ void Viewer::render_display_texture() {
   display_stale_ = false;
 }
 
+void Viewer::draw_progress(ImVec2 at, float width) const {
+  const double running = worker_->running_seconds();
+  if (!worker_->busy()) return;
+  // Expected length: the last evaluation's; the bar stops short of the end until it is done.
+  const double expected = std::max(last_ms_, 1.0) / 1000.0;
+  const float fraction = static_cast<float>(std::min(running / expected, 0.95));
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(at, ImVec2(at.x + width, at.y + 6.0f), IM_COL32(0, 0, 0, 160));
+  draw->AddRectFilled(at, ImVec2(at.x + width * fraction, at.y + 6.0f),
+                      IM_COL32(120, 200, 255, 230));
+  char label[64];
+  std::snprintf(label, sizeof label, "evaluating %.1f s", running);
+  ImVec2 size = ImGui::CalcTextSize(label);
+  ImVec2 text(at.x + width - size.x - 8.0f, at.y - size.y - 4.0f);
+  draw->AddRectFilled(ImVec2(text.x - 4, text.y - 2),
+                      ImVec2(text.x + size.x + 4, text.y + size.y + 2), IM_COL32(0, 0, 0, 170));
+  draw->AddText(text, IM_COL32(200, 230, 255, 255), label);
+}
+
+void Viewer::hold_for_wipe() {
+  if (!display_) return;
+  GLuint copy = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &copy);
+  glTextureStorage2D(copy, 1, GL_RGBA8, display_width_, display_height_);
+  glTextureParameteri(copy, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(copy, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(copy, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(copy, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glCopyImageSubData(display_.get(), GL_TEXTURE_2D, 0, 0, 0, 0, copy, GL_TEXTURE_2D, 0, 0, 0, 0,
+                     display_width_, display_height_, 1);
+  held_.reset(copy);
+  held_width_ = display_width_;
+  held_height_ = display_height_;
+  wipe_ = true;
+}
+
 void Viewer::draw(EditorState& state) {
   // Toolbar.
   auto shown = state.shown_output();
@@ -329,16 +392,29 @@ void Viewer::draw(EditorState& state) {
   int scale_index = preview_divisor_ == 4 ? 2 : preview_divisor_ == 2 ? 1 : 0;
   ImGui::SetNextItemWidth(60);
   if (ImGui::Combo("##preview", &scale_index, scales, 3)) {
-    preview_divisor_ = 1 << scale_index;
-    evaluated_revision_ = 0;  // re-evaluate at the new size
+    preview_divisor_ = 1 << scale_index;  // the next update asks for the new size
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("evaluation resolution (preview while editing)");
   ImGui::SameLine();
-  if (ImGui::RadioButton("fit", fit_)) fit_ = true;
+  if (ImGui::RadioButton("fit", view_.fit)) view_.fit = true;
   ImGui::SameLine();
-  if (ImGui::RadioButton("1:1", !fit_)) fit_ = false;
-  if (result_) {
-    const aq_image& image = result_->image;
+  if (ImGui::RadioButton("1:1", !view_.fit && view_.zoom == 1.0f)) {
+    ImVec2 area = ImGui::GetContentRegionAvail();
+    view_.zoom_to(area.x * 0.5f, area.y * 0.5f, 1.0f);
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("wheel: zoom at the cursor; middle/right drag: pan");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("hold A")) hold_for_wipe();
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("keep the picture shown now as A, to compare with what follows (wipe)");
+  }
+  if (held_) {
+    ImGui::SameLine();
+    ImGui::Checkbox("wipe A|B", &wipe_);
+  }
+  if (has_image_) {
+    const aq_image& image = image_;
     ImGui::SameLine();
     ImGui::TextDisabled("%dx%d %s  %.1f ms", image.width, image.height, format_name(image.format),
                         last_ms_);
@@ -377,37 +453,100 @@ void Viewer::draw(EditorState& state) {
       if (ImGui::Checkbox("sRGB", &srgb_)) display_stale_ = true;
     }
   }
-  if (!error_.empty()) {
+  if (!error_.empty() && !has_image_) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
     ImGui::TextWrapped("%s", error_.c_str());
     ImGui::PopStyleColor();
   }
-  if (!result_) return;
+  if (!has_image_) {
+    draw_progress(ImGui::GetCursorScreenPos(), ImGui::GetContentRegionAvail().x);
+    return;
+  }
   if (display_stale_) render_display_texture();
   if (!display_) return;
 
-  const aq_image& image = result_->image;
+  const aq_image& image = image_;
   ImVec2 avail = ImGui::GetContentRegionAvail();
   avail.y -= ImGui::GetTextLineHeightWithSpacing();  // the probe line below
-  float scale = 1.0f;
-  if (fit_) {
-    scale = std::min(avail.x / image.width, avail.y / image.height);
-    scale = std::max(scale, 0.01f);
-  }
-  ImVec2 size(image.width * scale, image.height * scale);
   ImGui::BeginChild("##viewer_image", ImVec2(0, avail.y), false,
-                    fit_ ? ImGuiWindowFlags_None : ImGuiWindowFlags_HorizontalScrollbar);
-  ImVec2 top_left = ImGui::GetCursorScreenPos();
-  // The display texture has row 0 at the bottom: flip v.
-  ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(display_.get())), size,
-               ImVec2(0, 1), ImVec2(1, 0));
+                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  const ImVec2 area_at = ImGui::GetCursorScreenPos();
+  const ImVec2 area(std::max(ImGui::GetContentRegionAvail().x, 1.0f),
+                    std::max(ImGui::GetContentRegionAvail().y, 1.0f));
+  ImGui::InvisibleButton("##image_area", area,
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonMiddle |
+                             ImGuiButtonFlags_MouseButtonRight);
   bool hovered = ImGui::IsItemHovered();
+  const bool active = ImGui::IsItemActive();
+  ImGuiIO& io = ImGui::GetIO();
+  view_.place(static_cast<float>(image.width), static_cast<float>(image.height), area.x, area.y);
+  if (hovered && io.MouseWheel != 0.0f) {
+    view_.zoom_to(io.MousePos.x - area_at.x, io.MousePos.y - area_at.y,
+                  view_.zoom * std::pow(1.2f, io.MouseWheel));
+  }
+  if (active && (ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 2.0f) ||
+                 ImGui::IsMouseDragging(ImGuiMouseButton_Right, 2.0f))) {
+    view_.pan_by(io.MouseDelta.x, io.MouseDelta.y);
+  }
+  const float scale = view_.zoom;
+  const ImVec2 top_left(area_at.x + view_.pan_x, area_at.y + view_.pan_y);
+  const ImVec2 bottom_right(top_left.x + image.width * scale, top_left.y + image.height * scale);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->PushClipRect(area_at, ImVec2(area_at.x + area.x, area_at.y + area.y), true);
+  auto texture_id = [](const gl::Texture& texture) {
+    return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture.get()));
+  };
+  // The display texture has row 0 at the bottom: flip v.
+  if (wipe_ && held_) {
+    const float split = top_left.x + (bottom_right.x - top_left.x) * wipe_at_;
+    draw->AddImage(texture_id(held_), top_left, ImVec2(split, bottom_right.y), ImVec2(0, 1),
+                   ImVec2(wipe_at_, 0));
+    draw->AddImage(texture_id(display_), ImVec2(split, top_left.y), bottom_right,
+                   ImVec2(wipe_at_, 1), ImVec2(1, 0));
+    draw->AddLine(ImVec2(split, area_at.y), ImVec2(split, area_at.y + area.y),
+                  IM_COL32(255, 255, 255, 220), 2.0f);
+    draw->AddText(ImVec2(split - 16, area_at.y + 4), IM_COL32(255, 255, 255, 255), "A");
+    draw->AddText(ImVec2(split + 6, area_at.y + 4), IM_COL32(255, 255, 255, 255), "B");
+    // Drag the line with the left button.
+    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
+        std::fabs(io.MousePos.x - split) < 8.0f) {
+      wipe_drag_ = true;
+    }
+    if (wipe_drag_ && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+      wipe_at_ = std::clamp(
+          (io.MousePos.x - top_left.x) / std::max(bottom_right.x - top_left.x, 1.0f), 0.0f, 1.0f);
+    } else {
+      wipe_drag_ = false;
+    }
+  } else {
+    draw->AddImage(texture_id(display_), top_left, bottom_right, ImVec2(0, 1), ImVec2(1, 0));
+  }
+  draw->PopClipRect();
+  {
+    // The error of the last evaluation over the last good image, and the progress of the
+    // running one: the picture never goes blank while the graph is broken or busy.
+    const ImVec2 origin = ImGui::GetWindowPos();
+    const float width = ImGui::GetWindowWidth();
+    if (!error_.empty()) {
+      ImDrawList* draw = ImGui::GetWindowDrawList();
+      const float wrap = width - 16.0f;
+      ImVec2 text = ImGui::CalcTextSize(error_.c_str(), nullptr, false, wrap);
+      draw->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + text.y + 12.0f),
+                          IM_COL32(60, 10, 10, 220));
+      draw->AddText(nullptr, 0.0f, ImVec2(origin.x + 8.0f, origin.y + 6.0f),
+                    IM_COL32(255, 140, 130, 255), error_.c_str(), nullptr, wrap);
+    }
+    draw_progress(ImVec2(origin.x, origin.y + ImGui::GetWindowHeight() - 6.0f), width);
+  }
   ImGui::EndChild();
 
   if (hovered) {
     ImVec2 mouse = ImGui::GetMousePos();
-    int x = static_cast<int>((mouse.x - top_left.x) / scale);
-    int y = image.height - 1 - static_cast<int>((mouse.y - top_left.y) / scale);
+    float px = 0;
+    float py = 0;
+    view_.pixel_at(mouse.x - area_at.x, mouse.y - area_at.y, &px, &py);
+    int x = static_cast<int>(px);
+    int y = image.height - 1 - static_cast<int>(py);
     if (x >= 0 && y >= 0 && x < image.width && y < image.height) {
       char line[160];
       if (image.format == AQ_FORMAT_R32UI) {

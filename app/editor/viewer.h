@@ -1,24 +1,32 @@
-// The viewer: evaluates the graph up to the output being viewed (any node's any output), keeps
-// the result, and shows it in an ImGui panel through a small display pass that maps it to
+// The viewer: evaluates the graph up to the output being viewed (any node's any output) on the
+// evaluation worker (eval_worker.h), keeps the last finished image on screen meanwhile with a
+// progress bar over it, and shows it in an ImGui panel through a small display pass that maps it to
 // 8-bit colour: colour images through the sRGB curve, depth (R32F, depth textures) as near =
 // bright over the image's own range, object ids (R32UI, or an output named "id") as distinct
 // hashed colours with 0 (background) black. Fit or 1:1
 // zoom; the raw value under the cursor is read straight from the evaluated texture.
 //
-//   EditorState ─► needs_evaluation? ─► Evaluator::evaluate(graph, {frame}, output)
-//                                             │ TextureRef
-//                                             ▼
-//                               display pass (mode by format) ─► RGBA8 ─► ImGui::Image
+//   EditorState ─► evaluation_key changed? ─► EvalWorker::submit(graph copy, frame, output)
+//                                                   │ (worker thread)
+//          take_finished() ◄── texture copy ◄───────┘
+//                ▼
+//   display pass (mode by format) ─► RGBA8 ─► ImGui::Image (+ error text over the last image)
 #pragma once
 
 #include "editor_state.h"
+#include "eval_policy.h"
+#include "eval_worker.h"
+#include "image_view.h"
 
 #include <aquarelle/core/evaluator.h>
 #include <aquarelle/core/gl_context.h>
 #include <aquarelle/core/gl_objects.h>
 #include <aquarelle/core/registry.h>
+#include <imgui.h>
 
 #include <chrono>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,30 +35,48 @@ namespace aq::editor {
 
 class Viewer {
  public:
-  Viewer(GlContext& context, const Registry& registry);
+  explicit Viewer(std::unique_ptr<EvalWorker> worker);
   ~Viewer();
 
-  // Evaluates when the graph, the viewed output or the frame changed since the last time (or
-  // when `force`). Cheap when nothing changed: the evaluator's cache re-runs only what lies
-  // downstream of an edit.
+  // Takes a finished evaluation, then asks for a new one when what the image depends on
+  // (evaluation_key: the nodes upstream of the output, settings), the frame or the quality
+  // changed (or when `force`). Never waits for the GPU.
   void update(const EditorState& state, bool force = false);
   // Draws the viewer panel's content (toolbar, image, pixel probe) into the current window.
   void draw(EditorState& state);
 
-  Evaluator& evaluator() { return evaluator_; }
+  // Drop the evaluator's caches (shader reload) / read shaders from their sources.
+  void clear_caches() { worker_->clear_caches(); }
+  void set_shader_hot_reload(bool enabled) { worker_->set_shader_hot_reload(enabled); }
+  // An evaluation waits or runs.
+  bool busy() const { return worker_->busy(); }
+  // Nothing runs, nothing waits to be shown and nothing needs asking: the image is current.
+  bool settled() const { return settled_; }
+  // The frame of the image shown (-1: none yet).
+  int shown_frame() const { return shown_frame_; }
+  // Evaluations finished since the start (errors included).
+  int finished_count() const { return finished_count_; }
   // Timings of the last evaluation; the canvas shows them on the nodes.
-  const std::vector<NodeTiming>& timings() const { return evaluator_.last_timings(); }
+  const std::vector<NodeTiming>& timings() const { return timings_; }
+  // How many times each node ran (not reused), as the worker's evaluator counts.
+  const std::map<std::string, int>& run_counts() const { return run_counts_; }
   // Why the last evaluation failed ("" when it succeeded) and the node it names, if any.
   const std::string& error() const { return error_; }
   const std::string& error_node() const { return error_node_; }
   double last_evaluation_ms() const { return last_ms_; }
   // The image shown is a draft of an interactive edit, to be refined once edits pause: the
   // UI loop keeps polling instead of sleeping until then.
-  bool refine_pending() const { return showing_draft_; }
-  // Evaluations slower than this (ms) make interactive edits show drafts (default: a 30 fps
-  // UI frame).
-  void set_ui_frame_budget_ms(double ms) { ui_frame_budget_ms_ = ms; }
-  bool has_image() const { return result_ != nullptr; }
+  bool refine_pending() const { return showing_draft_ || !settled_; }
+  bool showing_draft() const { return showing_draft_; }
+  // A drag of a graph whose full evaluation takes longer than this (ms) shows drafts.
+  void set_gesture_budget_ms(double ms) { gesture_budget_ms_ = ms; }
+  bool has_image() const { return has_image_; }
+  // Keeps the picture shown now as A of the wipe compare (any output: view another one next).
+  void hold_for_wipe();
+  // The displayed (8-bit, mapped) picture, for the canvas backdrop; 0 when none.
+  unsigned display_texture() const { return display_ ? display_.get() : 0; }
+  int display_width() const { return display_width_; }
+  int display_height() const { return display_height_; }
 
  private:
   enum class Mapping { kColor = 0, kDepth = 1, kId = 2 };
@@ -58,21 +84,39 @@ class Viewer {
   void render_display_texture();
   void measure_range();
   bool ensure_program();
+  void take_finished();
 
-  Evaluator evaluator_;
-  TextureRef result_;
+  void draw_progress(ImVec2 at, float width) const;
+
+  // What one evaluation was asked for; a new request goes out when the wanted one differs.
+  struct Wanted {
+    uint64_t key = 0;
+    int frame = -1;
+    int divisor = 1;
+    bool draft = false;
+    std::optional<PortRef> output;
+    bool operator==(const Wanted&) const = default;
+  };
+
+  std::unique_ptr<EvalWorker> worker_;
+  std::optional<Wanted> requested_;       // the last request sent
+  std::map<uint64_t, Wanted> in_flight_;  // by tag
+  uint64_t next_tag_ = 1;
+  bool settled_ = false;
+  gl::Texture shown_texture_;  // the last finished image (a copy the worker made for us)
+  aq_image image_{};
+  bool has_image_ = false;
+  int shown_frame_ = -1;
+  int finished_count_ = 0;
   std::optional<PortRef> evaluated_output_;
-  uint64_t evaluated_revision_ = 0;
-  int evaluated_frame_ = -1;
+  std::vector<NodeTiming> timings_;
+  std::map<std::string, int> run_counts_;
   std::string error_;
   std::string error_node_;
   double last_ms_ = 0;
-  // Interactive edits of a graph slower than a UI frame are evaluated as drafts.
-  static constexpr std::chrono::milliseconds kRefineAfter{300};
-  double ui_frame_budget_ms_ = 33.0;
   double last_full_ms_ = 0;  // the last evaluation at the graph's own quality
   bool showing_draft_ = false;
-  std::chrono::steady_clock::time_point last_edit_{};
+  double gesture_budget_ms_ = kGestureBudgetMs;
 
   gl::Program program_;
   gl::VertexArray vertex_array_;
@@ -85,7 +129,15 @@ class Viewer {
   // View options.
   // Evaluates at 1/divisor of the graph's resolution, for live edits of big graphs on slow GPUs.
   int preview_divisor_ = 1;
-  bool fit_ = true;
+  ImageView view_;  // pan and zoom of the image in the viewer
+  // Wipe compare: a held copy of the displayed picture (A) left of the wipe line, the live
+  // image (B) right of it.
+  bool wipe_ = false;
+  float wipe_at_ = 0.5f;  // fraction of the image width
+  bool wipe_drag_ = false;
+  gl::Texture held_;  // RGBA8 copy of display_ when "hold A" was pressed
+  int held_width_ = 0;
+  int held_height_ = 0;
   bool srgb_ = true;
   int channel_ = 0;         // 0 rgb, 1 r, 2 g, 3 b, 4 a
   int mapping_choice_ = 0;  // 0 auto, 1 colour, 2 depth, 3 id

@@ -5,7 +5,12 @@
 // each node's keys in the order type, params, inputs; params and inputs sorted), "output",
 // "editor" (kept as the editor wrote it, keys sorted). Two-space indent; arrays of plain
 // values on one line; a trailing newline. Parameter values are written exactly as stored.
+//
+// Saving over the text a graph was read from patches that text instead (json_text_patch.h):
+// an unedited graph saves to the same bytes, an edit changes only the lines it concerns.
 #include <aquarelle/core/graph_io.h>
+
+#include "json_text_patch.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -17,11 +22,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <random>
+#include <set>
 
 namespace aq {
 namespace {
 
-std::string dump_scalar(const nlohmann::json& value) {
+template <class Json>
+std::string dump_scalar(const Json& value) {
   // Invalid UTF-8 in a string edited in memory is replaced rather than thrown about.
   return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
@@ -30,35 +37,41 @@ std::string string_literal(const std::string& text) {
   return dump_scalar(nlohmann::json(text));
 }
 
-bool is_flat_array(const nlohmann::json& value) {
-  return value.is_array() &&
-         std::none_of(value.begin(), value.end(),
-                      [](const nlohmann::json& element) { return element.is_structured(); });
+template <class Json>
+bool is_flat_array(const Json& value) {
+  return value.is_array() && std::none_of(value.begin(), value.end(), [](const Json& element) {
+           return element.is_structured();
+         });
 }
 
-void write_value(const nlohmann::json& value, int indent, std::string* out);
+// `expand_flat_arrays`: one element per line, for files written that way (Python's json.dump).
+template <class Json>
+void write_value(const Json& value, int indent, std::string* out, bool expand_flat_arrays = false);
 
-void write_object_members(const nlohmann::json& object, int indent, std::string* out) {
+template <class Json>
+void write_object_members(const Json& object, int indent, std::string* out, bool expand) {
   const std::string pad(static_cast<size_t>(indent) + 2, ' ');
   bool first = true;
-  for (const auto& [key, member] : object.items()) {  // nlohmann objects iterate sorted
+  // nlohmann::json iterates its keys sorted, ordered_json in the order they were added.
+  for (const auto& [key, member] : object.items()) {
     *out += first ? "\n" : ",\n";
     first = false;
     *out += pad + string_literal(key) + ": ";
-    write_value(member, indent + 2, out);
+    write_value(member, indent + 2, out, expand);
   }
 }
 
-void write_value(const nlohmann::json& value, int indent, std::string* out) {
+template <class Json>
+void write_value(const Json& value, int indent, std::string* out, bool expand_flat_arrays) {
   if (value.is_object()) {
     if (value.empty()) {
       *out += "{}";
       return;
     }
     *out += "{";
-    write_object_members(value, indent, out);
+    write_object_members(value, indent, out, expand_flat_arrays);
     *out += "\n" + std::string(static_cast<size_t>(indent), ' ') + "}";
-  } else if (is_flat_array(value)) {
+  } else if (is_flat_array(value) && !(expand_flat_arrays && !value.empty())) {
     *out += "[";
     for (size_t i = 0; i < value.size(); ++i) {
       if (i > 0) *out += ", ";
@@ -66,12 +79,16 @@ void write_value(const nlohmann::json& value, int indent, std::string* out) {
     }
     *out += "]";
   } else if (value.is_array()) {
+    if (value.empty()) {
+      *out += "[]";
+      return;
+    }
     const std::string pad(static_cast<size_t>(indent) + 2, ' ');
     *out += "[";
     for (size_t i = 0; i < value.size(); ++i) {
       *out += i == 0 ? "\n" : ",\n";
       *out += pad;
-      write_value(value[i], indent + 2, out);
+      write_value(value[i], indent + 2, out, expand_flat_arrays);
     }
     *out += "\n" + std::string(static_cast<size_t>(indent), ' ') + "]";
   } else {
@@ -186,8 +203,100 @@ std::string write_graph_text(const Graph& graph) {
   return out;
 }
 
+namespace {
+
+std::string render_new_value(const nlohmann::ordered_json& value, int indent, bool expand) {
+  std::string out;
+  write_value(value, indent, &out, expand);
+  return out;
+}
+
+nlohmann::ordered_json ordered(const nlohmann::json& value) {
+  return nlohmann::ordered_json::parse(
+      value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+}
+
+// The graph as the document a file would hold, in canonical order, leaving out what the
+// original file left out and the model filled with defaults (a missing "quality", an empty
+// "params"), and keeping top-level members the model does not know.
+nlohmann::ordered_json graph_document(const Graph& graph, const nlohmann::ordered_json& original) {
+  auto had = [](const nlohmann::ordered_json& object, const char* key) {
+    return object.is_object() && object.contains(key);
+  };
+  nlohmann::ordered_json document = nlohmann::ordered_json::object();
+  document["aquarelle"] = graph.version;
+  const nlohmann::json defaults = settings_json(Settings{});
+  const nlohmann::json settings = settings_json(graph.settings);
+  const nlohmann::ordered_json old_settings =
+      had(original, "settings") ? original["settings"] : nlohmann::ordered_json::object();
+  nlohmann::ordered_json written_settings = nlohmann::ordered_json::object();
+  for (const char* key : {"width", "height", "fps", "frames", "precision", "quality"}) {
+    if (settings[key] != defaults[key] || had(old_settings, key)) {
+      written_settings[key] = ordered(settings[key]);
+    }
+  }
+  if (!written_settings.empty() || had(original, "settings")) {
+    document["settings"] = written_settings;
+  }
+  const nlohmann::ordered_json old_nodes =
+      had(original, "nodes") ? original["nodes"] : nlohmann::ordered_json::object();
+  nlohmann::ordered_json nodes = nlohmann::ordered_json::object();
+  for (const auto& [id, node] : graph.nodes) {
+    const nlohmann::ordered_json old_node =
+        had(old_nodes, id.c_str()) ? old_nodes[id] : nlohmann::ordered_json::object();
+    nlohmann::ordered_json written = nlohmann::ordered_json::object();
+    written["type"] = node.type;
+    if (!node.params.empty() || had(old_node, "params")) {
+      nlohmann::ordered_json params = nlohmann::ordered_json::object();
+      for (const auto& [name, value] : node.params) params[name] = ordered(value);
+      written["params"] = params;
+    }
+    if (!node.inputs.empty() || had(old_node, "inputs")) {
+      nlohmann::ordered_json inputs = nlohmann::ordered_json::object();
+      for (const auto& [port, source] : node.inputs) inputs[port] = source.str();
+      written["inputs"] = inputs;
+    }
+    nodes[id] = written;
+  }
+  document["nodes"] = nodes;
+  if (graph.output) document["output"] = graph.output->str();
+  const bool editor_empty =
+      graph.editor.is_null() || (graph.editor.is_object() && graph.editor.empty());
+  if (!editor_empty || had(original, "editor")) {
+    document["editor"] = editor_empty ? nlohmann::ordered_json::object() : ordered(graph.editor);
+  }
+  if (original.is_object()) {
+    for (const auto& [key, value] : original.items()) {
+      static const std::set<std::string> kModel = {"aquarelle", "settings", "nodes", "output",
+                                                   "editor"};
+      if (!kModel.count(key)) document[key] = value;
+    }
+  }
+  return document;
+}
+
+}  // namespace
+
+std::string write_graph_text(const Graph& graph, const std::string& original_text) {
+  if (original_text.empty() || !nlohmann::ordered_json::accept(original_text)) {
+    return write_graph_text(graph);
+  }
+  const auto original = nlohmann::ordered_json::parse(original_text);
+  if (!original.is_object()) return write_graph_text(graph);
+  auto patched = patch_json_text(original_text, graph_document(graph, original), &render_new_value);
+  return patched ? *patched : write_graph_text(graph);
+}
+
 Status save_graph_file(const Graph& graph, const std::string& path) {
-  const std::string text = write_graph_text(graph);
+  return save_graph_text(write_graph_text(graph), path);
+}
+
+Status save_graph_file(const Graph& graph, const std::string& path,
+                       const std::string& original_text) {
+  return save_graph_text(write_graph_text(graph, original_text), path);
+}
+
+Status save_graph_text(const std::string& text, const std::string& path) {
   if (path.empty()) return make_error("cannot save the graph: no file name given");
 
   // Save through a symbolic link to the file it names, keeping the link.

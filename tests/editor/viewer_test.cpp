@@ -1,67 +1,104 @@
-// The viewer's interactive previews: while a slow graph is being edited it evaluates drafts
-// (quality draft, a quarter of the size through the proxy mechanism) and refines at the
-// graph's own quality once the edits pause.
+// The viewer's evaluation policy with a real evaluator (an inline worker on one headless
+// context): drafts (quality draft, a quarter of the size) only during a drag of a graph slower
+// than the drag needs, the full image as soon as the drag ends, a typed value in full at once;
+// moving a node or adding an unconnected one evaluates nothing; an error keeps the last image.
 #include "editor/viewer.h"
 
 #include <aquarelle/core/gl_context.h>
 #include <gtest/gtest.h>
-
-#include <chrono>
-#include <thread>
 
 #include "support/harness.h"
 
 namespace aq::editor {
 namespace {
 
+struct Fixture {
+  std::unique_ptr<GlContext> context;
+  Document document{test::registry()};
+  EditorState state{document};
+  std::unique_ptr<Viewer> viewer;
+
+  bool open(const std::string& graph, int width, int height) {
+    auto made = create_headless_context(GlBackend::kAuto);
+    if (!made.ok()) return false;
+    context = std::move(*made);
+    if (!document.open(test::source_path(graph)).ok()) return false;
+    Settings settings = document.graph().settings;
+    settings.width = width;
+    settings.height = height;
+    if (!document.set_settings(settings).ok()) return false;
+    viewer = std::make_unique<Viewer>(std::make_unique<EvalWorker>(test::registry(), *context));
+    return true;
+  }
+};
+
 // The budget is set rather than measured so the test does not depend on the machine's speed.
-TEST(Viewer, InteractiveEditsOfASlowGraphShowDraftsThenRefine) {
-  auto context = create_headless_context(GlBackend::kAuto);
-  ASSERT_TRUE(context.ok()) << context.message();
-  Document document(test::registry());
-  ASSERT_TRUE(document.open(test::source_path("graphs/underwater.json")).ok());
-  Settings settings = document.graph().settings;
-  settings.width = 128;
-  settings.height = 72;
-  ASSERT_TRUE(document.set_settings(settings).ok());
-  EditorState state(document);
-  Viewer viewer(**context, test::registry());
-  viewer.set_ui_frame_budget_ms(0.0);  // every evaluation counts as slower than a UI frame
+TEST(Viewer, DraftsOnlyWhileDraggingASlowGraphAndRefineWhenTheDragEnds) {
+  Fixture f;
+  ASSERT_TRUE(f.open("graphs/underwater.json", 128, 72));
+  f.viewer->set_gesture_budget_ms(0.0);  // every evaluation is slower than a drag needs
+  f.viewer->update(f.state);
+  ASSERT_TRUE(f.viewer->has_image()) << f.viewer->error();
+  EXPECT_FALSE(f.viewer->showing_draft()) << "the first evaluation is at the graph's quality";
 
-  viewer.update(state);
-  ASSERT_TRUE(viewer.has_image());
-  EXPECT_FALSE(viewer.refine_pending()) << "the first evaluation is at the graph's quality";
+  // A slider drag: each step is shown as a draft.
+  ASSERT_TRUE(f.document.set_param("tint", "amount", 0.3, "param:tint.amount").ok());
+  f.viewer->update(f.state);
+  EXPECT_TRUE(f.viewer->showing_draft());
+  // The drag ends: the full image at once, no waiting for a pause.
+  f.document.end_gesture();
+  f.viewer->update(f.state);
+  EXPECT_FALSE(f.viewer->showing_draft()) << "refined as soon as the drag ended";
 
-  // A slider drag: each step is an edit and is shown as a draft.
-  ASSERT_TRUE(document.set_param("tint", "amount", 0.3, "param:tint.amount").ok());
-  viewer.update(state);
-  EXPECT_TRUE(viewer.refine_pending());
-
-  // No edit yet: nothing to do until the pause is long enough.
-  viewer.update(state);
-  EXPECT_TRUE(viewer.refine_pending());
-  std::this_thread::sleep_for(std::chrono::milliseconds(350));
-  viewer.update(state);
-  EXPECT_FALSE(viewer.refine_pending()) << "refined at the graph's quality after the pause";
+  // A typed value (no gesture) is evaluated in full straight away.
+  ASSERT_TRUE(f.document.set_param("tint", "amount", 0.5).ok());
+  f.viewer->update(f.state);
+  EXPECT_FALSE(f.viewer->showing_draft());
 }
 
 TEST(Viewer, AFastGraphIsNeverShownAsADraft) {
-  auto context = create_headless_context(GlBackend::kAuto);
-  ASSERT_TRUE(context.ok()) << context.message();
-  Document document(test::registry());
-  ASSERT_TRUE(document.open(test::source_path("graphs/tint.json")).ok());
-  Settings settings = document.graph().settings;
-  settings.width = 32;
-  settings.height = 32;
-  ASSERT_TRUE(document.set_settings(settings).ok());
-  EditorState state(document);
-  Viewer viewer(**context, test::registry());
-  viewer.set_ui_frame_budget_ms(1e9);  // every evaluation fits in a UI frame
-  viewer.update(state);
-  ASSERT_TRUE(viewer.has_image());
-  ASSERT_TRUE(document.set_param("tint", "amount", 0.3).ok());
-  viewer.update(state);
-  EXPECT_FALSE(viewer.refine_pending());
+  Fixture f;
+  ASSERT_TRUE(f.open("graphs/tint.json", 32, 32));
+  f.viewer->set_gesture_budget_ms(1e9);  // every evaluation keeps up
+  f.viewer->update(f.state);
+  ASSERT_TRUE(f.viewer->has_image());
+  ASSERT_TRUE(f.document.set_param("tint", "amount", 0.3, "param:tint.amount").ok());
+  f.viewer->update(f.state);
+  EXPECT_FALSE(f.viewer->showing_draft());
+}
+
+TEST(Viewer, LayoutEditsAndUnconnectedNodesEvaluateNothing) {
+  Fixture f;
+  ASSERT_TRUE(f.open("graphs/tint.json", 32, 32));
+  f.viewer->update(f.state);
+  ASSERT_TRUE(f.viewer->has_image());
+  const int evaluations = f.viewer->finished_count();
+  const auto runs = f.viewer->run_counts();
+  ASSERT_TRUE(f.document.move_nodes({{"tint", {900, 40}}}).ok());
+  f.viewer->update(f.state);
+  ASSERT_TRUE(f.document.add_node("vignette", {0, 600}).ok());
+  f.viewer->update(f.state);
+  EXPECT_EQ(f.viewer->finished_count(), evaluations) << "no evaluation was asked for";
+  EXPECT_EQ(f.viewer->run_counts(), runs);
+  // An edit upstream of the output does evaluate, and runs only what lies downstream of it.
+  ASSERT_TRUE(f.document.set_param("tint", "amount", 0.2).ok());
+  f.viewer->update(f.state);
+  EXPECT_EQ(f.viewer->finished_count(), evaluations + 1);
+  EXPECT_EQ(f.viewer->run_counts().at("tint"), runs.at("tint") + 1);
+  EXPECT_EQ(f.viewer->run_counts().at("scene"), runs.at("scene"));
+}
+
+TEST(Viewer, AnErrorKeepsTheLastImage) {
+  Fixture f;
+  ASSERT_TRUE(f.open("graphs/tint.json", 32, 32));
+  f.viewer->update(f.state);
+  ASSERT_TRUE(f.viewer->has_image());
+  // The output's input is unlinked: evaluation fails, naming the node.
+  ASSERT_TRUE(f.document.unlink("tint", "image").ok());
+  f.viewer->update(f.state);
+  EXPECT_FALSE(f.viewer->error().empty());
+  EXPECT_EQ(f.viewer->error_node(), "tint") << f.viewer->error();
+  EXPECT_TRUE(f.viewer->has_image()) << "the last good image stays on screen";
 }
 
 }  // namespace

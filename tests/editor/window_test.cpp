@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -106,7 +107,7 @@ TEST_F(EditorWindowTest, ScriptedEditsSaveAndScreenshot) {
       {"actions",
        {
            {{"do", "add_node"}, {"type", "blur"}, {"id", "soft"}, {"at", {950, -300}}},
-           {{"do", "fit"}},
+           {{"do", "fit"}, {"whole", true}},  // every port on screen for the gestures
            {{"do", "drag_link"}, {"from", output}, {"to", "soft.image"}},
            {{"do", "drag_link"},
             {"from", scene + ".scene"},
@@ -199,6 +200,74 @@ TEST_F(EditorWindowTest, UnknownActionIsAnError) {
   EXPECT_EQ(run_editor("new.json --script script.json --quit --size 320x240", &log), 1) << log;
   EXPECT_NE(log.find("unknown action 'fly'"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(dir_ / "new.json"));
+}
+
+// Issue 16: the flagship graph plays while the UI keeps drawing. Evaluation runs on a worker
+// thread; the scripted mode prints how many UI frames were drawn while an evaluation was in
+// flight. No timing is asserted (speed is reported, docs/editor.md), only that frames were drawn.
+TEST_F(EditorWindowTest, UiKeepsDrawingWhileTheFlagshipGraphPlays) {
+  fs::path source = aq::test::source_path("graphs/underwater.json");
+  if (!fs::exists(source)) source = aq::test::source_path("graphs/watercolor.json");
+  fs::copy_file(source, dir_ / "graph.json");
+  std::ofstream(dir_ / "script.json") << R"([{"do": "play", "frames": 3}])";
+  std::string log;
+  ASSERT_EQ(run_editor("graph.json --script script.json --quit --size 1280x720", &log), 0) << log;
+  EXPECT_NE(log.find("(play): played to frame 4"), std::string::npos) << log;
+  const size_t at = log.find("UI frames: ");
+  ASSERT_NE(at, std::string::npos) << log;
+  int frames = 0;
+  int while_evaluating = 0;
+  ASSERT_EQ(std::sscanf(log.c_str() + at, "UI frames: %d (%d while evaluating)", &frames,
+                        &while_evaluating),
+            2)
+      << log;
+  std::printf("%s\n", log.substr(at, log.find('\n', at) - at).c_str());  // for docs/editor.md
+  EXPECT_GE(while_evaluating, 3) << "the UI drew no frames while the graph evaluated: " << log;
+  EXPECT_FALSE(fs::exists(dir_ / "graph.autosave.json"));
+  // Playing is not an edit: the file is untouched.
+  EXPECT_EQ(read_json(dir_ / "graph.json"), read_json(source));
+}
+
+// Issue 16: fast key chords are not lost, Save As asks before replacing, an unedited save keeps
+// the bytes, and the Nuke-style edits (insert, rename, bypass, copy and paste) from a script.
+TEST_F(EditorWindowTest, ChordsSaveSafelyAndNukeStyleEdits) {
+  const fs::path source = aq::test::source_path("graphs/tint.json");
+  fs::copy_file(source, dir_ / "graph.json");
+  std::ofstream(dir_ / "other.json") << "{\"aquarelle\": 1, \"nodes\": {}}\n";
+  nlohmann::json script = {
+      {{"do", "key"}, {"chord", "ctrl+s"}},  // pressed and released between two frames
+      {{"do", "save"}, {"path", "other.json"}, {"expect", "refused"}},
+      {{"do", "insert"}, {"type", "blur"}, {"after", "tint.image"}, {"at", {900, 60}}},
+      {{"do", "rename"}, {"node", "blur"}, {"to", "soft"}},
+      {{"do", "bypass"}, {"nodes", {"soft"}}},
+      {{"do", "select"}, {"nodes", {"soft"}}},
+      {{"do", "copy"}},
+      {{"do", "paste"}, {"at", {900, 300}}},
+      {{"do", "save"}, {"path", "edited.json"}},
+  };
+  std::ofstream(dir_ / "script.json") << script.dump(2);
+  std::string log;
+  ASSERT_EQ(run_editor("graph.json --script script.json --screenshot shot.png --quit --size "
+                       "1280x720",
+                       &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("(key): done"), std::string::npos) << log;
+  EXPECT_NE(log.find("exists already"), std::string::npos) << log;
+  std::ifstream original(source, std::ios::binary), saved(dir_ / "graph.json", std::ios::binary);
+  std::stringstream a, b;
+  a << original.rdbuf();
+  b << saved.rdbuf();
+  EXPECT_EQ(b.str(), a.str()) << "ctrl+s of an unedited graph: the same bytes";
+  EXPECT_EQ(read_json(dir_ / "other.json"),
+            nlohmann::json::parse("{\"aquarelle\": 1, \"nodes\": {}}"));
+  nlohmann::json edited = read_json(dir_ / "edited.json");
+  EXPECT_EQ(edited["nodes"]["soft"]["inputs"]["image"], "tint.image") << edited.dump(2);
+  EXPECT_EQ(edited["output"], "soft.image");
+  EXPECT_EQ(edited["editor"]["bypassed"]["soft"], true);
+  ASSERT_TRUE(edited["nodes"].contains("blur2")) << "the pasted copy: " << edited.dump(2);
+  EXPECT_EQ(edited["nodes"]["blur2"]["inputs"]["image"], "tint.image");
+  EXPECT_EQ(edited["editor"]["positions"]["blur2"], nlohmann::json::array({900, 300}));
 }
 
 }  // namespace

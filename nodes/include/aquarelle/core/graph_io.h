@@ -44,8 +44,18 @@ std::vector<Problem> validate_graph(const Graph& graph, const Registry& registry
 
 // Canonical JSON text: keys sorted, one node per block, two-space indent, trailing newline.
 std::string write_graph_text(const Graph& graph);
+// The text the graph was read from, patched to hold `graph`: members that did not change keep
+// their bytes (order, layout, number text), removed ones go, new ones are appended in the
+// file's style. Unedited: the same bytes. Falls back to the canonical text when `original_text`
+// is empty or not JSON.
+std::string write_graph_text(const Graph& graph, const std::string& original_text);
 // Atomic: writes PATH.tmp-XXXX next to it, flushes, fsyncs, renames over PATH.
 Status save_graph_file(const Graph& graph, const std::string& path);
+// Same, writing write_graph_text(graph, original_text).
+Status save_graph_file(const Graph& graph, const std::string& path,
+                       const std::string& original_text);
+// The atomic write of any graph text.
+Status save_graph_text(const std::string& text, const std::string& path);
 
 // Resolved value of a parameter: the graph's value or the type's default, as JSON.
 nlohmann::json param_value_or_default(const Node& node, const ParamInfo& param);
