@@ -113,17 +113,8 @@ Result<Sweep> layered_ids_sweep(GlContext& context, const Registry& registry,
   return sweep;
 }
 
-struct Pair {
-  const char* name;
-  reference::Rgb a, b;
-};
-constexpr Pair kChart[] = {{"blue+yellow", {0.1, 0.2, 0.8}, {0.9, 0.8, 0.1}},
-                           {"red+blue", {0.8, 0.1, 0.1}, {0.1, 0.2, 0.8}},
-                           {"red+yellow", {0.8, 0.1, 0.1}, {0.9, 0.8, 0.1}},
-                           {"cyan+magenta", {0.1, 0.7, 0.8}, {0.8, 0.1, 0.6}},
-                           {"blue+white", {0.1, 0.2, 0.8}, {1.0, 1.0, 1.0}},
-                           {"red+black", {0.8, 0.1, 0.1}, {0.0, 0.0, 0.0}},
-                           {"green+itself", {0.2, 0.6, 0.2}, {0.2, 0.6, 0.2}}};
+using reference::PigmentPair;
+constexpr const auto& kChart = reference::kPigmentChart;
 
 Result<Sweep> pigment_chart_sweep(GlContext& context, const Registry& registry,
                                   const SweepPlan& plan) {
@@ -133,7 +124,7 @@ Result<Sweep> pigment_chart_sweep(GlContext& context, const Registry& registry,
   ImageF a(w, h, 4, 1.0f), b(w, h, 4, 1.0f);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const Pair& pair = kChart[x / 16];
+      const PigmentPair& pair = kChart[x / 16];
       for (int c = 0; c < 3; ++c) {
         a.at(x, y, c) = static_cast<float>(pair.a[c]);
         b.at(x, y, c) = static_cast<float>(pair.b[c]);
@@ -158,7 +149,7 @@ Result<Sweep> pigment_chart_sweep(GlContext& context, const Registry& registry,
                          exact});
     }
     note += std::string(" ") + names[m] + " {";
-    for (const Pair& pair : kChart) {
+    for (const PigmentPair& pair : kChart) {
       const reference::Rgb c = reference::mix(pair.a, pair.b, 0.5, modes[m]);
       char text[96];
       std::snprintf(text, sizeof text, "%s (%.2f %.2f %.2f)%s", pair.name, c[0], c[1], c[2],
