@@ -14,8 +14,7 @@
 #include <map>
 #include <memory>
 
-#include "bench_graph_build.h"
-#include "bench_measure.h"
+#include "bench_reference_configs.h"
 #include "bench_sweep.h"
 
 #ifdef AQ_HAVE_CPU_REFERENCES
@@ -35,61 +34,6 @@ Result<std::vector<Sweep>> run_layered_sweeps(GlContext&, const Registry&, const
 #else
 
 namespace {
-
-using json = nlohmann::json;
-
-struct Point {
-  std::string setting;
-  json params;
-  std::string precision;
-  std::map<std::string, ImageF> images;
-  std::shared_ptr<const ImageF> reference;
-};
-
-Status measure(GlContext& context, const Registry& registry, const SweepPlan& plan,
-               const std::string& type, const std::map<std::string, std::string>& inputs,
-               const std::vector<Point>& points, int width, int height, Sweep* sweep) {
-  Evaluator evaluator(context, registry);
-  for (const Point& p : points) {
-    Graph graph = single_node_graph(registry, type, p.params, inputs, width, height, p.precision);
-    auto measured =
-        measure_node(evaluator, graph, kNodeUnderTest, &p.images, plan.frames, plan.warmup);
-    if (!measured.ok()) {
-      return make_error("sweep of '" + type + "' at " + p.setting + ": " + measured.message());
-    }
-    auto error = compare_images(measured->output, *p.reference);
-    if (!error.ok()) return make_error("sweep of '" + type + "': " + error.message());
-    SweepPoint point;
-    point.setting = p.setting;
-    point.params = p.params;
-    point.precision = p.precision;
-    point.time_ms = measured->wall_ms;
-    point.gpu_ms = measured->gpu_ms;
-    point.error = *error;
-    sweep->points.push_back(point);
-  }
-  return Ok{};
-}
-
-Sweep reference_sweep(const std::string& series, const std::string& type,
-                      const std::string& reference) {
-  Sweep sweep;
-  sweep.series = series;
-  sweep.node_type = type;
-  sweep.kind = "cpu_reference";
-  sweep.reference = reference;
-  sweep.time_measure = "node wall";
-  return sweep;
-}
-
-template <typename F>
-std::shared_ptr<const ImageF> timed(double* total_ms, F&& compute) {
-  const auto start = std::chrono::steady_clock::now();
-  auto image = std::make_shared<const ImageF>(compute());
-  *total_ms +=
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  return image;
-}
 
 struct GBufferImages {
   ImageF id, normal, albedo, depth;
@@ -132,7 +76,7 @@ GBufferImages synthetic_gbuffer(int w, int h, int count) {
 Result<Sweep> layered_ids_sweep(GlContext& context, const Registry& registry,
                                 const SweepPlan& plan) {
   const int w = plan.width, h = plan.height;
-  Sweep sweep = reference_sweep(
+  Sweep sweep = cpu_sweep(
       "layered ids", "layered",
       "reference::layered in double (segmentation, lighting, abstraction, wet edges, glazing) "
       "on a synthetic g-buffer of N sphere objects; highlights off (a step)");
@@ -141,48 +85,36 @@ Result<Sweep> layered_ids_sweep(GlContext& context, const Registry& registry,
       "readback of id, depth and albedo per frame";
   reference::LayeredParams params;
   params.specular_threshold = 1.0;
-  std::vector<Point> points;
+  Status measured = Ok{};
   auto add = [&](int count, double sigma) {
+    if (!measured.ok()) return;
     const GBufferImages g = synthetic_gbuffer(w, h, count);
     reference::LayeredParams p = params;
     p.abstraction_sigma = sigma;
-    auto exact = timed(&sweep.reference_ms, [&] {
+    auto exact = timed_reference(&sweep.reference_ms, [&] {
       return reference::layered(g.id, g.normal, g.albedo, g.depth, nullptr, p);
     });
+    char setting[64];
+    std::snprintf(setting, sizeof setting, "ids=%d sigma=%g", count, sigma);
+    std::vector<ReferenceConfig> configs;
     for (const char* precision : {"half", "float"}) {
-      char setting[64];
-      std::snprintf(setting, sizeof setting, "ids=%d sigma=%g", count, sigma);
-      points.push_back(
-          {setting,
-           {{"specular_threshold", 1.0}, {"abstraction_sigma", sigma}},
-           precision,
-           {{"id", g.id}, {"normal", g.normal}, {"albedo", g.albedo}, {"depth", g.depth}},
-           exact});
+      configs.push_back(
+          {setting, {{"specular_threshold", 1.0}, {"abstraction_sigma", sigma}}, precision, exact});
     }
+    measured =
+        run_configs(context, registry, plan, "layered", nlohmann::json::object(),
+                    {{"id", "id"}, {"normal", "normal"}, {"albedo", "albedo"}, {"depth", "depth"}},
+                    {{"id", g.id}, {"normal", g.normal}, {"albedo", g.albedo}, {"depth", g.depth}},
+                    configs, w, h, &sweep);
   };
   for (int count : {1, 4, 16, 64}) add(count, 3.0);
   for (double sigma : {1.5, 6.0}) add(16, sigma);
-  if (auto s =
-          measure(context, registry, plan, "layered",
-                  {{"id", "id"}, {"normal", "normal"}, {"albedo", "albedo"}, {"depth", "depth"}},
-                  points, w, h, &sweep);
-      !s.ok()) {
-    return s.error();
-  }
+  if (!measured.ok()) return measured.error();
   return sweep;
 }
 
-struct Pair {
-  const char* name;
-  reference::Rgb a, b;
-};
-constexpr Pair kChart[] = {{"blue+yellow", {0.1, 0.2, 0.8}, {0.9, 0.8, 0.1}},
-                           {"red+blue", {0.8, 0.1, 0.1}, {0.1, 0.2, 0.8}},
-                           {"red+yellow", {0.8, 0.1, 0.1}, {0.9, 0.8, 0.1}},
-                           {"cyan+magenta", {0.1, 0.7, 0.8}, {0.8, 0.1, 0.6}},
-                           {"blue+white", {0.1, 0.2, 0.8}, {1.0, 1.0, 1.0}},
-                           {"red+black", {0.8, 0.1, 0.1}, {0.0, 0.0, 0.0}},
-                           {"green+itself", {0.2, 0.6, 0.2}, {0.2, 0.6, 0.2}}};
+using reference::PigmentPair;
+constexpr const auto& kChart = reference::kPigmentChart;
 
 Result<Sweep> pigment_chart_sweep(GlContext& context, const Registry& registry,
                                   const SweepPlan& plan) {
@@ -192,33 +124,32 @@ Result<Sweep> pigment_chart_sweep(GlContext& context, const Registry& registry,
   ImageF a(w, h, 4, 1.0f), b(w, h, 4, 1.0f);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const Pair& pair = kChart[x / 16];
+      const PigmentPair& pair = kChart[x / 16];
       for (int c = 0; c < 3; ++c) {
         a.at(x, y, c) = static_cast<float>(pair.a[c]);
         b.at(x, y, c) = static_cast<float>(pair.b[c]);
       }
       b.at(x, y, 3) = static_cast<float>(y) / (h - 1);
     }
-  Sweep sweep = reference_sweep("pigment chart", "pigment_mix",
-                                "reference::pigment_mix in double on a colour chart of 7 pigment "
-                                "pairs, ratio 0..1");
+  Sweep sweep = cpu_sweep("pigment chart", "pigment_mix",
+                          "reference::pigment_mix in double on a colour chart of 7 pigment "
+                          "pairs, ratio 0..1");
   std::string note = "at ratio 1/2:";
-  std::vector<Point> points;
+  std::vector<ReferenceConfig> configs;
   const char* names[] = {"rgb", "cmyk", "kubelka_munk"};
   const reference::MixMode modes[] = {reference::MixMode::kRgb, reference::MixMode::kCmyk,
                                       reference::MixMode::kKubelkaMunk};
   for (int m = 0; m < 3; ++m) {
-    auto exact =
-        timed(&sweep.reference_ms, [&] { return reference::pigment_mix(a, b, 1.0, modes[m]); });
+    auto exact = timed_reference(&sweep.reference_ms,
+                                 [&] { return reference::pigment_mix(a, b, 1.0, modes[m]); });
     for (const char* precision : {"half", "float"}) {
-      points.push_back({std::string("mode=") + names[m],
-                        {{"mode", names[m]}, {"factor", 1.0}},
-                        precision,
-                        {{"a", a}, {"b", b}},
-                        exact});
+      configs.push_back({std::string("mode=") + names[m],
+                         {{"mode", names[m]}, {"factor", 1.0}},
+                         precision,
+                         exact});
     }
     note += std::string(" ") + names[m] + " {";
-    for (const Pair& pair : kChart) {
+    for (const PigmentPair& pair : kChart) {
       const reference::Rgb c = reference::mix(pair.a, pair.b, 0.5, modes[m]);
       char text[96];
       std::snprintf(text, sizeof text, "%s (%.2f %.2f %.2f)%s", pair.name, c[0], c[1], c[2],
@@ -228,8 +159,8 @@ Result<Sweep> pigment_chart_sweep(GlContext& context, const Registry& registry,
     note += "}";
   }
   sweep.note = note;
-  if (auto s = measure(context, registry, plan, "pigment_mix", {{"a", "a"}, {"b", "b"}}, points, w,
-                       h, &sweep);
+  if (auto s = run_configs(context, registry, plan, "pigment_mix", nlohmann::json::object(),
+                           {{"a", "a"}, {"b", "b"}}, {{"a", a}, {"b", b}}, configs, w, h, &sweep);
       !s.ok()) {
     return s.error();
   }

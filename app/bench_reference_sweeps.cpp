@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "bench_graph_build.h"
+#include "bench_reference_configs.h"
 #include "bench_sweep.h"
 
 #ifdef AQ_HAVE_CPU_REFERENCES
@@ -41,68 +42,9 @@ namespace {
 
 using json = nlohmann::json;
 
-struct Config {
-  std::string setting;
-  json params;
-  std::string precision;
-  std::shared_ptr<const ImageF> reference;
-};
+using Config = ReferenceConfig;
 
 const char* const kPrecisions[] = {"half", "float"};
-
-// Times a CPU reference computation, adding its milliseconds to `total_ms`.
-template <typename F>
-std::shared_ptr<const ImageF> timed_reference(double* total_ms, F&& compute) {
-  auto start = std::chrono::steady_clock::now();
-  auto image = std::make_shared<const ImageF>(compute());
-  *total_ms +=
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  return image;
-}
-
-// Runs every configuration of one node type and compares each with its reference.
-Status run_configs(GlContext& context, const Registry& registry, const SweepPlan& plan,
-                   const std::string& type, const json& base_params,
-                   const std::map<std::string, std::string>& inputs,
-                   const std::map<std::string, ImageF>& images, const std::vector<Config>& configs,
-                   int width, int height, Sweep* sweep) {
-  Evaluator evaluator(context, registry);
-  for (const auto& config : configs) {
-    json params = base_params;
-    for (const auto& [name, value] : config.params.items()) params[name] = value;
-    Graph graph =
-        single_node_graph(registry, type, params, inputs, width, height, config.precision);
-    auto measured =
-        measure_node(evaluator, graph, kNodeUnderTest, &images, plan.frames, plan.warmup);
-    if (!measured.ok()) {
-      return make_error("sweep of '" + type + "' at " + config.setting + " (" + config.precision +
-                        "): " + measured.message());
-    }
-    auto error = compare_images(measured->output, *config.reference);
-    if (!error.ok()) {
-      return make_error("sweep of '" + type + "' at " + config.setting + ": " + error.message());
-    }
-    SweepPoint point;
-    point.setting = config.setting;
-    point.params = config.params;
-    point.precision = config.precision;
-    point.time_ms = measured->wall_ms;
-    point.gpu_ms = measured->gpu_ms;
-    point.error = *error;
-    sweep->points.push_back(point);
-  }
-  return Ok{};
-}
-
-Sweep cpu_sweep(const std::string& series, const std::string& type, const std::string& reference) {
-  Sweep sweep;
-  sweep.series = series;
-  sweep.node_type = type;
-  sweep.kind = "cpu_reference";
-  sweep.reference = reference;
-  sweep.time_measure = "node wall";
-  return sweep;
-}
 
 double number(const json& value, double fallback) {
   return value.is_number() ? value.get<double>() : fallback;

@@ -16,6 +16,7 @@
 #include "commands.h"
 #include "render_guards.h"
 #include "render_layers.h"
+#include "render_range.h"
 #include "session.h"
 
 namespace aq::app {
@@ -56,16 +57,6 @@ Renders the graph's output for each frame and writes it to OUT.
 
 Exit codes: 0 ok, 1 bad input, 2 no usable GL or plugins, 130 interrupted.
 )";
-
-std::string frame_path(const std::string& pattern, int frame) {
-  auto start = pattern.find('#');
-  if (start == std::string::npos) return pattern;
-  auto end = pattern.find_first_not_of('#', start);
-  size_t width = (end == std::string::npos ? pattern.size() : end) - start;
-  char number[32];
-  std::snprintf(number, sizeof(number), "%0*d", static_cast<int>(width), frame);
-  return pattern.substr(0, start) + number + (end == std::string::npos ? "" : pattern.substr(end));
-}
 
 void print_progress(int done, int total, double seconds) {
   const int bar = 30;
@@ -311,42 +302,40 @@ int run_render(int argc, char** argv) {
   std::map<std::string, std::pair<NodeTiming, int>> totals;
   std::vector<std::string> order;
   auto start = std::chrono::steady_clock::now();
-  int written = 0, skipped = 0;
-  int exit_code = kExitOk;
-  for (int frame = first; frame <= last; ++frame) {
-    if (stop_requested()) {
-      cancel_forced_stop();
-      exit_code = kExitInterrupted;
-      break;
+  RangeRequest request;
+  request.output = output;
+  request.first = first;
+  request.last = last;
+  request.resume = resume;
+  request.eval.measure_gpu_time = stats;
+  request.eval.finish_each_node = stats;  // timestamps without a flush under-read on llvmpipe
+  request.eval.retain_outputs = false;    // textures return to the pool after their last reader
+  if (!layers.empty()) request.eval.retain_outputs = true;  // layers reuse the frame's results
+  request.write.bits = bits;
+  request.write.float_data = float_exr;
+  request.transform = transform ? &*transform : nullptr;
+  RangeHooks hooks;
+  hooks.stop_requested = stop_requested;
+  hooks.check_path = [&](const std::string& path) {
+    return check_output_is_not_input(path, graph_path, inputs);
+  };
+  hooks.write_frame = [&](const std::string& path, const EvalOptions& options,
+                          const ImageF& pixels) -> Status {
+    if (layers.empty()) return write_image(path, pixels, request.write);
+    // Layers in a file of their own go first, so --resume, which looks at the main image, never
+    // skips a frame whose layers are missing.
+    if (layers_path(path) == path) {
+      return write_layers(evaluator, graph, options, layers, &pixels, path, request.write);
     }
-    std::string path = frame_path(output, frame);
-    if (frame != first) {
-      if (auto s = check_output_is_not_input(path, graph_path, inputs); !s.ok()) {
-        if (progress) std::printf("\n");
-        std::fprintf(stderr, "aquarelle render: frame %d: %s\n", frame, s.message().c_str());
-        return kExitBadInput;
-      }
+    if (auto s = write_layers(evaluator, graph, options, layers, nullptr, layers_path(path),
+                              request.write);
+        !s.ok()) {
+      return s;
     }
-    if (resume) {
-      remove_stale_temporaries(path);
-      // A truncated frame (a copy cut short, a full disk under another tool) is rendered again.
-      if (std::filesystem::exists(path, ec) && is_complete_image(path)) {
-        ++skipped;
-        continue;
-      }
-    }
-    EvalOptions options;
-    options.frame = frame;
-    options.measure_gpu_time = stats;
-    options.finish_each_node = stats;  // timestamps without a flush under-read on llvmpipe
-    options.retain_outputs = false;    // textures return to the pool after their last reader
-    if (!layers.empty()) options.retain_outputs = true;  // layers reuse the frame's results
-    auto result = evaluator.evaluate(graph, options);
-    if (!result.ok()) {
-      if (progress) std::printf("\n");
-      std::fprintf(stderr, "aquarelle render: frame %d: %s\n", frame, result.message().c_str());
-      return kExitBadInput;
-    }
+    return write_image(path, pixels, request.write);
+  };
+  hooks.frame_done = [&](const FrameReport& report) {
+    if (report.skipped) return;
     for (const auto& timing : evaluator.last_timings()) {
       auto [it, inserted] = totals.try_emplace(timing.node, timing, 0);
       if (inserted) {
@@ -358,49 +347,18 @@ int run_render(int argc, char** argv) {
       if (!timing.cached && !timing.fused) ++it->second.second;
       if (timing.fused) it->second.first.fused = true;
     }
-    const aq_image& image = (*result)->image;
-    Result<ImageF> pixels = make_error("not read");
-    if (transform) {
-      auto displayed = transform->apply(image.texture, image.width, image.height);
-      if (!displayed.ok()) {
-        std::fprintf(stderr, "aquarelle render: display transform: %s\n",
-                     displayed.message().c_str());
-        return kExitEnvironment;
-      }
-      pixels = read_texture(displayed->get(), image.width, image.height, AQ_FORMAT_RGBA32F);
-    } else {
-      pixels = evaluator.read_back(*result);
-    }
-    if (!pixels.ok()) {
-      std::fprintf(stderr, "aquarelle render: frame %d: %s\n", frame, pixels.message().c_str());
-      return kExitEnvironment;
-    }
-    WriteOptions write_options;
-    write_options.bits = bits;
-    write_options.float_data = float_exr;
-    // Layers in a file of their own go first, so --resume, which looks at the main image, never
-    // skips a frame whose layers are missing.
-    const bool layers_in_main = !layers.empty() && layers_path(path) == path;
-    Status written_main = Ok{};
-    if (!layers.empty() && !layers_in_main) {
-      written_main = write_layers(evaluator, graph, options, layers, nullptr, layers_path(path),
-                                  write_options);
-    }
-    if (written_main.ok()) {
-      written_main = layers_in_main ? write_layers(evaluator, graph, options, layers, &*pixels,
-                                                   path, write_options)
-                                    : write_image(path, *pixels, write_options);
-    }
-    if (auto s = written_main; !s.ok()) {
-      if (progress) std::printf("\n");
-      std::fprintf(stderr, "aquarelle render: frame %d: %s\n", frame, s.message().c_str());
-      return kExitBadInput;
-    }
-    ++written;
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (progress) print_progress(frame - first + 1, last - first + 1, seconds);
+    if (progress) print_progress(report.done, report.total, seconds);
+  };
+  const RangeOutcome outcome = render_range(evaluator, graph, request, hooks);
+  if (outcome.failure) {
+    if (progress) std::printf("\n");
+    std::fprintf(stderr, "aquarelle render: %s\n", outcome.failure->message.c_str());
+    return outcome.failure->environment ? kExitEnvironment : kExitBadInput;
   }
+  const int written = outcome.written, skipped = outcome.skipped;
+  const int exit_code = outcome.interrupted ? kExitInterrupted : kExitOk;
   cancel_forced_stop();
   if (transform) transform->release_gl();
   if (progress) std::printf("\n");

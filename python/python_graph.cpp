@@ -9,7 +9,6 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <sstream>
 
 #include "session.h"
 
@@ -37,14 +36,7 @@ fs::path module_dir() {
 }  // namespace
 
 std::vector<std::string> plugin_path() {
-  std::vector<std::string> path;
-  if (const char* env = std::getenv("AQUARELLE_PLUGIN_PATH"); env != nullptr) {
-    std::stringstream stream(env);
-    std::string item;
-    while (std::getline(stream, item, ':')) {
-      if (!item.empty()) path.push_back(item);
-    }
-  }
+  std::vector<std::string> path = plugin_path_from_environment();
   // Installed: the plugins sit at a fixed place relative to the module (set by CMake).
   std::error_code ec;
   const fs::path installed = (module_dir() / AQ_PYTHON_TO_PLUGINS).lexically_normal();

@@ -8,24 +8,13 @@
 
 #include <filesystem>
 
+#include "render_range.h"
+
 namespace py = pybind11;
 
 namespace aq::python {
 
-namespace {
-
-// out/####.exr -> out/0012.exr, as `aquarelle render` names frames.
-std::string frame_path(const std::string& pattern, int frame) {
-  auto start = pattern.find('#');
-  if (start == std::string::npos) return pattern;
-  auto end = pattern.find_first_not_of('#', start);
-  size_t width = (end == std::string::npos ? pattern.size() : end) - start;
-  std::string number = std::to_string(frame);
-  if (number.size() < width) number.insert(0, width - number.size(), '0');
-  return pattern.substr(0, start) + number + (end == std::string::npos ? "" : pattern.substr(end));
-}
-
-}  // namespace
+using app::frame_path;
 
 PyRenderer::PyRenderer(const std::string& gl, const std::string& device) {
   auto backend = parse_backend(gl);
@@ -94,36 +83,26 @@ int PyRenderer::render(const PyGraph& graph, const std::string& output,
     }
   } release{transform, *context_};
 
-  int written = 0;
-  const int total = last - first + 1;
-  for (int frame = first; frame <= last; ++frame) {
-    const std::string path = frame_path(output, frame);
-    if (!(resume && std::filesystem::exists(path, ec))) {
-      EvalOptions options;
-      options.frame = frame;
-      options.measure_gpu_time = false;
-      options.retain_outputs = false;
-      auto result = evaluator_->evaluate(graph.graph(), options);
-      if (!result.ok()) throw Failure("frame " + std::to_string(frame) + ": " + result.message());
-      const aq_image& image = (*result)->image;
-      Result<ImageF> pixels = make_error("not read");
-      if (transform) {
-        auto displayed = transform->apply(image.texture, image.width, image.height);
-        if (!displayed.ok()) throw Failure("display transform: " + displayed.message());
-        pixels = read_texture(displayed->get(), image.width, image.height, AQ_FORMAT_RGBA32F);
-      } else {
-        pixels = evaluator_->read_back(*result);
-      }
-      if (!pixels.ok()) throw Failure("frame " + std::to_string(frame) + ": " + pixels.message());
-      if (auto s = write_image(path, *pixels); !s.ok()) {
-        throw Failure("frame " + std::to_string(frame) + ": " + s.message());
-      }
-      ++written;
-    }
-    if (!progress.is_none()) progress(frame, frame - first + 1, total);
-    if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // Ctrl-C between frames
+  app::RangeRequest request;
+  request.output = output;
+  request.first = first;
+  request.last = last;
+  request.resume = resume;
+  request.eval.measure_gpu_time = false;
+  request.eval.retain_outputs = false;
+  request.transform = transform ? &*transform : nullptr;
+  app::RangeHooks hooks;
+  // Ctrl-C between frames: the pending KeyboardInterrupt is raised once the range stops.
+  hooks.stop_requested = [] { return PyErr_CheckSignals() != 0; };
+  if (!progress.is_none()) {
+    hooks.frame_done = [&](const app::FrameReport& report) {
+      progress(report.frame, report.done, report.total);
+    };
   }
-  return written;
+  const app::RangeOutcome outcome = app::render_range(*evaluator_, graph.graph(), request, hooks);
+  if (outcome.failure) throw Failure(outcome.failure->message);
+  if (outcome.interrupted || PyErr_CheckSignals() != 0) throw py::error_already_set();
+  return outcome.written;
 }
 
 std::vector<std::tuple<std::string, std::string, double, double, bool>> PyRenderer::last_timings()

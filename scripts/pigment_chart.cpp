@@ -8,18 +8,8 @@
 #include <cstdio>
 #include "reference/pigment_mix.h"
 using namespace aq::reference;
-struct Pair {
-  const char* name;
-  Rgb a, b;
-};
 int main() {
-  const Pair chart[] = {{"blue+yellow", {0.1, 0.2, 0.8}, {0.9, 0.8, 0.1}},
-                        {"red+blue", {0.8, 0.1, 0.1}, {0.1, 0.2, 0.8}},
-                        {"red+yellow", {0.8, 0.1, 0.1}, {0.9, 0.8, 0.1}},
-                        {"cyan+magenta", {0.1, 0.7, 0.8}, {0.8, 0.1, 0.6}},
-                        {"blue+white", {0.1, 0.2, 0.8}, {1.0, 1.0, 1.0}},
-                        {"red+black", {0.8, 0.1, 0.1}, {0.0, 0.0, 0.0}},
-                        {"green+itself", {0.2, 0.6, 0.2}, {0.2, 0.6, 0.2}}};
+  const auto& chart = kPigmentChart;
   const MixMode modes[] = {MixMode::kRgb, MixMode::kCmyk, MixMode::kKubelkaMunk};
   const int sw = 120, sh = 40, gap = 8, pairs = 7;
   const int W = pairs * (sw + gap) + gap, H = 3 * (sh + gap) + gap;

@@ -47,8 +47,10 @@ mkdir -p "$out"
 mv "$out/bench.json.tmp" "$out/bench.json"
 
 # The tables go between the markers of docs/accuracy.md; the prose around them stays.
-/usr/bin/python3 - "$out/bench.json" "$doc" "$command_name $graph $*" <<'PYTHON'
-import json, re, sys
+/usr/bin/python3 -B - "$out/bench.json" "$doc" "$command_name $graph $*" <<'PYTHON'
+import json, sys
+sys.path.insert(0, "scripts")  # run from the repository root (cd above)
+from doc_block import replace_block
 
 report = json.load(open(sys.argv[1]))
 doc_path, command = sys.argv[2], sys.argv[3].strip()
@@ -113,11 +115,6 @@ for sweep in report["sweeps"]:
     lines.append("")
 
 block = "\n".join(lines)
-doc = open(doc_path).read()
-pattern = re.compile(r"(<!-- bench:begin -->\n).*?(<!-- bench:end -->)", re.S)
-if not pattern.search(doc):
-    sys.exit(f"{doc_path}: the markers <!-- bench:begin --> and <!-- bench:end --> are missing")
-doc = pattern.sub(lambda m: m.group(1) + block + "\n" + m.group(2), doc)
-open(doc_path, "w").write(doc)
+replace_block(doc_path, "bench", block)
 print(f"updated {doc_path} and {sys.argv[1].rsplit('/', 1)[0]}/bench.{{png,csv,json}}")
 PYTHON

@@ -65,8 +65,10 @@ PYTHON
   [ "$run_graph" = "$graph" ] || rm -f "$run_graph"
 done
 
-/usr/bin/python3 - "$out" docs/performance.md "${levers[@]}" <<'PYTHON'
-import json, re, sys
+/usr/bin/python3 -B - "$out" docs/performance.md "${levers[@]}" <<'PYTHON'
+import json, sys
+sys.path.insert(0, "scripts")  # run from the repository root (cd above)
+from doc_block import replace_block
 
 out, doc_path, levers = sys.argv[1], sys.argv[2], sys.argv[3:]
 
@@ -110,11 +112,6 @@ lines.append("Per run (copy pass ms, copy passes per frame static cached / every
                        f"{r['copy_passes_per_frame_every_node_runs']:.1f}"
                        for spec, r in zip(levers, runs)) + ".")
 block = "\n".join(lines)
-doc = open(doc_path).read()
-pattern = re.compile(r"(<!-- levers:begin -->\n).*?(<!-- levers:end -->)", re.S)
-if not pattern.search(doc):
-    sys.exit(f"{doc_path}: the markers <!-- levers:begin --> and <!-- levers:end --> are missing")
-doc = pattern.sub(lambda m: m.group(1) + block + "\n" + m.group(2), doc)
-open(doc_path, "w").write(doc)
+replace_block(doc_path, "levers", block)
 print(f"updated the lever table of {doc_path}")
 PYTHON

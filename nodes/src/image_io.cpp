@@ -425,6 +425,34 @@ Result<OIIO::TypeDesc> pixel_type_for(const std::string& path, const std::string
                     "\"; use .exr (linear half/float), .hdr, .png, .jpg or .tif");
 }
 
+// Encodes `image` (row 0 at the bottom, float pixels) into the bytes of the file format `path`
+// names, in memory, so that writers can put them in place atomically. `create_hint` follows
+// the message when the format has no writer.
+Result<std::vector<unsigned char>> encode_image(const std::string& path, const ImageF& image,
+                                                const OIIO::ImageSpec& spec,
+                                                const std::string& create_hint) {
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  auto output = OIIO::ImageOutput::create(path, &memory);
+  if (!output)
+    return make_error("cannot write image " + path + ": " + trim(oiio_error()) + create_hint);
+  const auto pixel_bytes = static_cast<OIIO::stride_t>(image.channels * sizeof(float));
+  const auto row_bytes = pixel_bytes * image.width;
+  const float* last_row =
+      image.pixels.data() + static_cast<size_t>(image.width) * image.channels * (image.height - 1);
+  if (!output->open(path, spec) ||
+      !output->write_image(OIIO::TypeDesc::FLOAT, last_row, pixel_bytes, -row_bytes) ||
+      !output->close()) {
+    std::string reason = trim(output->geterror());
+    if (reason.empty()) reason = trim(oiio_error());
+    return make_error("cannot encode image " + path + ": " + reason);
+  }
+  output.reset();
+  if (bytes.empty())
+    return make_error("cannot encode image " + path + ": OpenImageIO wrote 0 bytes");
+  return bytes;
+}
+
 }  // namespace
 
 void remove_temporary_in_progress() {
@@ -512,33 +540,14 @@ Status write_image(const std::string& path, const ImageF& image, const WriteOpti
     spec.attribute("oiio:UnassociatedAlpha", 1);
   }
 
-  std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput memory(bytes);
-  auto output = OIIO::ImageOutput::create(path, &memory);
-  if (!output) {
-    return make_error("cannot write image " + path + ": " + trim(oiio_error()) +
-                      " (use .exr, .hdr, .png, .jpg or .tif)");
-  }
-  const auto pixel_bytes = static_cast<OIIO::stride_t>(image.channels * sizeof(float));
-  const auto row_bytes = pixel_bytes * image.width;
-  const float* last_row =
-      image.pixels.data() + static_cast<size_t>(image.width) * image.channels * (image.height - 1);
-  if (!output->open(path, spec) ||
-      !output->write_image(OIIO::TypeDesc::FLOAT, last_row, pixel_bytes, -row_bytes) ||
-      !output->close()) {
-    std::string reason = trim(output->geterror());
-    if (reason.empty()) reason = trim(oiio_error());
-    return make_error("cannot encode image " + path + ": " + reason);
-  }
-  output.reset();
-  if (bytes.empty())
-    return make_error("cannot encode image " + path + ": OpenImageIO wrote 0 bytes");
+  auto bytes = encode_image(path, image, spec, " (use .exr, .hdr, .png, .jpg or .tif)");
+  if (!bytes.ok()) return bytes.error();
 
   if (!ec && std::filesystem::exists(target_status) &&
       !std::filesystem::is_regular_file(target_status)) {
-    return write_to_special_file(path, bytes);
+    return write_to_special_file(path, *bytes);
   }
-  return write_atomically(path, bytes);
+  return write_atomically(path, *bytes);
 }
 
 }  // namespace aq
@@ -569,23 +578,9 @@ Status write_exr_channels(const std::string& path, const ImageF& image,
   for (size_t c = 0; c < channel_names.size(); ++c) {
     if (channel_names[c] == "A") spec.alpha_channel = static_cast<int>(c);
   }
-  std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput memory(bytes);
-  auto output = OIIO::ImageOutput::create(path, &memory);
-  if (!output) return make_error("cannot write image " + path + ": " + trim(oiio_error()));
-  const auto pixel_bytes = static_cast<OIIO::stride_t>(image.channels * sizeof(float));
-  const auto row_bytes = pixel_bytes * image.width;
-  const float* last_row =
-      image.pixels.data() + static_cast<size_t>(image.width) * image.channels * (image.height - 1);
-  if (!output->open(path, spec) ||
-      !output->write_image(OIIO::TypeDesc::FLOAT, last_row, pixel_bytes, -row_bytes) ||
-      !output->close()) {
-    std::string reason = trim(output->geterror());
-    if (reason.empty()) reason = trim(oiio_error());
-    return make_error("cannot encode image " + path + ": " + reason);
-  }
-  output.reset();
-  return write_atomically(path, bytes);
+  auto bytes = encode_image(path, image, spec, "");
+  if (!bytes.ok()) return bytes.error();
+  return write_atomically(path, *bytes);
 }
 
 }  // namespace aq

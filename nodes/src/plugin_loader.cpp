@@ -58,7 +58,8 @@ bool PluginSet::load_file(const std::string& path, Registry& registry, std::stri
     dlclose(handle);
     return false;
   }
-  if (desc->struct_size < sizeof(aq_plugin_desc) || (desc->node_count > 0 && desc->nodes == nullptr)) {
+  if (desc->struct_size < sizeof(aq_plugin_desc) ||
+      (desc->node_count > 0 && desc->nodes == nullptr)) {
     *why = "has an invalid plugin description (struct size or node list)";
     dlclose(handle);
     return false;
@@ -100,8 +101,7 @@ bool PluginSet::load_file(const std::string& path, Registry& registry, std::stri
   return true;
 }
 
-PluginLoadReport PluginSet::load(const std::vector<std::string>& directories,
-                                 Registry& registry) {
+PluginLoadReport PluginSet::load(const std::vector<std::string>& directories, Registry& registry) {
   PluginLoadReport report;
   for (const auto& directory : directories) {
     std::error_code ec;
@@ -124,7 +124,7 @@ PluginLoadReport PluginSet::load(const std::vector<std::string>& directories,
   return report;
 }
 
-std::vector<std::string> default_plugin_path() {
+std::vector<std::string> plugin_path_from_environment() {
   std::vector<std::string> path;
   if (const char* env = std::getenv("AQUARELLE_PLUGIN_PATH"); env != nullptr) {
     std::stringstream stream(env);
@@ -133,6 +133,11 @@ std::vector<std::string> default_plugin_path() {
       if (!item.empty()) path.push_back(item);
     }
   }
+  return path;
+}
+
+std::vector<std::string> default_plugin_path() {
+  std::vector<std::string> path = plugin_path_from_environment();
   // An installed executable uses its installed plugins; one in the build tree, the build's.
   // Never both, or every type would be found twice.
   std::error_code ec;

@@ -14,6 +14,20 @@ using Rgb = std::array<double, 3>;
 
 enum class MixMode { kRgb = 0, kCmyk = 1, kKubelkaMunk = 2 };
 
+// The colour chart of docs/pigment_chart.png (scripts/pigment_chart.cpp) and of the pigment
+// sweep of `aquarelle bench`: seven pigment pairs, each a contrast the mixing modes disagree on.
+struct PigmentPair {
+  const char* name;
+  Rgb a, b;
+};
+inline constexpr PigmentPair kPigmentChart[] = {{"blue+yellow", {0.1, 0.2, 0.8}, {0.9, 0.8, 0.1}},
+                                                {"red+blue", {0.8, 0.1, 0.1}, {0.1, 0.2, 0.8}},
+                                                {"red+yellow", {0.8, 0.1, 0.1}, {0.9, 0.8, 0.1}},
+                                                {"cyan+magenta", {0.1, 0.7, 0.8}, {0.8, 0.1, 0.6}},
+                                                {"blue+white", {0.1, 0.2, 0.8}, {1.0, 1.0, 1.0}},
+                                                {"red+black", {0.8, 0.1, 0.1}, {0.0, 0.0, 0.0}},
+                                                {"green+itself", {0.2, 0.6, 0.2}, {0.2, 0.6, 0.2}}};
+
 // Over black a unit layer of a pigment reflects this fraction of what it reflects over white.
 constexpr double kKmBlackRatio = 0.2;
 

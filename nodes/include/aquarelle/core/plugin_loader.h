@@ -38,6 +38,9 @@ class PluginSet {
 // The default plugin path: $AQUARELLE_PLUGIN_PATH (colon-separated), the install folder next
 // to the executable (<exe>/../lib/aquarelle/plugins), and the build folder.
 std::vector<std::string> default_plugin_path();
+// The folders $AQUARELLE_PLUGIN_PATH names (colon-separated, empty items skipped), in order;
+// the start of every plugin path (the executable's and the Python module's).
+std::vector<std::string> plugin_path_from_environment();
 
 // Registers the host's own node types (`read`, `image_input`) in the registry.
 void register_builtin_nodes(Registry& registry);
