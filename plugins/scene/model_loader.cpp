@@ -120,15 +120,15 @@ void check_obj_materials(const std::string& path, std::vector<std::string>* warn
     const fs::path library = fs::path(path).parent_path() / name;
     std::error_code error;
     if (!fs::is_regular_file(library, error)) {
-      warnings->push_back("material file '" + library.lexically_normal().string() +
-                          "' (mtllib of '" + path +
-                          "') is missing; its materials render grey 0.8, untextured");
+      warnings->push_back(
+          "material file '" + library.lexically_normal().string() + "' (mtllib of '" + path +
+          "') is missing; its materials render grey 0.6 (Assimp's default), untextured");
     }
   }
   if (uses_materials && !names_library) {
     warnings->push_back("'" + path +
                         "' uses materials (usemtl) but names no material file (mtllib); they "
-                        "render grey 0.8, untextured");
+                        "render grey 0.6 (Assimp's default), untextured");
   }
 }
 

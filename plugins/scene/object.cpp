@@ -25,6 +25,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -193,6 +194,12 @@ class ObjectNode {
         ctx.warn(name(ctx) + ": '" + key.path + "': " + model_.correction + " (file metadata)");
       }
     } else {
+      constexpr int64_t kShapeCount = static_cast<int64_t>(std::size(scene::kObjectShapes));
+      if (key.source < 1 || key.source > kShapeCount) {
+        ctx.fail(name(ctx) + ", parameter 'source': unknown source index " +
+                 std::to_string(key.source));
+        return false;
+      }
       scene::ModelMesh mesh;
       shape_ = scene::kObjectShapes[key.source - 1];
       scene::make_object_shape(shape_, 0.0, static_cast<uint64_t>(key.seed), mesh.data);

@@ -71,7 +71,9 @@ TEST(MultiLink, ArrayOfSourcesKeepsItsOrderAndRoundTrips) {
   EXPECT_EQ(visited, 3);
 
   const std::string written = aq::write_graph_text(read.graph);
-  EXPECT_NE(written.find("\"c.object\",\n"), std::string::npos) << written;
+  EXPECT_NE(written.find("\"objects\": [\"c.object\", \"a.object\", \"b.object\"]"),
+            std::string::npos)
+      << written;
   auto again = aq::read_graph_text(written, registry());
   ASSERT_TRUE(again.ok()) << aq::format_problems(again.problems);
   EXPECT_EQ(again.graph.nodes.at("join").inputs.links("objects"), links);
@@ -103,15 +105,31 @@ TEST(MultiLink, PlainPortRefusesAnArray) {
   EXPECT_GT(read.problems[0].line, 0);
 }
 
+void* create_nothing(const aq_host*) {
+  return nullptr;
+}
+void destroy_nothing(void*) {}
+int process_nothing(void*, aq_process_ctx*) {
+  return AQ_OK;
+}
+
+aq_node_desc minimal_desc(const char* name) {
+  aq_node_desc desc{};
+  desc.struct_size = sizeof(aq_node_desc);
+  desc.type_name = name;
+  desc.category = "Scene";
+  desc.create = &create_nothing;
+  desc.destroy = &destroy_nothing;
+  desc.process = &process_nothing;
+  return desc;
+}
+
 TEST(MultiLink, PluginsMayDeclareItOnSceneInputsOnly) {
   static const aq_port_desc scene_in[] = {
       {"objects", AQ_PORT_SCENE, AQ_PORT_OPTIONAL | AQ_PORT_MULTI, "objects"}};
   static const aq_port_desc image_in[] = {{"images", AQ_PORT_IMAGE, AQ_PORT_MULTI, "images"}};
   static const aq_port_desc out[] = {{"scene", AQ_PORT_SCENE, 0, "scene"}};
-  aq_node_desc desc{};
-  desc.struct_size = sizeof(aq_node_desc);
-  desc.type_name = "joiner";
-  desc.category = "Scene";
+  aq_node_desc desc = minimal_desc("joiner");
   desc.inputs = scene_in;
   desc.input_count = 1;
   desc.outputs = out;
@@ -131,10 +149,8 @@ TEST(MultiLink, PluginsMayDeclareItOnSceneInputsOnly) {
 // A plugin built before `check` was appended (struct_size up to `pointwise`) still loads.
 TEST(MultiLink, OlderNodeDescriptionsStillLoad) {
   static const aq_port_desc out[] = {{"scene", AQ_PORT_SCENE, 0, "scene"}};
-  aq_node_desc desc{};
+  aq_node_desc desc = minimal_desc("old_scene");
   desc.struct_size = offsetof(aq_node_desc, check);
-  desc.type_name = "old_scene";
-  desc.category = "Scene";
   desc.outputs = out;
   desc.output_count = 1;
   std::string why;
