@@ -51,7 +51,8 @@ enum Param {
   kSwimRadius,
   kSwimSpeed,
   kSwimWave,
-  kSeed
+  kSeed,
+  kSwimPhase
 };
 enum Animation { kAnimationNone, kAnimationFile, kAnimationSwim };
 
@@ -84,7 +85,11 @@ constexpr aq_param_desc kParams[] = {
     aq::float_param("swim_speed", 0.35, -5.0, 5.0, "swim loop speed, radians per second"),
     aq::float_param("swim_wave", 0.056, 0.0, 0.5,
                     "body wave amplitude as a fraction of the body length (0 glides)"),
-    aq::int_param("seed", 7, 0, 2147483647, "seed of the rock and coral shapes")};
+    aq::int_param("seed", 7, 0, 2147483647, "seed of the rock and coral shapes"),
+    aq::float_param("swim_phase", 0.0, -360.0, 360.0,
+                    "where on the swim loop the object is at time 0, degrees (0: +x of "
+                    "`position`, 90: +z)",
+                    0.0, "angle")};
 
 constexpr int kSourceFile = 0;
 constexpr double kTwoPi = 6.283185307179586;
@@ -102,8 +107,8 @@ glm::mat4 placement(const aq::Context& ctx) {
 
 // Where the swim loop puts the object at `time`: on a circle of `radius` around the origin,
 // bobbing a little, its +x along the direction of travel (as the procedural fish swims).
-glm::mat4 swim_frame(double time, double radius, double speed) {
-  const float angle = static_cast<float>(speed * time);
+glm::mat4 swim_frame(double time, double radius, double speed, double phase_degrees) {
+  const float angle = static_cast<float>(speed * time + phase_degrees * kTwoPi / 360.0);
   const float r = static_cast<float>(radius);
   const glm::vec3 at(r * std::cos(angle), 0.12f * r * std::sin(2.0f * angle), r * std::sin(angle));
   const float direction = speed >= 0.0 ? 1.0f : -1.0f;
@@ -275,7 +280,8 @@ class ObjectNode {
     const glm::mat4 place = placement(ctx) * (ctx.param_bool(kFit) ? fit_ : glm::mat4(1.0f));
     const glm::mat4 swim =
         animation == kAnimationSwim
-            ? swim_frame(time, ctx.param_float(kSwimRadius), ctx.param_float(kSwimSpeed))
+            ? swim_frame(time, ctx.param_float(kSwimRadius), ctx.param_float(kSwimSpeed),
+                         ctx.param_float(kSwimPhase))
             : glm::mat4(1.0f);
     const double instance_time = animation == kAnimationFile ? time : 0.0;
     const std::vector<scene::Instance> instances = scene::model_instances(model_, instance_time);

@@ -28,6 +28,7 @@ struct PortRef {
 // and find() address a port's first link, which is all a plain port has.
 class InputLinks : public std::multimap<std::string, PortRef> {
  public:
+  using std::multimap<std::string, PortRef>::multimap;  // {{"image", PortRef{...}}, ...}
   // The port's first link, created (empty) when the port has none.
   PortRef& operator[](const std::string& port) {
     auto it = find(port);
