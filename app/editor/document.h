@@ -120,7 +120,8 @@ class Document {
   // them from outside; the copies sit at `offset` from the originals. Returns the new ids.
   Result<std::vector<std::string>> duplicate_nodes(const std::vector<std::string>& ids,
                                                    Position offset = {40, 40});
-  // Links an output to an input (replacing the input's previous link). Refused: unknown node,
+  // Links an output to an input (replacing the input's previous link; a port that takes many
+  // links gains one unless it has it already). Refused: unknown node,
   // port or type, incompatible port types, a link from a node to itself or one closing a cycle.
   Status link(const PortRef& from, const std::string& to_node, const std::string& to_input);
   // The reason link() would refuse, or an empty string when it would accept.

@@ -64,6 +64,7 @@ void fill_process_ctx(aq_process_ctx& ctx, const aq_host* host, uint32_t gl_gene
   ctx.gl_generation = gl_generation;
   ctx.quality = quality_index(settings.quality);
   ctx.render_scale = render_scale(settings.quality);
+  ctx.input_lists = nullptr;
 }
 
 // A node's parameters as the ABI passes them; `strings` owns what params[i].s points to.
@@ -136,6 +137,10 @@ ParamValues convert_params(const Node& node, const NodeType& type,
 struct GatheredInputs {
   std::vector<aq_input_value> values;
   std::vector<TextureRef> images;  // per input; empty for scenes and unconnected inputs
+  // Every link of each input, for nodes with an AQ_PORT_MULTI port (ctx.input_lists); empty
+  // otherwise. `lists` points into `links` (and into `values` for single-link inputs).
+  std::vector<std::vector<aq_input_value>> links;
+  std::vector<aq_input_list> lists;
 };
 
 // The one place that turns a node's links into its inputs (checking that each names an output
@@ -149,6 +154,26 @@ Result<GatheredInputs> gather_inputs(const std::string& id, const Node& node, co
     const PortInfo& port = type.inputs[i];
     aq_input_value& in = gathered.values[i];
     in = aq_input_value{static_cast<uint32_t>(port.type), 0, {0, 0, 0, 0}, nullptr};
+    if (port.multi) {  // every link, in graph order (multi ports are scene ports)
+      gathered.links.resize(type.inputs.size());
+      auto [first, last] = node.inputs.equal_range(port.name);
+      for (auto link = first; link != last; ++link) {
+        NodeState& source = states[link->second.node];
+        const int index =
+            source.type != nullptr ? source.type->output_index(link->second.port) : -1;
+        if (index < 0 || source.type->outputs[index].type != AQ_PORT_SCENE) {
+          return make_error("node '" + id + "', input '" + port.name + "': '" + link->second.str() +
+                            "' is not a scene output");
+        }
+        *key = hash_value(*key, source.key);
+        *key = hash_string(*key, link->second.port);
+        gathered.links[i].push_back(
+            aq_input_value{AQ_PORT_SCENE, 1, {0, 0, 0, 0}, source.scenes[index]});
+      }
+      *key = hash_value(*key, gathered.links[i].size());
+      if (!gathered.links[i].empty()) in = gathered.links[i][0];
+      continue;
+    }
     auto link = node.inputs.find(port.name);
     if (link == node.inputs.end()) {
       if (!port.optional) {
@@ -177,6 +202,16 @@ Result<GatheredInputs> gather_inputs(const std::string& id, const Node& node, co
       if (gathered.images[i]) in.image = gathered.images[i]->image;
     } else {
       in.scene = source.scenes[index];
+    }
+  }
+  if (type.has_multi_input()) {
+    gathered.links.resize(type.inputs.size());
+    for (size_t i = 0; i < gathered.values.size(); ++i) {
+      auto& links = gathered.links[i];
+      gathered.lists.push_back(
+          links.empty() && gathered.values[i].connected != 0
+              ? aq_input_list{&gathered.values[i], 1}
+              : aq_input_list{links.data(), static_cast<uint32_t>(links.size())});
     }
   }
   return gathered;
@@ -472,6 +507,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       aq_process_ctx ctx{};
       fill_process_ctx(ctx, host, context_.generation(), call, inputs, params, settings, format,
                        time, options.frame, working);
+      if (!gathered->lists.empty()) ctx.input_lists = gathered->lists.data();
 
       for (auto& image : state.images) image.reset();
       for (auto& scene : state.scenes) scene = nullptr;

@@ -2,6 +2,8 @@
 // (plan, then execution) and what plugins may ask of the host read as separate things.
 #include "host_services.h"
 
+#include "host_image_service.h"
+
 #include <aquarelle/core/gl_context.h>
 
 #include <cstdio>
@@ -42,6 +44,7 @@ HostServices::HostServices(GlContext& context, TexturePool& pool) : context_(con
   host_.scratch_image = &HostServices::scratch_image;
   host_.bind_targets = &HostServices::bind_targets;
   host_.draw_fullscreen = &HostServices::draw_fullscreen;
+  host_.read_image = &host_read_image;
   empty_vao_ = gl::make_vertex_array();
   GLuint framebuffer = 0;
   glCreateFramebuffers(1, &framebuffer);  // created, not just named: DSA calls need that
