@@ -16,7 +16,9 @@ int run_validate(int argc, char** argv) {
           "usage: aquarelle validate GRAPH [-q]\n\n"
           "Reads GRAPH and lists every problem with its place in the file: malformed JSON,\n"
           "unsupported version, unknown node types, ports and parameters, missing inputs,\n"
-          "type mismatches, cycles, out-of-range values, a bad `output`.\n"
+          "type mismatches, cycles, out-of-range values, a bad `output`; then the files it\n"
+          "names: missing or unreadable paths, images and meshes that are not, and (warnings)\n"
+          "missing textures and material files.\n"
           "Exit codes: 0 valid, 1 problems found, 2 no plugins could be loaded.\n");
       return kExitOk;
     }
@@ -45,6 +47,15 @@ int run_validate(int argc, char** argv) {
   if (!read.ok()) {
     std::fprintf(stderr, "%s\n", format_problems(read.problems).c_str());
     std::fprintf(stderr, "%s: %zu problem(s)\n", graph_path.c_str(), read.problems.size());
+    return kExitBadInput;
+  }
+  const FileProblems files = check_graph_files(read.graph, (*plugins)->registry);
+  for (const Problem& warning : files.warnings) {
+    std::fprintf(stderr, "warning: %s\n", format_problem(warning).c_str());
+  }
+  if (!files.errors.empty()) {
+    std::fprintf(stderr, "%s\n", format_problems(files.errors).c_str());
+    std::fprintf(stderr, "%s: %zu problem(s)\n", graph_path.c_str(), files.errors.size());
     return kExitBadInput;
   }
   if (!quiet) {

@@ -149,8 +149,10 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback) {
       draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z,
                             linked ? port_colour(spot.type) : IM_COL32(70, 70, 76, 255));
       draw->AddCircle(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type), 0, 1.5f);
+      // A port holding several links (AQ_PORT_MULTI) says how many.
+      const size_t links = node.inputs.count(spot.port);
       text_at(draw, {spot.at.x + 9 * z, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
-              spot.port);
+              links > 1 ? spot.port + " (" + std::to_string(links) + ")" : spot.port);
     }
     for (const auto& spot : layout.outputs) {
       draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type));

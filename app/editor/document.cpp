@@ -234,7 +234,8 @@ Status Document::save() {
   auto on_disk = fs::last_write_time(path_, error);
   if (!error && on_disk != disk_time_ && !overwrite_confirmed_) {
     overwrite_confirmed_ = true;
-    return make_error("'" + path_ + "' was changed on disk since it was opened: Save again to "
+    return make_error("'" + path_ +
+                      "' was changed on disk since it was opened: Save again to "
                       "overwrite it, or Save As to keep both");
   }
   return save_as(path_);
@@ -587,7 +588,17 @@ Status Document::link(const PortRef& from, const std::string& to_node,
   change.label = "link " + from.str() + " -> " + to_node + "." + to_input;
   change.before[to_node] = state_of(to_node);
   NodeState after = state_of(to_node);
-  after.node->inputs[to_input] = from;
+  // A port that takes many links (scene_join's `objects`) gains one; others replace theirs.
+  const NodeType* target_type = registry_.find(after.node->type);
+  const PortInfo* port = target_type != nullptr ? target_type->input(to_input) : nullptr;
+  const std::vector<PortRef> existing = after.node->inputs.links(to_input);
+  if (port != nullptr && port->multi) {
+    if (std::find(existing.begin(), existing.end(), from) == existing.end()) {
+      after.node->inputs.add(to_input, from);
+    }
+  } else {
+    after.node->inputs[to_input] = from;
+  }
   change.after[to_node] = after;
   change.output_before = change.output_after = graph_.output;
   change.settings_before = change.settings_after = graph_.settings;

@@ -14,6 +14,7 @@
 
 #include "builtin_nodes.h"
 #include "hash.h"
+#include "host_image_service.h"
 #include "pointwise_fusion.h"
 #include "shader_cache.h"
 
@@ -104,6 +105,7 @@ void fill_process_ctx(aq_process_ctx& ctx, const aq_host* host, uint32_t gl_gene
   ctx.gl_generation = gl_generation;
   ctx.quality = quality_index(settings.quality);
   ctx.render_scale = render_scale(settings.quality);
+  ctx.input_lists = nullptr;
 }
 
 // Pointwise nodes whose function runs inside their reader's pass instead of a pass of their
@@ -154,6 +156,7 @@ struct Evaluator::Impl {
     host.scratch_image = &Impl::scratch_image;
     host.bind_targets = &Impl::bind_targets;
     host.draw_fullscreen = &Impl::draw_fullscreen;
+    host.read_image = &host_read_image;
   }
 
   ~Impl() { destroy_all(); }
@@ -530,10 +533,30 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
     // Inputs, and the key they contribute.
     std::vector<aq_input_value> inputs(type->inputs.size());
     std::vector<TextureRef> input_refs(type->inputs.size());
+    std::vector<std::vector<aq_input_value>> links(type->inputs.size());  // AQ_PORT_MULTI ports
+    std::vector<aq_input_list> input_lists;
     for (size_t i = 0; i < type->inputs.size(); ++i) {
       const PortInfo& port = type->inputs[i];
       aq_input_value& in = inputs[i];
       in = aq_input_value{static_cast<uint32_t>(port.type), 0, {0, 0, 0, 0}, nullptr};
+      if (port.multi) {  // every link, in graph order (multi ports are scene ports)
+        auto [first, last] = node.inputs.equal_range(port.name);
+        for (auto link = first; link != last; ++link) {
+          NodeState& source = impl_->states[link->second.node];
+          const int index =
+              source.type != nullptr ? source.type->output_index(link->second.port) : -1;
+          if (index < 0 || source.type->outputs[index].type != AQ_PORT_SCENE) {
+            return make_error("node '" + id + "', input '" + port.name + "': '" +
+                              link->second.str() + "' is not a scene output");
+          }
+          key = hash_value(key, source.key);
+          key = hash_string(key, link->second.port);
+          links[i].push_back(aq_input_value{AQ_PORT_SCENE, 1, {0, 0, 0, 0}, source.scenes[index]});
+        }
+        key = hash_value(key, links[i].size());
+        if (!links[i].empty()) in = links[i][0];
+        continue;
+      }
       auto link = node.inputs.find(port.name);
       if (link == node.inputs.end()) {
         if (!port.optional) {
@@ -563,6 +586,12 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       } else {
         in.scene = source.scenes[index];
       }
+    }
+    for (size_t i = 0; i < inputs.size() && type->has_multi_input(); ++i) {
+      input_lists.push_back(
+          links[i].empty() && inputs[i].connected != 0
+              ? aq_input_list{&inputs[i], 1}
+              : aq_input_list{links[i].data(), static_cast<uint32_t>(links[i].size())});
     }
     key = hash_value(key, settings.width);
     key = hash_value(key, settings.height);
@@ -675,6 +704,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& op
       aq_process_ctx ctx{};
       fill_process_ctx(ctx, &impl_->host, context_.generation(), call, inputs, params, settings,
                        format, time, options.frame, working);
+      if (!input_lists.empty()) ctx.input_lists = input_lists.data();
 
       for (auto& image : state.images) image.reset();
       for (auto& scene : state.scenes) scene = nullptr;

@@ -284,18 +284,27 @@ class GraphReader {
           "\"inputs\" must be an object, not " + graph_checks::json_kind(inputs));
       return;
     }
-    for (const auto& [port, source] : inputs.items()) {
-      const std::string pointer = graph_checks::input_pointer(id, port);
-      std::optional<PortRef> ref =
-          source.is_string() ? PortRef::parse(source.get<std::string>()) : std::nullopt;
-      if (!ref) {
-        const std::string shown = source.is_string() ? quoted(source.get<std::string>())
-                                                     : graph_checks::json_kind(source);
-        add(pointer, "source " + shown + " must be a string \"<node id>.<output port>\"");
-        already_.inputs.insert({id, port});
-        continue;
+    for (const auto& [port, value] : inputs.items()) {
+      // A port that takes several links lists its sources in an array (validation checks the
+      // port allows it).
+      const bool many = value.is_array();
+      const nlohmann::json sources = many ? value : nlohmann::json::array({value});
+      for (size_t k = 0; k < sources.size(); ++k) {
+        const nlohmann::json& source = sources[k];
+        const std::string pointer = graph_checks::input_pointer(id, port) +
+                                    (many ? "/" + std::to_string(k) : std::string());
+        std::optional<PortRef> ref =
+            source.is_string() ? PortRef::parse(source.get<std::string>()) : std::nullopt;
+        if (!ref) {
+          const std::string shown = source.is_string() ? quoted(source.get<std::string>())
+                                                       : graph_checks::json_kind(source);
+          add(pointer, "source " + shown + " must be a string \"<node id>.<output port>\"" +
+                           (many ? "" : " (or an array of them for a port taking many links)"));
+          already_.inputs.insert({id, port});
+          continue;
+        }
+        node->inputs.add(port, *ref);
       }
-      node->inputs[port] = *ref;
     }
   }
 

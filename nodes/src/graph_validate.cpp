@@ -234,6 +234,16 @@ void check_node(const std::string& id, const Node& node, const Graph& graph,
 
   if (type == nullptr) return;
   for (const PortInfo& input : type->inputs) {
+    const size_t links = node.inputs.count(input.name);
+    if (links > 1 && !input.multi) {
+      problems->push_back(problem_at(
+          input_pointer(id, input.name),
+          "input " + quoted(input.name) + " takes one link, not " + std::to_string(links) +
+              ": give one source \"<node>.<port>\" (only ports that take many, such as "
+              "scene_join's `objects`, accept an array)"));
+    }
+  }
+  for (const PortInfo& input : type->inputs) {
     if (input.optional || node.inputs.count(input.name) != 0 ||
         already.inputs.count({id, input.name}) != 0) {
       continue;

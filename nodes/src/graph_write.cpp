@@ -105,7 +105,13 @@ void write_node(const Node& node, std::string* out) {
   }
   if (!node.inputs.empty()) {
     nlohmann::json inputs = nlohmann::json::object();
-    for (const auto& [port, source] : node.inputs) inputs[port] = source.str();
+    for (const auto& [port, source] : node.inputs) {
+      if (node.inputs.count(port) == 1) {
+        inputs[port] = source.str();
+      } else {
+        inputs[port].push_back(source.str());  // a port with several links: an array
+      }
+    }
     *out += ",\n" + pad + "\"inputs\": ";
     write_value(inputs, 6, out);
   }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 namespace aq {
 namespace {
@@ -73,8 +74,13 @@ std::string read_ports(const aq_port_desc* ports, uint32_t count, const char* ki
       return std::string(kind) + " '" + name + "' has unknown port type " +
              std::to_string(port.type) + " (expected AQ_PORT_IMAGE or AQ_PORT_SCENE)";
     }
-    if ((port.flags & ~static_cast<uint32_t>(AQ_PORT_OPTIONAL)) != 0) {
+    if ((port.flags & ~static_cast<uint32_t>(AQ_PORT_OPTIONAL | AQ_PORT_MULTI)) != 0) {
       return std::string(kind) + " '" + name + "' has unknown flags " + std::to_string(port.flags);
+    }
+    if ((port.flags & AQ_PORT_MULTI) != 0 &&
+        (std::string_view(kind) != "input" || port.type != AQ_PORT_SCENE)) {
+      return std::string(kind) + " '" + name +
+             "' is AQ_PORT_MULTI: only scene inputs may take several links";
     }
     if (!seen.insert(name).second) {
       return std::string(kind) + " '" + name + "' is declared twice";
@@ -83,6 +89,7 @@ std::string read_ports(const aq_port_desc* ports, uint32_t count, const char* ki
     info.name = name;
     info.type = static_cast<aq_port_type>(port.type);
     info.optional = (port.flags & AQ_PORT_OPTIONAL) != 0;
+    info.multi = (port.flags & AQ_PORT_MULTI) != 0;
     info.description = text_or_empty(port.description);
     out->push_back(std::move(info));
   }
@@ -283,7 +290,8 @@ NodeType node_type_from_desc(const aq_node_desc& desc, const std::string& plugin
       !reason.empty()) {
     return refuse(reason);
   }
-  if (desc.struct_size >= sizeof(aq_node_desc) && desc.pointwise != nullptr) {
+  if (desc.struct_size >= offsetof(aq_node_desc, pointwise) + sizeof(desc.pointwise) &&
+      desc.pointwise != nullptr) {
     const aq_pointwise_desc& pointwise = *desc.pointwise;
     const bool one_image_in_one_out = type.inputs.size() == 1 && type.outputs.size() == 1 &&
                                       type.inputs[0].type == AQ_PORT_IMAGE &&

@@ -32,7 +32,15 @@ constexpr aq_port_desc kOutputs[] = {
     aq::image_port("image", "lit, cel-shaded colour (HDR)"),
     aq::image_port("plain", "the same light without caustics (e.g. the source of `edge`)")};
 
-enum Param { kLevels, kQuantize, kPcfRadius, kCausticTile, kCausticStrength, kBackground };
+enum Param {
+  kLevels,
+  kQuantize,
+  kPcfRadius,
+  kCausticTile,
+  kCausticStrength,
+  kBackground,
+  kEnvironment
+};
 constexpr aq_param_desc kParams[] = {
     aq::int_param("levels", 4, 1, 64,
                   "HSV value levels: v -> round(v (levels-1)) / (levels-1); 1 = flat colour"),
@@ -43,7 +51,10 @@ constexpr aq_param_desc kParams[] = {
                     "(scene.caustic_tile, which the caustics node sizes its texture for)"),
     aq::float_param("caustic_strength", 1.0, 0.0, 4.0,
                     "0: no caustics, 1: as computed, >1: more contrast"),
-    aq::color_param("background", 0.1, 0.3, 0.4, "colour where id = 0 (open water)")};
+    aq::color_param("background", 0.1, 0.3, 0.4, "colour where id = 0 (open water)"),
+    aq::bool_param("environment", false,
+                   "where id = 0 show the scene's environment (the g-buffer albedo there, "
+                   "scene_join's gradient) instead of `background`")};
 
 // The shader variant for this node's connections and parameters (see cel_light.frag).
 std::string variant_source(bool has_shadow, bool has_caustics, bool quantize, int pcf_radius,
@@ -142,6 +153,7 @@ struct CelLight {
     aq::set_float(program, "u_caustic_strength", ctx.param_float(kCausticStrength));
     aq::set_int(program, "u_levels", static_cast<int>(ctx.param_int(kLevels)));
     aq::set_vec3(program, "u_background", ctx.param_vec3(kBackground));
+    aq::set_int(program, "u_environment", ctx.param_bool(kEnvironment) ? 1 : 0);
     const bool bound = ctx.bind_targets(targets, 2);
     if (bound) ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
     glBindSampler(5, 0);

@@ -4,11 +4,13 @@
 //   scene ──► [vertex buffers, uploaded once per geometry_revision] ──► one draw per mesh
 //             ──► position (world xyz, w = 1 on geometry)   RGBA32F always (shadow lookups)
 //                 normal   (world, unit, w = 1)            working format
-//                 albedo   (linear rgb, a = 1)             working format
+//                 albedo   (linear rgb x base colour texture, a = 1; the environment's
+//                           gradient with a = 0 behind the scene)   working format
 //                 depth    (linear view depth, far plane on the background)  R32F
 //                 id       (object_id as float, 0 on the background)         R32F
 //
-// The background is marked explicitly (id 0, w = 0), never by a zero normal.
+// The background is marked explicitly (id 0, w = 0), never by a zero normal. Texture alpha
+// under a mesh's cut-off is a hole (cut-out cards).
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/scene_gpu.hpp>
 #include <aquarelle/scene_math.hpp>
@@ -66,18 +68,25 @@ class GBuffer {
     glClearBufferfv(GL_COLOR, kId, zero);
     glClearBufferfv(GL_DEPTH, 0, &depth_one);
 
+    glm::mat4 view = aq::scene_math::camera_view(scene->camera);
+    glm::mat4 projection = aq::scene_math::camera_projection(
+        scene->camera, static_cast<float>(width) / static_cast<float>(height));
+    if (aq::scene_has_environment(*scene) &&
+        !draw_environment(ctx, *scene, glm::inverse(projection * view))) {
+      return AQ_ERROR;
+    }
+
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glUseProgram(program);
-    glm::mat4 view = aq::scene_math::camera_view(scene->camera);
-    glm::mat4 projection = aq::scene_math::camera_projection(
-        scene->camera, static_cast<float>(width) / static_cast<float>(height));
     aq::set_mat4(program, "u_view", glm::value_ptr(view));
     aq::set_mat4(program, "u_projection", glm::value_ptr(projection));
     const GLint model_location = glGetUniformLocation(program, "u_model");
     const GLint normal_location = glGetUniformLocation(program, "u_normal_matrix");
     const GLint id_location = glGetUniformLocation(program, "u_object_id");
+    const GLint cutoff_location = glGetUniformLocation(program, "u_alpha_cutoff");
+    aq::set_int(program, "u_base_color", 0);
     for (uint32_t i = 0; i < scene->mesh_count; ++i) {
       const aq_mesh& mesh = scene->meshes[i];
       glm::mat4 model = glm::make_mat4(mesh.model);
@@ -85,14 +94,37 @@ class GBuffer {
       glUniformMatrix4fv(model_location, 1, GL_FALSE, mesh.model);
       glUniformMatrix3fv(normal_location, 1, GL_FALSE, glm::value_ptr(normal_matrix));
       glUniform1f(id_location, static_cast<float>(mesh.object_id));
+      glUniform1f(cutoff_location, meshes_.bind_surface(*scene, i, 0));
       meshes_.draw(mesh);
     }
     glDisable(GL_DEPTH_TEST);
-    glUseProgram(0);
+    aq::unbind_textures(1);
     return AQ_OK;
   }
 
  private:
+  // The gradient behind the scene into the albedo target only (the others keep their clear
+  // values, which mark the background).
+  static bool draw_environment(aq::Context& ctx, const aq_scene& scene,
+                               const glm::mat4& inverse_view_projection) {
+    GLuint program = ctx.program(shaders::environment_frag);
+    if (program == 0) return false;
+    for (GLuint target = 0; target < kOutputCount; ++target) {
+      const GLboolean on = target == kAlbedo ? GL_TRUE : GL_FALSE;
+      glColorMaski(target, on, on, on, on);
+    }
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(program);
+    aq::set_mat4(program, "u_inverse_view_projection", glm::value_ptr(inverse_view_projection));
+    aq::set_vec3(program, "u_top", scene.environment_top);
+    aq::set_vec3(program, "u_bottom", scene.environment_bottom);
+    ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+    for (GLuint target = 0; target < kOutputCount; ++target) {
+      glColorMaski(target, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    }
+    return true;
+  }
+
   aq::SceneMeshCache meshes_;
 };
 

@@ -5,9 +5,19 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace scene {
+
+// Base colour pixels a mesh samples with its uvs: linear RGBA float, straight alpha, row 0 at
+// v = 0 (aq_texture). Shared between the meshes (and frames) that use the same file.
+struct Texture {
+  std::vector<float> rgba;
+  int width = 0;
+  int height = 0;
+  uint64_t revision = 0;  // unique per process; set when the pixels are made
+};
 
 struct MeshData {
   std::vector<float> positions;  // xyz per vertex, object space
@@ -16,6 +26,9 @@ struct MeshData {
   std::vector<uint32_t> indices;
   glm::mat4 model{1.0f};
   uint32_t object_id = 0;
+  std::vector<float> uvs;                  // uv per vertex, or empty (untextured)
+  std::shared_ptr<const Texture> texture;  // base colour, multiplies the vertex colours
+  float alpha_cutoff = 0.0f;               // texture alpha below: a hole (cut-out cards)
 
   uint32_t vertex_count() const { return static_cast<uint32_t>(positions.size() / 3); }
   glm::vec3 position(uint32_t i) const {

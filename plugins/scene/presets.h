@@ -12,6 +12,10 @@
 #include <string_view>
 #include <vector>
 
+namespace aq {
+class Context;
+}
+
 namespace scene {
 
 struct AnimationSettings {
@@ -47,8 +51,11 @@ Preset make_underwater(uint64_t seed, double detail = 1.0);
 // (a 2x2 plane at y = 0 with both windings on the same positions, id 1).
 bool make_test_preset(std::string_view name, Preset* preset);
 
-// Loads every mesh of an OBJ, glTF or other Assimp-readable file, node transforms baked, with
-// material base colours. Returns an empty string or a message saying what failed.
-std::string load_model_file(const std::string& path, Preset* preset);
+// Loads every mesh of an OBJ, glTF or other Assimp-readable file placed as at time 0, with
+// material base colours and textures. Returns an empty string or a message saying what failed.
+// Textures are read through the host (`ctx`, cached in `textures`); what is missing is a warning.
+class TextureCache;
+std::string load_model_file(const std::string& path, Preset* preset, const aq::Context& ctx,
+                            TextureCache& textures);
 
 }  // namespace scene

@@ -13,6 +13,8 @@
 #include <aquarelle/plugin.hpp>
 
 #include "presets.h"
+#include "revision.h"
+#include "textures.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -72,8 +74,7 @@ constexpr aq_param_desc kParams[] = {
 
 // Unique across every mesh this plugin ever publishes (all instances), as plugin.h asks.
 uint64_t new_geometry_revision() {
-  static std::atomic<uint64_t> next{1};
-  return next.fetch_add(1);
+  return scene::new_revision();
 }
 
 void smooth(scene::MeshData& mesh, int iterations) {
@@ -112,7 +113,7 @@ class SceneNode {
     if (built_ && key == static_key_) return true;
     scene::Preset preset;
     if (key.preset == kPresetFile) {
-      std::string error = scene::load_model_file(key.path, &preset);
+      std::string error = scene::load_model_file(key.path, &preset, ctx, textures_);
       if (!error.empty()) {
         ctx.fail(std::string("scene '") + ctx.node_id() + "': " + error);
         return false;
@@ -159,6 +160,18 @@ class SceneNode {
     animated_valid_ = true;
   }
 
+  static aq_mesh_surface surface_of(const PublishedMesh& mesh) {
+    aq_mesh_surface surface{};
+    const scene::MeshData& data = mesh.data;
+    if (data.texture && data.uvs.size() == 2 * static_cast<size_t>(data.vertex_count())) {
+      surface.uvs = data.uvs.data();
+      surface.base_color = aq_texture{data.texture->rgba.data(), data.texture->width,
+                                      data.texture->height, data.texture->revision};
+      surface.alpha_cutoff = 0.5f;
+    }
+    return surface;
+  }
+
   static aq_mesh describe(const PublishedMesh& mesh) {
     aq_mesh out{};
     out.positions = mesh.data.positions.data();
@@ -176,8 +189,10 @@ class SceneNode {
   void publish(aq::Context& ctx) {
     meshes_.clear();
     glm::vec3 lo(1e30f), hi(-1e30f);
+    surfaces_.clear();
     for (const PublishedMesh& mesh : static_meshes_) {
       meshes_.push_back(describe(mesh));
+      surfaces_.push_back(surface_of(mesh));
       for (uint32_t v = 0; v < mesh.data.vertex_count(); ++v) {
         glm::vec3 p = glm::vec3(mesh.data.model * glm::vec4(mesh.data.position(v), 1.0f));
         lo = glm::min(lo, p);
@@ -188,6 +203,7 @@ class SceneNode {
     // shadow map fitted to them) stay put while the fish swims.
     for (size_t i = 0; i < animated_meshes_.size(); ++i) {
       meshes_.push_back(describe(animated_meshes_[i]));
+      surfaces_.push_back(surface_of(animated_meshes_[i]));
       lo = glm::min(lo, animated_objects_[i].bounds_min);
       hi = glm::max(hi, animated_objects_[i].bounds_max);
     }
@@ -197,6 +213,8 @@ class SceneNode {
     scene_.struct_size = sizeof(aq_scene);
     scene_.meshes = meshes_.data();
     scene_.mesh_count = static_cast<uint32_t>(meshes_.size());
+    scene_.surfaces = surfaces_.data();
+    scene_.surface_struct_size = sizeof(aq_mesh_surface);
     aq_camera& camera = scene_.camera;
     const double* eye = ctx.param_vec3(kCameraPosition);
     const double* target = ctx.param_vec3(kCameraTarget);
@@ -239,6 +257,8 @@ class SceneNode {
   double animated_time_ = 0.0;
   scene::AnimationSettings animated_settings_;
   std::vector<aq_mesh> meshes_;
+  std::vector<aq_mesh_surface> surfaces_;
+  scene::TextureCache textures_;
   aq_scene scene_{};
 };
 
@@ -249,4 +269,8 @@ AQ_SOURCE_NODE(kSceneNode, SceneNode, "scene", "Scene",
 
 }  // namespace
 
-AQ_PLUGIN("scene", "1.0", &kSceneNode)
+// The object and scene_join nodes (object.cpp, join.cpp) share this plugin.
+const aq_node_desc* object_node_desc();
+const aq_node_desc* join_node_desc();
+
+AQ_PLUGIN("scene", "1.0", &kSceneNode, object_node_desc(), join_node_desc())

@@ -105,7 +105,7 @@ class ShadowMap {
     glUseProgram(program);
     draw_meshes(*scene, unchanged, false, program);
     glDisable(GL_DEPTH_TEST);
-    glUseProgram(0);
+    aq::unbind_textures(1);  // the cut-out texture unit, and the program
     return AQ_OK;
   }
 
@@ -120,9 +120,12 @@ class ShadowMap {
   void draw_meshes(const aq_scene& scene, const std::vector<bool>& unchanged, bool which,
                    GLuint program) const {
     const GLint model_location = glGetUniformLocation(program, "u_model");
+    const GLint cutoff_location = glGetUniformLocation(program, "u_alpha_cutoff");
+    aq::set_int(program, "u_base_color", 0);
     for (uint32_t i = 0; i < scene.mesh_count; ++i) {
       if (unchanged[i] != which) continue;
       glUniformMatrix4fv(model_location, 1, GL_FALSE, scene.meshes[i].model);
+      glUniform1f(cutoff_location, meshes_.bind_surface(scene, i, 0));
       meshes_.draw(scene.meshes[i]);
     }
   }

@@ -54,7 +54,11 @@ typedef enum aq_port_type {
 } aq_port_type;
 
 enum {
-  AQ_PORT_OPTIONAL = 1u << 0 /* an input that may stay unconnected */
+  AQ_PORT_OPTIONAL = 1u << 0, /* an input that may stay unconnected */
+  /* Appended in ABI 1: an input that takes any number of links (scene ports only), delivered
+   * in order through aq_process_ctx::input_lists. A host that predates it refuses the plugin
+   * (unknown flag), so a plugin using it never runs where the links would be lost. */
+  AQ_PORT_MULTI = 1u << 1
 };
 
 typedef enum aq_format {
@@ -106,6 +110,26 @@ typedef struct aq_light {
   float ambient[3];   /* linear */
 } aq_light;
 
+/* Pixels a scene carries for its meshes (base colour textures), on the CPU like the vertices:
+ * RGBA float, linear (working space), straight (not premultiplied) alpha, row 0 at v = 0. */
+typedef struct aq_texture {
+  const float* rgba; /* width * height * 4 floats; NULL: no texture */
+  int32_t width;
+  int32_t height;
+  /* Changes whenever the pixels change, so consumers re-upload only then; unique per process. */
+  uint64_t revision;
+} aq_texture;
+
+/* How a mesh's surface looks beyond its vertex colours (appended in ABI 1, one per mesh in
+ * aq_scene::surfaces). albedo = vertex colour * texture(uv).rgb; texture alpha below
+ * alpha_cutoff is a hole (cut-out cards: seaweed, plants) in the g-buffer and the shadow map. */
+typedef struct aq_mesh_surface {
+  const float* uvs;      /* uv per vertex (2 floats), or NULL */
+  aq_texture base_color; /* rgba NULL: none (white) */
+  float alpha_cutoff;    /* 0: opaque whatever the alpha */
+  uint32_t flags;        /* reserved, 0 */
+} aq_mesh_surface;
+
 typedef struct aq_scene {
   uint32_t struct_size;
   const aq_mesh* meshes;
@@ -120,6 +144,18 @@ typedef struct aq_scene {
    * as cel_light projects it and as the caustics node sizes it). Appended in ABI 1: read it
    * only when struct_size covers it (plugin.hpp's aq::scene_caustic_tile does). */
   float caustic_tile;
+  /* Appended in ABI 1 (read only when struct_size covers them; plugin.hpp's aq::scene_surface
+   * and aq::scene_has_environment do): one surface per mesh, or NULL for none (untextured,
+   * opaque), and the environment seen behind the scene, a vertical gradient from
+   * environment_bottom (looking straight down) to environment_top (straight up), used when
+   * has_environment is 1. surface_struct_size is sizeof(aq_mesh_surface) of the producer: the
+   * array's stride, so the struct can grow at its end. (Not in aq_mesh: meshes travel as an
+   * array without a size per element, so growing aq_mesh would break older readers.) */
+  const aq_mesh_surface* surfaces;
+  uint32_t surface_struct_size;
+  uint32_t has_environment;
+  float environment_top[3];
+  float environment_bottom[3];
 } aq_scene;
 
 /* ---- Node descriptions: data the host reads without running anything ---------------- */
@@ -162,6 +198,7 @@ enum {
 
 struct aq_host;
 struct aq_process_ctx;
+struct aq_param_value;
 
 /* A pointwise node's per-pixel function, so the host can fuse a chain of pointwise nodes (and
  * the resampling of a proxy render's output) into one pass instead of one pass per node, as
@@ -205,6 +242,15 @@ typedef struct aq_node_desc {
    * the per-pixel function the host may fuse; NULL: never fused. Read it only when
    * struct_size covers it. */
   const aq_pointwise_desc* pointwise;
+  /* Appended in ABI 1: what `aquarelle validate` asks the node about its files (a mesh that is
+   * not a mesh, a texture or material file it names that is missing), without a GL context
+   * and without side effects; NULL: nothing to check. params are resolved as for process()
+   * (paths against the graph file's folder). Each problem goes to report: level 0 an error
+   * (the graph will not render), 1 a warning (it renders with a stand-in the message names);
+   * param is the index of the parameter it is about. Read it only when struct_size covers it. */
+  void (*check)(const struct aq_param_value* params, uint32_t param_count,
+                void (*report)(void* data, int level, uint32_t param, const char* message),
+                void* data);
 } aq_node_desc;
 
 typedef struct aq_plugin_desc {
@@ -227,6 +273,12 @@ typedef struct aq_input_value {
   aq_image image;     /* when type == AQ_PORT_IMAGE and connected */
   const aq_scene* scene; /* when type == AQ_PORT_SCENE and connected; owned by the producer */
 } aq_input_value;
+
+/* The links of one input (see aq_process_ctx::input_lists). */
+typedef struct aq_input_list {
+  const aq_input_value* values;
+  uint32_t count; /* 0 when unconnected */
+} aq_input_list;
 
 typedef struct aq_param_value {
   double f[3];       /* float (f[0]), color, vec3 */
@@ -263,6 +315,11 @@ typedef struct aq_process_ctx {
    * means output pixels: multiply it by render_scale. Appended in ABI 1: read it only when
    * struct_size covers it (plugin.hpp's Context::render_scale does). */
   double render_scale;
+  /* Appended in ABI 1: every link of each input, in description order, in the order the graph
+   * lists them (`"objects": ["a.object", "b.object"]`); inputs[i] is the first one. NULL when
+   * no input of the node is AQ_PORT_MULTI. plugin.hpp's Context::link_count and input_scene(i,
+   * k) read it. */
+  const struct aq_input_list* input_lists;
 } aq_process_ctx;
 
 typedef struct aq_host {
@@ -295,6 +352,15 @@ typedef struct aq_host {
                       const aq_image* depth);
   /* Draws the full-screen triangle into the bound targets with the bound program. */
   void (*draw_fullscreen)(void* host_data);
+  /* Appended in ABI 1 (check struct_size): reads an image file through the host's image I/O
+   * (OpenImageIO, converted to the working space through OpenColorIO; sRGB for 8-bit files
+   * unless they say otherwise) and hands its pixels to `receive` (RGBA float, straight alpha,
+   * row 0 at the bottom), valid only during that call. Returns AQ_OK, or AQ_ERROR with a
+   * message in error[0..error_size) naming the path and the reason (nothing is recorded as
+   * the node's failure: the caller decides whether it is a warning). */
+  int (*read_image)(void* host_data, const char* path,
+                    void (*receive)(void* user, const float* rgba, int32_t width, int32_t height),
+                    void* user, char* error, size_t error_size);
 } aq_host;
 
 #ifdef __cplusplus

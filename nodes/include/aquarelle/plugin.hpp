@@ -22,6 +22,7 @@
 #include <cstdio>
 #include <new>
 #include <string>
+#include <vector>
 
 namespace aq {
 
@@ -38,6 +39,30 @@ constexpr aq_port_desc scene_port(const char* name, const char* description) {
 }
 constexpr aq_port_desc optional_scene_port(const char* name, const char* description) {
   return aq_port_desc{name, AQ_PORT_SCENE, AQ_PORT_OPTIONAL, description};
+}
+// A scene input taking any number of links (0 or more; AQ_PORT_MULTI), read with
+// Context::link_count and Context::input_scene(input, link).
+constexpr aq_port_desc multi_scene_port(const char* name, const char* description) {
+  return aq_port_desc{name, AQ_PORT_SCENE, AQ_PORT_OPTIONAL | AQ_PORT_MULTI, description};
+}
+
+// Mesh i's surface (uvs, base colour texture, cut-out), or NULL when the scene has none (an
+// older producer, or an untextured mesh).
+inline const aq_mesh_surface* scene_surface(const aq_scene& scene, uint32_t i) {
+  const bool present = scene.struct_size >=
+                       offsetof(aq_scene, surface_struct_size) + sizeof(scene.surface_struct_size);
+  if (!present || scene.surfaces == nullptr || i >= scene.mesh_count ||
+      scene.surface_struct_size < sizeof(aq_mesh_surface)) {
+    return nullptr;
+  }
+  const char* base = reinterpret_cast<const char*>(scene.surfaces);
+  return reinterpret_cast<const aq_mesh_surface*>(base + size_t{i} * scene.surface_struct_size);
+}
+// Whether the scene asks for an environment behind it (the gradient in environment_top/bottom).
+inline bool scene_has_environment(const aq_scene& scene) {
+  const bool present = scene.struct_size >=
+                       offsetof(aq_scene, environment_bottom) + sizeof(scene.environment_bottom);
+  return present && scene.has_environment != 0;
 }
 
 // The scene's caustic tile in world units; 4 (the period before the field existed) for a
@@ -149,6 +174,47 @@ class Context {
   const aq_scene* input_scene(uint32_t input) const {
     return connected(input) ? raw_->inputs[input].scene : nullptr;
   }
+  // Links of an AQ_PORT_MULTI input (any input: 0 or 1 for a plain one), in graph order.
+  uint32_t link_count(uint32_t input) const {
+    if (input >= raw_->input_count) return 0;
+    if (has_input_lists()) return raw_->input_lists[input].count;
+    return connected(input) ? 1u : 0u;
+  }
+  const aq_scene* input_scene(uint32_t input, uint32_t link) const {
+    if (link >= link_count(input)) return nullptr;
+    if (!has_input_lists()) return input_scene(input);
+    const aq_input_value& value = raw_->input_lists[input].values[link];
+    return value.connected != 0 ? value.scene : nullptr;
+  }
+  // Reads an image file through the host (OIIO + OCIO, working space, straight alpha, row 0 at
+  // the bottom) into `rgba`; false with `error` set when it cannot (or the host is too old).
+  bool read_image(const std::string& path, std::vector<float>* rgba, int* width, int* height,
+                  std::string* error) const {
+    const aq_host* host = raw_->host;
+    if (host->struct_size < offsetof(aq_host, read_image) + sizeof(host->read_image) ||
+        host->read_image == nullptr) {
+      *error = "this host cannot read images for plugins (it predates aq_host::read_image)";
+      return false;
+    }
+    struct Sink {
+      std::vector<float>* rgba;
+      int* width;
+      int* height;
+    } sink{rgba, width, height};
+    auto receive = [](void* user, const float* pixels, int32_t w, int32_t h) {
+      auto* s = static_cast<Sink*>(user);
+      s->rgba->assign(pixels, pixels + static_cast<size_t>(w) * static_cast<size_t>(h) * 4);
+      *s->width = w;
+      *s->height = h;
+    };
+    char message[1024] = {0};
+    if (host->read_image(raw_->host_data, path.c_str(), receive, &sink, message, sizeof(message)) !=
+        AQ_OK) {
+      *error = message;
+      return false;
+    }
+    return true;
+  }
 
   double param_float(uint32_t p) const { return raw_->params[p].f[0]; }
   int64_t param_int(uint32_t p) const { return raw_->params[p].i; }
@@ -202,6 +268,10 @@ class Context {
   }
 
  private:
+  bool has_input_lists() const {
+    return raw_->struct_size >= offsetof(aq_process_ctx, input_lists) + sizeof(void*) &&
+           raw_->input_lists != nullptr;
+  }
   aq_process_ctx* raw_;
 };
 
@@ -319,6 +389,7 @@ constexpr uint32_t count_of(const T (&)[N]) {
                                     &aq::NodeAdapter<NodeClass>::create,                           \
                                     &aq::NodeAdapter<NodeClass>::destroy,                          \
                                     &aq::NodeAdapter<NodeClass>::process,                          \
+                                    nullptr,                                                       \
                                     nullptr}
 
 // Same, for a pointwise node the host may fuse: `glsl` is the aq_shader_source of its
@@ -342,7 +413,8 @@ constexpr uint32_t count_of(const T (&)[N]) {
                                     &aq::NodeAdapter<NodeClass>::create,                      \
                                     &aq::NodeAdapter<NodeClass>::destroy,                     \
                                     &aq::NodeAdapter<NodeClass>::process,                     \
-                                    &NAME##_pointwise}
+                                    &NAME##_pointwise,                                        \
+                                    nullptr}
 
 // Same as AQ_NODE, for a node without parameters.
 #define AQ_NODE_NO_PARAMS(NAME, NodeClass, type_name, category, description, flags, inputs, \
@@ -361,6 +433,7 @@ constexpr uint32_t count_of(const T (&)[N]) {
                                     &aq::NodeAdapter<NodeClass>::create,                    \
                                     &aq::NodeAdapter<NodeClass>::destroy,                   \
                                     &aq::NodeAdapter<NodeClass>::process,                   \
+                                    nullptr,                                                \
                                     nullptr}
 
 // Same, for a source node: no inputs (generators such as noise, caustics, scene).
@@ -379,7 +452,28 @@ constexpr uint32_t count_of(const T (&)[N]) {
                                     &aq::NodeAdapter<NodeClass>::create,                          \
                                     &aq::NodeAdapter<NodeClass>::destroy,                         \
                                     &aq::NodeAdapter<NodeClass>::process,                         \
+                                    nullptr,                                                      \
                                     nullptr}
+
+// Same as AQ_SOURCE_NODE with a validate-time file check (aq_node_desc::check).
+#define AQ_SOURCE_NODE_CHECKED(NAME, NodeClass, type_name, category, description, flags, outputs, \
+                               params, check_function)                                            \
+  static const aq_node_desc NAME = {sizeof(aq_node_desc),                                         \
+                                    type_name,                                                    \
+                                    category,                                                     \
+                                    description,                                                  \
+                                    flags,                                                        \
+                                    nullptr,                                                      \
+                                    0,                                                            \
+                                    outputs,                                                      \
+                                    aq::count_of(outputs),                                        \
+                                    params,                                                       \
+                                    aq::count_of(params),                                         \
+                                    &aq::NodeAdapter<NodeClass>::create,                          \
+                                    &aq::NodeAdapter<NodeClass>::destroy,                         \
+                                    &aq::NodeAdapter<NodeClass>::process,                         \
+                                    nullptr,                                                      \
+                                    check_function}
 
 // Exports the plugin entry point listing the given node descriptions (pointers).
 #define AQ_PLUGIN(plugin_name, plugin_version, ...)                                    \

@@ -35,6 +35,7 @@ uniform float u_caustic_strength;
 
 uniform int u_levels;
 uniform vec3 u_background;
+uniform bool u_environment;  // background from the albedo target (the scene's environment)
 
 #if AQ_HAS_SHADOW
 // Fraction of shadow-map taps that see P lit: (2r+1)^2 texels around P's texel, depth compared
@@ -112,7 +113,7 @@ vec4 fetch(sampler2D s) {
 
 void main() {
   if (!(fetch(u_id).r >= 0.5)) {  // id 0 (or NaN): background
-    o_color = vec4(u_background, 1.0);
+    o_color = vec4(u_environment ? max(fetch(u_albedo).rgb, vec3(0.0)) : u_background, 1.0);
     o_plain = o_color;
     return;
   }

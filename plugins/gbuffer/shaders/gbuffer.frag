@@ -1,9 +1,10 @@
-// Writes the five gbuffer targets. Covered pixels get w = 1 in position, normal and albedo and
+// Writes the five gbuffer targets; albedo is the vertex colour times the base colour texture. Covered pixels get w = 1 in position, normal and albedo and
 // their object id (>= 1); the clear values (w = 0, id 0, depth = far plane) mark the background.
 in vec3 v_world;
 in vec3 v_normal;
 in vec3 v_color;
 in float v_view_depth;
+in vec2 v_uv;
 
 layout(location = 0) out vec4 o_position;
 layout(location = 1) out vec4 o_normal;
@@ -12,8 +13,13 @@ layout(location = 3) out float o_depth;
 layout(location = 4) out float o_id;
 
 uniform float u_object_id;
+uniform sampler2D u_base_color;  // the mesh's texture, or one white texel
+uniform float u_alpha_cutoff;    // texture alpha below it is a hole; 0: opaque
 
 void main() {
+  vec4 texel = texture(u_base_color, v_uv);
+  // Cut-out cards (seaweed, plants): a hole, not a transparent colour (seed 001's discard).
+  if (texel.a < u_alpha_cutoff) discard;
   vec3 n = v_normal;
   if (dot(n, n) > 1e-12) {
     // Thin single-sided parts (fins, seaweed) are seen from both sides: light the visible side.
@@ -26,7 +32,7 @@ void main() {
   }
   o_position = vec4(v_world, 1.0);
   o_normal = vec4(n, 1.0);
-  o_albedo = vec4(v_color, 1.0);
+  o_albedo = vec4(v_color * texel.rgb, 1.0);
   o_depth = v_view_depth;
   o_id = u_object_id;
 }

@@ -6,7 +6,9 @@
 
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace aq {
 
@@ -18,6 +20,34 @@ struct PortRef {
   bool operator==(const PortRef&) const = default;
   // Splits at the last '.'; nullopt when there is no '.', or either side is empty.
   static std::optional<PortRef> parse(const std::string& text);
+};
+
+// The links into a node's inputs: one per port, or several, in file order, for a port that
+// takes many (AQ_PORT_MULTI, written as a JSON array of sources). Iterating visits every link
+// as a (port, source) pair, so code that walks dependencies sees them all; operator[], at()
+// and find() address a port's first link, which is all a plain port has.
+class InputLinks : public std::multimap<std::string, PortRef> {
+ public:
+  // The port's first link, created (empty) when the port has none.
+  PortRef& operator[](const std::string& port) {
+    auto it = find(port);
+    if (it == end()) it = emplace(port, PortRef{});
+    return it->second;
+  }
+  const PortRef& at(const std::string& port) const {
+    auto it = find(port);
+    if (it == end()) throw std::out_of_range("input '" + port + "' is not connected");
+    return it->second;
+  }
+  // Appends a link after the port's others.
+  void add(const std::string& port, PortRef source) { emplace(port, std::move(source)); }
+  // Every link of the port, in order.
+  std::vector<PortRef> links(const std::string& port) const {
+    std::vector<PortRef> out;
+    auto [first, last] = equal_range(port);
+    for (auto it = first; it != last; ++it) out.push_back(it->second);
+    return out;
+  }
 };
 
 struct Settings {
@@ -34,7 +64,7 @@ struct Node {
   std::string type;
   // Parameter values as written (JSON); missing parameters take their defaults.
   std::map<std::string, nlohmann::json> params;
-  std::map<std::string, PortRef> inputs;  // input port -> source output
+  InputLinks inputs;  // input port -> source output(s)
 };
 
 struct Graph {

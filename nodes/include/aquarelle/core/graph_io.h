@@ -47,6 +47,17 @@ std::string write_graph_text(const Graph& graph);
 // Atomic: writes PATH.tmp-XXXX next to it, flushes, fsyncs, renames over PATH.
 Status save_graph_file(const Graph& graph, const std::string& path);
 
+// What `aquarelle validate` finds in the files a valid graph names: a path parameter that is
+// missing, not a regular file or unreadable, a `read` image that is not an image, and what
+// node types that check their files report (aq_node_desc::check: a file that is not a mesh,
+// a missing texture or material file). Errors: the graph will not render; warnings: it
+// renders with a stand-in the message names. Located in graph.source_path when set.
+struct FileProblems {
+  std::vector<Problem> errors;
+  std::vector<Problem> warnings;
+};
+FileProblems check_graph_files(const Graph& graph, const Registry& registry);
+
 // Resolved value of a parameter: the graph's value or the type's default, as JSON.
 nlohmann::json param_value_or_default(const Node& node, const ParamInfo& param);
 

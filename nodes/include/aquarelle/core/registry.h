@@ -16,6 +16,7 @@ struct PortInfo {
   aq_port_type type = AQ_PORT_IMAGE;
   bool optional = false;
   std::string description;
+  bool multi = false;  // takes any number of links (AQ_PORT_MULTI)
 };
 
 struct ParamInfo {
@@ -46,6 +47,12 @@ struct NodeType {
 
   bool time_dependent() const { return (flags & AQ_NODE_TIME_DEPENDENT) != 0; }
   bool pointwise() const { return (flags & AQ_NODE_POINTWISE) != 0; }
+  bool has_multi_input() const {
+    for (const PortInfo& port : inputs) {
+      if (port.multi) return true;
+    }
+    return false;
+  }
   const PortInfo* input(const std::string& port) const;
   const PortInfo* output(const std::string& port) const;
   const ParamInfo* param(const std::string& name) const;

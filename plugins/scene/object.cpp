@@ -1,0 +1,404 @@
+// object: one placed thing of a scene, from a model file (anything Assimp reads, with its
+// materials, textures and keyframes) or a procedural shape, as a scene fragment that
+// `scene_join` gathers with the others, a camera and a light.
+//
+//   path / source ──► Model (meshes, materials, nodes, keyframes), loaded once per file
+//   textures ───────► TextureCache (host: OpenImageIO + OpenColorIO), once per file
+//   time ──► keyframes (animation: file) or a swim loop with a travelling body wave (swim)
+//   fit ──► the model's time-0 bounds scaled into a unit box resting on y = 0
+//   position, rotation (degrees, x then y then z), scale ──► model matrix
+//   ──► aq_scene fragment: meshes + surfaces (uvs, texture, cut-out), world bounds; its camera
+//       and light are unused (scene_join sets them)
+//
+// Per-object settings later nodes read (an object's colour override today; the art-direction
+// amounts of seed 002 next) live here, next to the id that tags its g-buffer pixels.
+#include <aquarelle/mesh_smoothing.hpp>
+#include <aquarelle/plugin.hpp>
+
+#include "model.h"
+#include "object_shapes.h"
+#include "revision.h"
+#include "textures.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace {
+
+constexpr aq_port_desc kOutputs[] = {aq::scene_port(
+    "object", "a scene fragment: this object's meshes, placed, with their surfaces and bounds")};
+
+enum Param {
+  kSource,
+  kPath,
+  kTexture,
+  kPosition,
+  kRotation,
+  kScale,
+  kFit,
+  kId,
+  kColorOverride,
+  kColor,
+  kAlphaCutoff,
+  kSmoothing,
+  kAnimation,
+  kSwimRadius,
+  kSwimSpeed,
+  kSwimWave,
+  kSeed
+};
+enum Animation { kAnimationNone, kAnimationFile, kAnimationSwim };
+
+constexpr aq_param_desc kParams[] = {
+    aq::enum_param("source", "file|cube|sphere|plane|card|pot|rock|coral|shell|starfish|fish", 0,
+                   "`file` loads `path`; the others are procedural shapes"),
+    aq::path_param("path", "model file (OBJ+MTL, glTF/GLB, FBX, PLY... anything Assimp reads)"),
+    aq::path_param("texture",
+                   "base colour image for a procedural shape (a card's alpha cuts it out); "
+                   "files use their materials' textures"),
+    aq::vec3_param("position", 0, 0, 0, -1000, 1000, "where the object's origin goes (world)"),
+    aq::vec3_param("rotation", 0, 0, 0, -360, 360,
+                   "rotation in degrees about x, then y, then z (world axes)"),
+    aq::vec3_param("scale", 1, 1, 1, -1000, 1000, "scale along the object's own axes"),
+    aq::bool_param("fit", false,
+                   "scale and move the object so it fits a unit box resting on y = 0, centred "
+                   "on x and z, before position/rotation/scale"),
+    aq::int_param("id", 1, 1, 65535, "object id in the g-buffer (>= 1; 0 is the background)"),
+    aq::bool_param("color_override", false, "replace the object's colours by `color`"),
+    aq::color_param("color", 0.8, 0.8, 0.8,
+                    "the colour when color_override is on (textures still multiply it)"),
+    aq::float_param("alpha_cutoff", 0.5, 0.0, 1.0,
+                    "texture alpha below this is a hole (cut-out cards); 0 keeps every pixel"),
+    aq::int_param("smoothing", 0, 0, 64,
+                  "normal smoothing iterations at load time (7: the seed's soft look)"),
+    aq::enum_param("animation", "none|file|swim", 1,
+                   "`file` plays the file's keyframes (looped), `swim` swims a loop around "
+                   "`position` with a body wave travelling to the tail (+x is forward)"),
+    aq::float_param("swim_radius", 2.0, 0.0, 100.0, "radius of the swim loop (world units)"),
+    aq::float_param("swim_speed", 0.35, -5.0, 5.0, "swim loop speed, radians per second"),
+    aq::float_param("swim_wave", 0.056, 0.0, 0.5,
+                    "body wave amplitude as a fraction of the body length (0 glides)"),
+    aq::int_param("seed", 7, 0, 2147483647, "seed of the rock and coral shapes")};
+
+constexpr int kSourceFile = 0;
+constexpr double kTwoPi = 6.283185307179586;
+
+glm::mat4 placement(const aq::Context& ctx) {
+  const double* p = ctx.param_vec3(kPosition);
+  const double* r = ctx.param_vec3(kRotation);
+  const double* s = ctx.param_vec3(kScale);
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(p[0], p[1], p[2]));
+  m = glm::rotate(m, glm::radians(static_cast<float>(r[2])), glm::vec3(0, 0, 1));
+  m = glm::rotate(m, glm::radians(static_cast<float>(r[1])), glm::vec3(0, 1, 0));
+  m = glm::rotate(m, glm::radians(static_cast<float>(r[0])), glm::vec3(1, 0, 0));
+  return glm::scale(m, glm::vec3(s[0], s[1], s[2]));
+}
+
+// Where the swim loop puts the object at `time`: on a circle of `radius` around the origin,
+// bobbing a little, its +x along the direction of travel (as the procedural fish swims).
+glm::mat4 swim_frame(double time, double radius, double speed) {
+  const float angle = static_cast<float>(speed * time);
+  const float r = static_cast<float>(radius);
+  const glm::vec3 at(r * std::cos(angle), 0.12f * r * std::sin(2.0f * angle), r * std::sin(angle));
+  const float direction = speed >= 0.0 ? 1.0f : -1.0f;
+  const glm::vec3 tangent = direction * glm::vec3(-std::sin(angle), 0.0f, std::cos(angle));
+  const float yaw = std::atan2(-tangent.z, tangent.x);
+  return glm::rotate(glm::translate(glm::mat4(1.0f), at), yaw, glm::vec3(0, 1, 0));
+}
+
+// The travelling body wave of a swimming fish on any mesh whose +x is forward: sideways (z)
+// offsets growing quadratically from the nose to the tail, a wave moving tailwards.
+void body_wave(scene::MeshData& mesh, double time, double amplitude) {
+  const uint32_t n = mesh.vertex_count();
+  if (n == 0 || amplitude <= 0.0) return;
+  float lo = 1e30f, hi = -1e30f;
+  for (uint32_t v = 0; v < n; ++v) {
+    lo = std::min(lo, mesh.positions[3 * v]);
+    hi = std::max(hi, mesh.positions[3 * v]);
+  }
+  const float length = std::max(hi - lo, 1e-6f);
+  for (uint32_t v = 0; v < n; ++v) {
+    const float x = mesh.positions[3 * v];
+    const float s = (hi - x) / length;  // 0 at the nose, 1 at the tail
+    const float phase = static_cast<float>(kTwoPi * 1.4 * (x - hi) / length - 8.0 * time);
+    mesh.positions[3 * v + 2] += static_cast<float>(amplitude) * length * s * s * std::sin(phase);
+  }
+}
+
+void box_of(const scene::MeshData& mesh, const glm::mat4& to_world, glm::vec3* lo, glm::vec3* hi) {
+  for (uint32_t v = 0; v < mesh.vertex_count(); ++v) {
+    const glm::vec3 p = glm::vec3(to_world * glm::vec4(mesh.position(v), 1.0f));
+    *lo = glm::min(*lo, p);
+    *hi = glm::max(*hi, p);
+  }
+}
+
+struct Part {
+  scene::MeshData data;  // object space, colours final
+  uint64_t revision = 0;
+  glm::mat4 model{1.0f};
+};
+
+class ObjectNode {
+ public:
+  int process(aq::Context& ctx) {
+    if (!update_model(ctx)) return AQ_ERROR;
+    update_parts(ctx);
+    publish(ctx);
+    return ctx.output_scene(0, &fragment_) ? AQ_OK : AQ_ERROR;
+  }
+
+ private:
+  struct LoadKey {
+    int64_t source = -1;
+    std::string path, texture;
+    int64_t smoothing = 0, seed = 0;
+    bool color_override = false;
+    double color[3] = {0, 0, 0};
+    bool operator==(const LoadKey& o) const {
+      return source == o.source && path == o.path && texture == o.texture &&
+             smoothing == o.smoothing && seed == o.seed && color_override == o.color_override &&
+             std::memcmp(color, o.color, sizeof(color)) == 0;
+    }
+  };
+
+  std::string name(const aq::Context& ctx) const {
+    return std::string("object '") + ctx.node_id() + "'";
+  }
+
+  // Loads the file (or builds the shape at time 0) with final colours and textures.
+  bool update_model(aq::Context& ctx) {
+    LoadKey key;
+    key.source = ctx.param_enum(kSource);
+    key.path = ctx.param_string(kPath);
+    key.texture = ctx.param_string(kTexture);
+    key.smoothing = ctx.param_int(kSmoothing);
+    key.seed = ctx.param_int(kSeed);
+    key.color_override = ctx.param_bool(kColorOverride);
+    std::memcpy(key.color, ctx.param_vec3(kColor), sizeof(key.color));
+    if (loaded_ && key == key_) return true;
+    model_ = scene::Model{};
+    if (key.source == kSourceFile) {
+      if (std::string error = scene::load_model(key.path, &model_); !error.empty()) {
+        ctx.fail(name(ctx) + ", parameter 'path': " + error);
+        return false;
+      }
+      scene::apply_model_textures(ctx, model_, textures_);
+      if (!model_.correction.empty()) {
+        ctx.warn(name(ctx) + ": '" + key.path + "': " + model_.correction + " (file metadata)");
+      }
+    } else {
+      scene::ModelMesh mesh;
+      shape_ = scene::kObjectShapes[key.source - 1];
+      scene::make_object_shape(shape_, 0.0, static_cast<uint64_t>(key.seed), mesh.data);
+      model_.path = shape_;
+      model_.meshes.push_back(std::move(mesh));
+      model_.nodes.push_back(scene::ModelNode{"shape", -1, glm::mat4(1.0f), {0}, -1});
+    }
+    shape_texture_.reset();
+    if (!key.texture.empty()) {
+      std::string error;
+      shape_texture_ = textures_.file(ctx, key.texture, &error);
+      if (!shape_texture_) {
+        model_.warnings.push_back("parameter 'texture': " + error + "; using the shape's colours");
+      } else if (key.source == kSourceFile) {
+        model_.warnings.push_back("parameter 'texture' is for procedural shapes; '" + key.path +
+                                  "' uses its materials' textures");
+        shape_texture_.reset();
+      }
+    }
+    for (scene::ModelMesh& mesh : model_.meshes) finish_mesh(key, mesh.data);
+    for (const std::string& warning : model_.warnings) ctx.warn(name(ctx) + ": " + warning);
+    fit_ = fit_transform();
+    key_ = key;
+    loaded_ = true;
+    parts_valid_ = false;
+    return true;
+  }
+
+  void finish_mesh(const LoadKey& key, scene::MeshData& mesh) const {
+    if (key.color_override) {
+      for (size_t i = 0; i + 2 < mesh.colors.size(); i += 3) {
+        for (int c = 0; c < 3; ++c) mesh.colors[i + c] = static_cast<float>(key.color[c]);
+      }
+    }
+    if (shape_texture_) {
+      if (mesh.uvs.empty()) scene::box_project_uvs(mesh);
+      mesh.texture = shape_texture_;
+    }
+    smooth(mesh, static_cast<int>(key.smoothing));
+  }
+
+  static void smooth(scene::MeshData& mesh, int iterations) {
+    if (iterations <= 0) return;
+    aq::mesh::SmoothingOptions options;
+    options.iterations = iterations;
+    aq::mesh::smooth_normals(mesh.positions, mesh.indices, mesh.normals, options);
+  }
+
+  // Unit box, resting on y = 0, centred on x and z, from the bounds at time 0.
+  glm::mat4 fit_transform() const {
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const scene::Instance& instance : scene::model_instances(model_, 0.0)) {
+      box_of(model_.meshes[instance.mesh].data, instance.transform, &lo, &hi);
+    }
+    if (!(hi.x >= lo.x)) return glm::mat4(1.0f);
+    const float extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-6f});
+    const glm::vec3 anchor(0.5f * (lo.x + hi.x), lo.y, 0.5f * (lo.z + hi.z));
+    return glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / extent)) *
+           glm::translate(glm::mat4(1.0f), -anchor);
+  }
+
+  bool wave_animated(const aq::Context& ctx) const {
+    const int64_t animation = ctx.param_enum(kAnimation);
+    return animation == kAnimationSwim && (ctx.param_float(kSwimWave) > 0.0 || shape_ == "fish");
+  }
+
+  // Meshes and their matrices at this frame's time; geometry is rebuilt (a new revision) only
+  // when a body wave moves it.
+  void update_parts(aq::Context& ctx) {
+    const int64_t animation = ctx.param_enum(kAnimation);
+    const double time = ctx.time();
+    const bool deforming = wave_animated(ctx);
+    const glm::mat4 place = placement(ctx) * (ctx.param_bool(kFit) ? fit_ : glm::mat4(1.0f));
+    const glm::mat4 swim =
+        animation == kAnimationSwim
+            ? swim_frame(time, ctx.param_float(kSwimRadius), ctx.param_float(kSwimSpeed))
+            : glm::mat4(1.0f);
+    const double instance_time = animation == kAnimationFile ? time : 0.0;
+    const std::vector<scene::Instance> instances = scene::model_instances(model_, instance_time);
+    if (!parts_valid_ || deforming || instances.size() != parts_.size()) {
+      parts_.clear();
+      for (const scene::Instance& instance : instances) {
+        Part part;
+        part.data = model_.meshes[instance.mesh].data;
+        if (deforming) deform(ctx, part.data, time);
+        part.revision = scene::new_revision();
+        parts_.push_back(std::move(part));
+      }
+      parts_valid_ = !deforming;
+    }
+    // The swim loop goes around `position`, the object turned and scaled in its own frame.
+    const glm::mat4 world = animation == kAnimationSwim
+                                ? glm::translate(glm::mat4(1.0f), glm::vec3(place[3])) * swim *
+                                      glm::translate(glm::mat4(1.0f), -glm::vec3(place[3])) * place
+                                : place;
+    for (size_t i = 0; i < parts_.size(); ++i) {
+      parts_[i].model = world * instances[i].transform;
+      parts_[i].data.object_id = static_cast<uint32_t>(ctx.param_int(kId));
+    }
+  }
+
+  void deform(const aq::Context& ctx, scene::MeshData& mesh, double time) const {
+    if (shape_ == "fish") {  // the procedural fish has its own body wave
+      scene::MeshData moving;
+      scene::make_object_shape("fish", time, 0, moving);
+      std::swap(mesh.positions, moving.positions);
+      std::swap(mesh.normals, moving.normals);
+      smooth(mesh, static_cast<int>(key_.smoothing));
+      return;
+    }
+    body_wave(mesh, time, ctx.param_float(kSwimWave));
+  }
+
+  void publish(aq::Context& ctx) {
+    meshes_.clear();
+    surfaces_.clear();
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    const float cutoff = static_cast<float>(ctx.param_float(kAlphaCutoff));
+    for (const Part& part : parts_) {
+      aq_mesh mesh{};
+      mesh.positions = part.data.positions.data();
+      mesh.normals = part.data.normals.data();
+      mesh.colors = part.data.colors.data();
+      mesh.indices = part.data.indices.data();
+      mesh.vertex_count = part.data.vertex_count();
+      mesh.index_count = static_cast<uint32_t>(part.data.indices.size());
+      std::memcpy(mesh.model, glm::value_ptr(part.model), sizeof(mesh.model));
+      mesh.object_id = part.data.object_id;
+      mesh.geometry_revision = part.revision;
+      meshes_.push_back(mesh);
+      aq_mesh_surface surface{};
+      const bool textured = part.data.texture && part.data.uvs.size() == 2 * mesh.vertex_count;
+      surface.uvs = textured ? part.data.uvs.data() : nullptr;
+      if (textured) {
+        surface.base_color = aq_texture{part.data.texture->rgba.data(), part.data.texture->width,
+                                        part.data.texture->height, part.data.texture->revision};
+        surface.alpha_cutoff = cutoff;
+      }
+      surfaces_.push_back(surface);
+      box_of(part.data, part.model, &lo, &hi);
+    }
+    if (ctx.param_enum(kAnimation) == kAnimationSwim) swim_bounds(ctx, &lo, &hi);
+    if (meshes_.empty()) lo = hi = glm::vec3(0.0f);
+    fragment_ = aq_scene{};
+    fragment_.struct_size = sizeof(aq_scene);
+    fragment_.meshes = meshes_.data();
+    fragment_.mesh_count = static_cast<uint32_t>(meshes_.size());
+    fragment_.surfaces = surfaces_.data();
+    fragment_.surface_struct_size = sizeof(aq_mesh_surface);
+    for (int k = 0; k < 3; ++k) {
+      fragment_.bounds_min[k] = lo[k];
+      fragment_.bounds_max[k] = hi[k];
+    }
+    fragment_.time = ctx.time();
+  }
+
+  // A swimming object's bounds hold its whole loop, so a scene's bounds (and the shadow map
+  // fitted to them) stay put while it swims.
+  void swim_bounds(const aq::Context& ctx, glm::vec3* lo, glm::vec3* hi) const {
+    const glm::vec3 centre = glm::vec3(placement(ctx)[3]);
+    const glm::vec3 size = *hi - *lo;
+    const float reach = static_cast<float>(ctx.param_float(kSwimRadius)) +
+                        0.5f * std::max({size.x, size.y, size.z});
+    const float bob = 0.12f * static_cast<float>(ctx.param_float(kSwimRadius)) + 0.5f * size.y;
+    *lo = glm::min(*lo, centre - glm::vec3(reach, bob, reach));
+    *hi = glm::max(*hi, centre + glm::vec3(reach, bob, reach));
+  }
+
+  bool loaded_ = false;
+  LoadKey key_;
+  scene::Model model_;
+  std::string shape_;
+  scene::TextureCache textures_;
+  std::shared_ptr<const scene::Texture> shape_texture_;
+  glm::mat4 fit_{1.0f};
+  std::vector<Part> parts_;
+  bool parts_valid_ = false;
+  std::vector<aq_mesh> meshes_;
+  std::vector<aq_mesh_surface> surfaces_;
+  aq_scene fragment_{};
+};
+
+// `aquarelle validate`: the model file must be a mesh; missing material files and textures
+// are warnings (the render uses the material colour).
+void check_object(const aq_param_value* params, uint32_t count,
+                  void (*report)(void*, int, uint32_t, const char*), void* data) {
+  if (count <= kPath || params[kSource].i != kSourceFile) return;
+  const std::string path = params[kPath].s != nullptr ? params[kPath].s : "";
+  if (path.empty()) {
+    report(data, 0, kPath, "no model file: set `path` (or choose a procedural `source`)");
+    return;
+  }
+  std::vector<std::string> errors, warnings;
+  scene::check_model_file(path, &errors, &warnings);
+  for (const std::string& error : errors) report(data, 0, kPath, error.c_str());
+  for (const std::string& warning : warnings) report(data, 1, kPath, warning.c_str());
+}
+
+}  // namespace
+
+AQ_SOURCE_NODE_CHECKED(kObjectNode, ObjectNode, "object", "Scene",
+                       "One object of a scene: a model file (OBJ/MTL, glTF, FBX...) with its "
+                       "textures and keyframes, or a procedural shape; placed, coloured, "
+                       "optionally swimming. Join objects with scene_join.",
+                       AQ_NODE_TIME_DEPENDENT, kOutputs, kParams, &check_object);
+
+const aq_node_desc* object_node_desc() {
+  return &kObjectNode;
+}

@@ -1,0 +1,253 @@
+#!/usr/bin/env python3
+"""Writes the small models and textures of graphs/files.json into assets/scenes/ (each file
+well under 100 KB): OBJ/MTL/PNG and glTF (external and embedded textures, keyframes).
+Deterministic: same script, same bytes. Run from anywhere: scripts/make-scene-assets.py"""
+import base64
+import json
+import math
+import os
+import random
+import struct
+import zlib
+
+OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets", "scenes")
+
+
+def png(path, width, height, pixel):
+    """8-bit RGBA PNG; pixel(x, y) -> (r, g, b, a) in 0..255, y = 0 the top row."""
+    rows = b""
+    for y in range(height):
+        rows += b"\0" + bytes(c for x in range(width) for c in pixel(x, y))
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    data = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+    if path:
+        with open(os.path.join(OUT, path), "wb") as f:
+            f.write(data)
+    return data
+
+
+def clamp(v):
+    return max(0, min(255, int(round(v))))
+
+
+def sand(x, y):
+    r = random.Random(x * 131 + y * 7919)
+    grain = r.uniform(-18, 18)
+    ripple = 14 * math.sin((x + 0.6 * y) * 2 * math.pi / 16)
+    return (clamp(214 + grain + ripple), clamp(190 + grain + ripple), clamp(140 + grain * 0.8 + ripple), 255)
+
+
+def seaweed(x, y, w=32, h=64):
+    # A wavy blade: opaque green inside, transparent outside (a cut-out card).
+    t = 1 - y / (h - 1)  # 0 at the bottom row (y = h - 1), 1 at the top
+    centre = w / 2 + 5 * math.sin(t * 5.0) * t
+    half = (w * 0.32) * (1 - 0.75 * t) + 1
+    inside = abs(x + 0.5 - centre) < half
+    vein = abs(x + 0.5 - centre) < 1.2
+    g = 150 + 60 * t - (40 if vein else 0)
+    return (clamp(40 + 30 * t), clamp(g), clamp(60), 255 if inside else 0)
+
+
+def stripes(x, y):
+    # Fish skin: orange with white bands, seen on a mesh whose u runs nose to tail.
+    band = (x // 6) % 3 == 1
+    return (250, 250, 245, 255) if band else (250, 120, 30, 255)
+
+
+def checker(x, y):
+    return (230, 200, 90, 255) if (x // 4 + y // 4) % 2 == 0 else (190, 80, 60, 255)
+
+
+def star(x, y):
+    d = math.hypot(x - 7.5, y - 7.5)
+    return (clamp(250 - 6 * d), clamp(120 - 4 * d), clamp(60), 255)
+
+
+def write(name, text):
+    with open(os.path.join(OUT, name), "w", newline="\n") as f:
+        f.write(text)
+
+
+def obj_floor():
+    # 4x4 quads, 8x8 world units, uvs repeat the sand 4 times.
+    lines = ["# sand floor (made by scripts/make-scene-assets.py)", "mtllib floor.mtl", "usemtl sand"]
+    n = 4
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x, z = -4 + 8 * i / n, -4 + 8 * j / n
+            lines.append("v %g %g %g" % (x, 0.05 * math.sin(x * 1.3) * math.cos(z), z))
+            lines.append("vt %g %g" % (4 * i / n, 4 * (n - j) / n))
+    lines.append("vn 0 1 0")
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i + 1
+            b, c, d = a + 1, a + n + 2, a + n + 1
+            lines.append("f %d/%d/1 %d/%d/1 %d/%d/1" % (a, a, d, d, c, c))
+            lines.append("f %d/%d/1 %d/%d/1 %d/%d/1" % (a, a, c, c, b, b))
+    write("floor.obj", "\n".join(lines) + "\n")
+    write("floor.mtl", "newmtl sand\nKd 1 1 1\nmap_Kd sand.png\n")
+    png("sand.png", 32, 32, sand)
+
+
+def obj_rock():
+    # A jittered octahedron subdivided once: a low-poly rock, Kd only (no texture).
+    r = random.Random(5)
+    base = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
+    faces = [(0, 2, 4), (4, 2, 1), (1, 2, 5), (5, 2, 0), (4, 3, 0), (1, 3, 4), (5, 3, 1), (0, 3, 5)]
+    verts = [list(v) for v in base]
+    mids = {}
+
+    def mid(a, b):
+        key = (min(a, b), max(a, b))
+        if key not in mids:
+            p = [(verts[a][k] + verts[b][k]) / 2 for k in range(3)]
+            length = math.sqrt(sum(c * c for c in p))
+            verts.append([c / length for c in p])
+            mids[key] = len(verts) - 1
+        return mids[key]
+
+    fine = []
+    for a, b, c in faces:
+        ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+        fine += [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
+    lines = ["# rock (made by scripts/make-scene-assets.py)", "mtllib rock.mtl", "usemtl stone"]
+    for v in verts:
+        s = r.uniform(0.8, 1.1)
+        lines.append("v %.4f %.4f %.4f" % (v[0] * s * 0.6, v[1] * s * 0.4 + 0.3, v[2] * s * 0.5))
+    lines += ["f %d %d %d" % (a + 1, b + 1, c + 1) for a, b, c in fine]
+    write("rock.obj", "\n".join(lines) + "\n")
+    write("rock.mtl", "newmtl stone\nKd 0.42 0.40 0.44\n")
+
+
+def obj_card():
+    # A seaweed card as a file: a unit-wide, two-high quad standing on y = 0, alpha cut-out.
+    write("seaweed.obj", "# seaweed card (made by scripts/make-scene-assets.py)\nmtllib seaweed.mtl\n"
+          "usemtl blade\nv -0.5 0 0\nv 0.5 0 0\nv 0.5 2 0\nv -0.5 2 0\n"
+          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n")
+    write("seaweed.mtl", "newmtl blade\nKd 1 1 1\nmap_Kd seaweed.png\n")
+    png("seaweed.png", 32, 64, seaweed)
+
+
+def obj_fish():
+    # A fish along +x (nose at +0.5), a lathe of elliptic rings with a tail fin; u runs along
+    # the body so the stripes go round it.
+    rings = [(0.5, 0.0), (0.42, 0.09), (0.3, 0.15), (0.12, 0.18), (-0.08, 0.16), (-0.25, 0.11),
+             (-0.38, 0.06), (-0.47, 0.03)]
+    sides = 10
+    lines = ["# fish (made by scripts/make-scene-assets.py)", "mtllib fish.mtl", "usemtl skin"]
+    for x, r in rings:
+        for j in range(sides + 1):
+            t = 2 * math.pi * j / sides
+            lines.append("v %.4f %.4f %.4f" % (x, r * math.cos(t), 0.55 * r * math.sin(t)))
+            lines.append("vt %.4f %.4f" % ((0.5 - x), j / sides))
+    for i in range(len(rings) - 1):
+        for j in range(sides):
+            a = i * (sides + 1) + j + 1
+            b, c, d = a + 1, a + sides + 2, a + sides + 1
+            lines.append("f %d/%d %d/%d %d/%d" % (a, a, b, b, c, c))
+            lines.append("f %d/%d %d/%d %d/%d" % (a, a, c, c, d, d))
+    base = len(rings) * (sides + 1)
+    lines += ["v -0.45 0 0", "v -0.78 0.26 0", "v -0.66 0 0", "v -0.78 -0.26 0",
+              "vt 0.95 0.5", "vt 1 1", "vt 1 0.5", "vt 1 0"]
+    lines += ["f %d/%d %d/%d %d/%d" % (base + 1, base + 1, base + 2, base + 2, base + 3, base + 3),
+              "f %d/%d %d/%d %d/%d" % (base + 1, base + 1, base + 3, base + 3, base + 4, base + 4)]
+    write("fish.obj", "\n".join(lines) + "\n")
+    write("fish.mtl", "newmtl skin\nKd 1 1 1\nmap_Kd fish.png\n")
+    png("fish.png", 36, 8, stripes)
+
+
+def gltf_box(name, texture_uri_or_bytes, factor, animated=False):
+    """A unit box (centred at y = 0.5) with per-face uvs, COLOR_0 white, a base colour texture
+    (a file beside it, or embedded as a data URI), and optionally keyframes: a slow bob and turn."""
+    faces = [((1, 0, 0), (0, 0, -1), (0, 1, 0)), ((-1, 0, 0), (0, 0, 1), (0, 1, 0)),
+             ((0, 1, 0), (1, 0, 0), (0, 0, -1)), ((0, -1, 0), (1, 0, 0), (0, 0, 1)),
+             ((0, 0, 1), (1, 0, 0), (0, 1, 0)), ((0, 0, -1), (-1, 0, 0), (0, 1, 0))]
+    pos, nor, uv, col, idx = [], [], [], [], []
+    for n, u, v in faces:
+        start = len(pos)
+        for su, sv in [(0, 0), (1, 0), (1, 1), (0, 1)]:
+            p = [0.5 * n[k] + (su - 0.5) * u[k] + (sv - 0.5) * v[k] for k in range(3)]
+            p[1] += 0.5
+            pos.append(p)
+            nor.append(n)
+            uv.append((su, 1 - sv))  # glTF: v = 0 is the image's top row
+            col.append((1.0, 1.0, 1.0, 1.0))
+        idx += [start, start + 1, start + 2, start, start + 2, start + 3]
+    blob = b"".join(struct.pack("<3f", *p) for p in pos)
+    blob += b"".join(struct.pack("<3f", *n) for n in nor)
+    blob += b"".join(struct.pack("<2f", *t) for t in uv)
+    blob += b"".join(struct.pack("<4f", *c) for c in col)
+    blob += b"".join(struct.pack("<H", i) for i in idx)
+    blob += b"\0" * ((4 - len(blob) % 4) % 4)
+    nv = len(pos)
+    views = [(0, 12 * nv), (12 * nv, 12 * nv), (24 * nv, 8 * nv), (32 * nv, 16 * nv), (48 * nv, 2 * len(idx))]
+    accessors = [
+        {"bufferView": 0, "componentType": 5126, "count": nv, "type": "VEC3",
+         "min": [-0.5, 0, -0.5], "max": [0.5, 1, 0.5]},
+        {"bufferView": 1, "componentType": 5126, "count": nv, "type": "VEC3"},
+        {"bufferView": 2, "componentType": 5126, "count": nv, "type": "VEC2"},
+        {"bufferView": 3, "componentType": 5126, "count": nv, "type": "VEC4"},
+        {"bufferView": 4, "componentType": 5123, "count": len(idx), "type": "SCALAR"}]
+    animations = []
+    if animated:
+        times = [0.0, 1.0, 2.0]
+        offset = len(blob)
+        blob += b"".join(struct.pack("<f", t) for t in times)
+        blob += b"".join(struct.pack("<3f", 0, y, 0) for y in [0.0, 0.6, 0.0])
+        half = math.sqrt(0.5)
+        rots = [(0, 0, 0, 1), (0, half, 0, half), (0, 1, 0, 0)]
+        blob += b"".join(struct.pack("<4f", *q) for q in rots)
+        views += [(offset, 12), (offset + 12, 36), (offset + 48, 48)]
+        accessors += [
+            {"bufferView": 5, "componentType": 5126, "count": 3, "type": "SCALAR", "min": [0], "max": [2]},
+            {"bufferView": 6, "componentType": 5126, "count": 3, "type": "VEC3"},
+            {"bufferView": 7, "componentType": 5126, "count": 3, "type": "VEC4"}]
+        animations = [{"name": "bob", "samplers": [
+            {"input": 5, "output": 6, "interpolation": "LINEAR"},
+            {"input": 5, "output": 7, "interpolation": "LINEAR"}],
+            "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}},
+                         {"sampler": 1, "target": {"node": 0, "path": "rotation"}}]}]
+    if isinstance(texture_uri_or_bytes, bytes):
+        image = {"uri": "data:image/png;base64," + base64.b64encode(texture_uri_or_bytes).decode()}
+    else:
+        image = {"uri": texture_uri_or_bytes}
+    doc = {
+        "asset": {"version": "2.0", "generator": "scripts/make-scene-assets.py"},
+        "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"name": "box", "mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2, "COLOR_0": 3},
+                                    "indices": 4, "material": 0}]}],
+        "materials": [{"name": name, "pbrMetallicRoughness": {
+            "baseColorFactor": list(factor) + [1.0], "baseColorTexture": {"index": 0},
+            "metallicFactor": 0.0}}],
+        "textures": [{"source": 0, "sampler": 0}],
+        "samplers": [{"magFilter": 9729, "minFilter": 9987}],
+        "images": [image],
+        "buffers": [{"byteLength": len(blob), "uri": "data:application/octet-stream;base64," +
+                     base64.b64encode(blob).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": o, "byteLength": l} for o, l in views],
+        "accessors": accessors}
+    if animations:
+        doc["animations"] = animations
+    write(name + ".gltf", json.dumps(doc, indent=1) + "\n")
+
+
+def main():
+    os.makedirs(OUT, exist_ok=True)
+    obj_floor()
+    obj_rock()
+    obj_card()
+    obj_fish()
+    png("crate.png", 16, 16, checker)
+    gltf_box("crate", "crate.png", (1.0, 1.0, 1.0))  # texture beside the file
+    gltf_box("chest", png(None, 16, 16, star), (0.9, 0.8, 1.0))  # embedded texture
+    gltf_box("lantern", png(None, 16, 16, checker), (0.6, 0.9, 1.0), animated=True)
+
+
+if __name__ == "__main__":
+    main()
