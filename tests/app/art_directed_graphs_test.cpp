@@ -3,6 +3,7 @@
 // does something (the control map's channels are set where the objects ask).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "support/harness.h"

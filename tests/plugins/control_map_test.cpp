@@ -4,6 +4,7 @@
 // position output matches the g-buffer's coverage.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "support/harness.h"

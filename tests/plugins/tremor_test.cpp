@@ -121,7 +121,7 @@ TEST(HandTremor, MovesSilhouettesSmoothlyInTime) {
     }
   EXPECT_GT(rim_changed, 0);  // the outline moved
   // The middle of the sphere, seen head-on, barely moves (grazing ~ 0 there).
-  EXPECT_NEAR(shaken->at(32, 32, 0), plain->at(32, 32, 0), 2e-3);
+  EXPECT_NEAR(shaken->at(32, 32, 0), plain->at(32, 32, 0), 5e-3);
   auto changed = [](const ImageF& a, const ImageF& b) {
     int n = 0;
     for (int y = 0; y < 64; ++y)
