@@ -39,7 +39,8 @@ TEST(PaperRelief, MatchesReference) {
   auto paper = aq::test::run_node("paper", {}, {{"grain_scale", 12}}, paper_options);
   ASSERT_TRUE(paper.ok()) << paper.message();
   const ImageF random_paper = aq::test::random_image(30, 20, 23);
-  for (const ImageF* height : {&*paper, &random_paper}) {
+  const ImageF* heights[] = {&*paper, &random_paper};
+  for (const ImageF* height : heights) {
     for (const ImageF* m : {static_cast<const ImageF*>(nullptr), &mask}) {
       PaperReliefParams p;
       p.bump = 6.0;
