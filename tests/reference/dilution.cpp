@@ -13,6 +13,7 @@ DilutionResult dilution(const ImageF& albedo, const ImageF& normal, const ImageF
   DilutionResult r{albedo, ImageF(albedo.width, albedo.height, 4, 0.0f)};
   for (int y = 0; y < albedo.height; ++y)
     for (int x = 0; x < albedo.width; ++x) {
+      r.image.at(x, y, 3) = 1.0f;  // the painting is opaque
       if (!(albedo.at(x, y, 3) > 0.0f)) continue;
       double d = 0.0;
       for (int c = 0; c < 3; ++c) d += double(normal.at(x, y, c)) * p.to_light[c];

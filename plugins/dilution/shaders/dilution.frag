@@ -3,7 +3,7 @@
 //   τ = turbulence · fbm3(object position · scale)
 //   dil = clamp(dilution · lit · (1 + τ), 0, 1)
 //   out = mix(albedo, paper, dil) · (1 − shade · (1 − lit))
-// The background (albedo alpha 0) passes unchanged with dil = 0.
+// The background (albedo alpha 0) passes unchanged with dil = 0. Alpha is 1: the painting is opaque.
 #include "aquarelle/noise.glsl"
 
 in vec2 v_uv;
@@ -26,7 +26,7 @@ void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec4 albedo = texelFetch(u_albedo, p, 0);
   if (!(albedo.a > 0.0)) {
-    o_color = albedo;
+    o_color = vec4(albedo.rgb, 1.0);  // the painting is opaque: the environment is painted too
     o_dilution = vec4(0.0);
     return;
   }
@@ -42,6 +42,6 @@ void main() {
   }
   float dil = clamp(u_dilution * lit * (1.0 + turbulence), 0.0, 1.0);
   vec3 c = mix(albedo.rgb, u_paper, dil) * (1.0 - u_shade * (1.0 - lit));
-  o_color = vec4(c, albedo.a);
+  o_color = vec4(c, 1.0);
   o_dilution = vec4(dil, dil, dil, 1.0);
 }
