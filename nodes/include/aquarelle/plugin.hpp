@@ -19,7 +19,9 @@
 
 #include <aquarelle/plugin.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <new>
 #include <string>
 #include <vector>
@@ -58,6 +60,17 @@ inline const aq_mesh_surface* scene_surface(const aq_scene& scene, uint32_t i) {
   const char* base = reinterpret_cast<const char*>(scene.surfaces);
   return reinterpret_cast<const aq_mesh_surface*>(base + size_t{i} * scene.surface_struct_size);
 }
+// A copy of mesh i's surface with the fields its producer did not have zeroed (an older
+// producer's stride is shorter than aq_mesh_surface: copy only what it wrote); zeroed when the
+// scene has none.
+inline aq_mesh_surface copy_surface(const aq_scene& scene, uint32_t i) {
+  aq_mesh_surface copy{};
+  if (const aq_mesh_surface* s = scene_surface(scene, i)) {
+    std::memcpy(&copy, s, std::min<size_t>(scene.surface_struct_size, sizeof(aq_mesh_surface)));
+  }
+  return copy;
+}
+
 // Mesh i's art direction (seed 002): the producer's when its surface carries one, else the
 // defaults plugin.h gives (bleed 0, edge darkening 1, no tremor, no FBM variation).
 struct ArtDirection {
