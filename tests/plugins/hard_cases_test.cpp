@@ -23,14 +23,13 @@ std::string case_name(const ::testing::TestParamInfo<Case>& info) {
 // Nodes whose output for a constant image is that same constant.
 bool keeps_constants(const std::string& node) {
   return node == "erode" || node == "dilate" || node == "blur" || node == "wobble" ||
-         node == "edge" || node == "edge_darkening" || node == "tremor";
+         node == "edge" || node == "tremor";
 }
 
 // How far (pixels) a node may carry a value from one pixel to another with default params.
 int reach(const std::string& node) {
   if (node == "blur") return 20;  // 4 sigma of sigma 4
   if (node == "wobble") return 12;
-  if (node == "edge_darkening") return 12;  // 4 sigma of sigma 3: a NaN there means no darkening
   return 3;
 }
 
@@ -137,7 +136,7 @@ std::vector<Case> all_cases() {
   for (const char* gl : {"egl", "osmesa"}) {
     for (const char* node :
          {"blur", "dilate", "edge", "erode", "pigment", "tint", "vignette", "wobble",
-          "edge_darkening", "tremor"}) {
+          "tremor"}) {
       cases.push_back({gl, node});
     }
   }
