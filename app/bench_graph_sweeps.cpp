@@ -34,6 +34,7 @@ struct QualityParam {
 const QualityParam kQualityParams[] = {
     {"shadowmap", "size", {256, 512, 1024, 2048}, 4096, "auto_size", "depth", false},
     {"caustics", "resolution", {32, 64, 128, 256}, 512, "auto_resolution", "image", true},
+    {"clouds", "steps", {4, 8, 16, 32}, 256, nullptr, "image", false},
 };
 
 // The pipeline reference: float precision, final quality, and each approximating node at its

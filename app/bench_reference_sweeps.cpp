@@ -1,6 +1,7 @@
 // The node sweeps of `aquarelle bench` that have a CPU reference: each node runs alone on the
 // fixed test input at every quality setting and precision, and its output is compared with the
 // double-precision implementation in tests/reference/ (see bench_sweep.h).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -10,8 +11,12 @@
 #include "bench_sweep.h"
 
 #ifdef AQ_HAVE_CPU_REFERENCES
+#include "reference/bleed.h"
 #include "reference/blur.h"
 #include "reference/caustics_flux_reference.h"
+#include "reference/edge_darkening.h"
+#include "reference/paper_relief.h"
+#include "reference/tremor.h"
 #include "reference/caustics_reference.h"
 #include "reference/edge.h"
 #include "reference/morphology.h"
@@ -342,6 +347,117 @@ json vec3_or(const json& value, const json& fallback) {
   return value.is_array() && value.size() == 3 ? value : fallback;
 }
 
+// ---- Seed 002 (MNPR) nodes -------------------------------------------------------------
+
+// A control map, depth and id for the bleed sweep: four vertical bands of objects (ids 1..4,
+// nearer to the right), bleeding 1, 0.5, 0, 0.8.
+struct BleedInputs {
+  ImageF control, depth, id;
+};
+BleedInputs bleed_inputs(int w, int h) {
+  BleedInputs in{ImageF(w, h, 4, 0.0f), ImageF(w, h, 1), ImageF(w, h, 1)};
+  const float bleeds[4] = {1.0f, 0.5f, 0.0f, 0.8f};
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int band = std::min(4 * x / std::max(w, 1), 3);
+      in.control.at(x, y, 0) = bleeds[band];
+      in.depth.at(x, y, 0) = 10.0f - 2.0f * band;
+      in.id.at(x, y, 0) = static_cast<float>(band + 1);
+    }
+  return in;
+}
+
+// Bleed: kernel reach (radius in sigmas; 0.5 is the seed's 21x21 at sigma 20) against the same
+// gated separable operator at reach 4 in double precision.
+Result<Sweep> bleed_sweep(GlContext& context, const Registry& registry, const Graph& graph,
+                          const SweepPlan& plan) {
+  const int w = plan.width, h = plan.height;
+  const BleedInputs in = bleed_inputs(w, h);
+  const std::map<std::string, ImageF> images{{"image", sweep_test_image(w, h)},
+                                             {"control", in.control},
+                                             {"depth", in.depth},
+                                             {"id", in.id}};
+  reference::BleedParams p;
+  p.sigma = number(graph_param(graph, registry, "bleed", "sigma"), p.sigma);
+  p.depth_bias = number(graph_param(graph, registry, "bleed", "depth_bias"), p.depth_bias);
+  Sweep sweep = cpu_sweep("bleed sigma=" + std::to_string(static_cast<int>(p.sigma)), "bleed",
+                          "reference::bleed at reach 4 in double precision (the gated separable "
+                          "operator; its difference from a 2D gate is measured in bleed_test)");
+  reference::BleedParams exact_params = p;
+  exact_params.reach = 4.0;
+  auto exact = timed_reference(&sweep.reference_ms, [&] {
+    return reference::bleed(images.at("image"), in.control, &in.depth, &in.id, exact_params);
+  });
+  std::vector<Config> configs;
+  for (double reach : {0.5, 1.0, 2.0, 3.0, 4.0}) {
+    for (const char* precision : kPrecisions) {
+      configs.push_back({"reach=" + std::to_string(reach).substr(0, 3), {{"reach", reach}},
+                         precision, exact});
+    }
+  }
+  if (auto s = run_configs(context, registry, plan, "bleed",
+                           {{"sigma", p.sigma}, {"depth_bias", p.depth_bias}},
+                           {{"image", "image"}, {"control", "control"}, {"depth", "depth"},
+                            {"id", "id"}},
+                           images, configs, w, h, &sweep);
+      !s.ok()) {
+    return s.error();
+  }
+  return sweep;
+}
+
+// Edge darkening from the blur difference: sigma (the seed's 3 and around it), each against
+// its own double-precision reference (the blur of the SDK truncates at 4 sigma).
+Result<Sweep> edge_darkening_sweep(GlContext& context, const Registry& registry,
+                                   const Graph& graph, const SweepPlan& plan) {
+  const int w = plan.width, h = plan.height;
+  const std::map<std::string, ImageF> images{{"image", sweep_test_image(w, h)}};
+  reference::EdgeDarkeningParams p;
+  p.strength = number(graph_param(graph, registry, "edge_darkening", "strength"), p.strength);
+  Sweep sweep = cpu_sweep("edge_darkening", "edge_darkening",
+                          "reference::blur_difference_darkening in double precision (untruncated "
+                          "Gaussian)");
+  std::vector<Config> configs;
+  for (double sigma : {1.5, 3.0, 6.0}) {
+    p.sigma = sigma;
+    auto exact = timed_reference(&sweep.reference_ms, [&] {
+      return reference::blur_difference_darkening(images.at("image"), nullptr, nullptr, p);
+    });
+    for (const char* precision : kPrecisions) {
+      configs.push_back({"sigma=" + std::to_string(sigma).substr(0, 3), {{"sigma", sigma}},
+                         precision, exact});
+    }
+  }
+  if (auto s = run_configs(context, registry, plan, "edge_darkening", {{"strength", p.strength}},
+                           {{"image", "image"}}, images, configs, w, h, &sweep);
+      !s.ok()) {
+    return s.error();
+  }
+  return sweep;
+}
+
+// Paper relief and screen-space tremor: precision only (no quality setting).
+Result<Sweep> paper_relief_sweep(GlContext& context, const Registry& registry, const SweepPlan& plan) {
+  const int w = plan.width, h = plan.height;
+  ImageF paper(w, h, 4, 1.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      paper.at(x, y, 0) = static_cast<float>(0.5 + 0.25 * std::sin(0.7 * x) * std::cos(0.45 * y));
+  const std::map<std::string, ImageF> images{{"image", sweep_test_image(w, h)}, {"paper", paper}};
+  Sweep sweep = cpu_sweep("paper_relief", "paper_relief", "reference::paper_relief in double");
+  auto exact = timed_reference(&sweep.reference_ms, [&] {
+    return reference::paper_relief(images.at("image"), paper, nullptr, {});
+  });
+  std::vector<Config> configs;
+  for (const char* precision : kPrecisions) configs.push_back({"default", {}, precision, exact});
+  if (auto s = run_configs(context, registry, plan, "paper_relief", json::object(),
+                           {{"image", "image"}, {"paper", "paper"}}, images, configs, w, h, &sweep);
+      !s.ok()) {
+    return s.error();
+  }
+  return sweep;
+}
+
 }  // namespace
 
 Result<std::vector<Sweep>> run_reference_sweeps(GlContext& context, const Registry& registry,
@@ -408,6 +524,34 @@ Result<std::vector<Sweep>> run_reference_sweeps(GlContext& context, const Regist
                         {{"radius", p.radius}, {"strength", p.strength}, {"softness", p.softness}},
                         "reference::vignette in double precision",
                         [&](const ImageF& image) { return reference::vignette(image, p); });
+    if (!sweep.ok()) return sweep.error();
+    sweeps.push_back(*sweep);
+  }
+  if (wanted("bleed")) {
+    auto sweep = bleed_sweep(context, registry, graph, plan);
+    if (!sweep.ok()) return sweep.error();
+    sweeps.push_back(*sweep);
+  }
+  if (wanted("edge_darkening")) {
+    auto sweep = edge_darkening_sweep(context, registry, graph, plan);
+    if (!sweep.ok()) return sweep.error();
+    sweeps.push_back(*sweep);
+  }
+  if (wanted("paper_relief")) {
+    auto sweep = paper_relief_sweep(context, registry, plan);
+    if (!sweep.ok()) return sweep.error();
+    sweeps.push_back(*sweep);
+  }
+  if (wanted("tremor")) {
+    reference::TremorParams p;
+    p.amplitude = number(graph_param(graph, registry, "tremor", "amplitude"), p.amplitude);
+    p.wavelength = number(graph_param(graph, registry, "tremor", "wavelength"), p.wavelength);
+    p.speed = 0.0;  // still, so every measured frame has the reference's time
+    auto sweep = precision_sweep(
+        context, registry, plan, "tremor",
+        {{"amplitude", p.amplitude}, {"wavelength", p.wavelength}, {"speed", 0.0}},
+        "reference::tremor in double precision (bilinear lookups)",
+        [&](const ImageF& image) { return reference::tremor(image, nullptr, 0.0, p); });
     if (!sweep.ok()) return sweep.error();
     sweeps.push_back(*sweep);
   }

@@ -224,3 +224,21 @@ float aq_worley2_seeded(vec2 p, vec2 period, uint seed) {
 }
 
 float aq_worley2(vec2 p, vec2 period) { return aq_worley2_seeded(p, period, 0u); }
+
+// Fractal sum of `octaves` (>= 1) layers of non-periodic aq_perlin3: octave k has frequency
+// 2^k, amplitude 2^-k and is shifted by k * (17.13, 31.71, 47.37) so the octaves' lattices do
+// not line up at the origin; divided by the total amplitude (range about [-1,1]). Used for
+// object-space variation (seed 002: control maps, dilution turbulence, clouds).
+float aq_fbm3(vec3 p, int octaves) {
+  float sum = 0.0;
+  float amplitude = 1.0;
+  float total = 0.0;
+  float frequency = 1.0;
+  for (int k = 0; k < max(octaves, 1); ++k) {
+    sum += amplitude * aq_perlin3(p * frequency + float(k) * vec3(17.13, 31.71, 47.37), vec3(0.0));
+    total += amplitude;
+    amplitude *= 0.5;
+    frequency *= 2.0;
+  }
+  return sum / total;
+}

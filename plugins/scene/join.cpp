@@ -78,8 +78,7 @@ class JoinNode {
       aq::view_bounds::Box box;
       for (uint32_t m = 0; m < part->mesh_count; ++m) {
         meshes_.push_back(part->meshes[m]);
-        const aq_mesh_surface* surface = aq::scene_surface(*part, m);
-        surfaces_.push_back(surface != nullptr ? *surface : aq_mesh_surface{});
+        surfaces_.push_back(aq::copy_surface(*part, m));  // an older producer's is shorter
       }
       if (part->mesh_count > 0) {
         for (int c = 0; c < 3; ++c) {

@@ -52,9 +52,16 @@ enum Param {
   kSwimSpeed,
   kSwimWave,
   kSeed,
-  kSwimPhase
+  kSwimPhase,
+  kBleed,  // art direction (seed 002), carried on each surface for control_map and tremor
+  kEdgeDarkening,
+  kTremor,
+  kTremorFrequency,
+  kFbmDensity,
+  kFbmScale,
+  kSpin
 };
-enum Animation { kAnimationNone, kAnimationFile, kAnimationSwim };
+enum Animation { kAnimationNone, kAnimationFile, kAnimationSwim, kAnimationSpin };
 
 constexpr aq_param_desc kParams[] = {
     aq::enum_param("source", "file|cube|sphere|plane|card|pot|rock|coral|shell|starfish|fish", 0,
@@ -78,9 +85,10 @@ constexpr aq_param_desc kParams[] = {
                     "texture alpha below this is a hole (cut-out cards); 0 keeps every pixel"),
     aq::int_param("smoothing", 0, 0, 64,
                   "normal smoothing iterations at load time (7: the seed's soft look)"),
-    aq::enum_param("animation", "none|file|swim", 1,
+    aq::enum_param("animation", "none|file|swim|spin", 1,
                    "`file` plays the file's keyframes (looped), `swim` swims a loop around "
-                   "`position` with a body wave travelling to the tail (+x is forward)"),
+                   "`position` with a body wave travelling to the tail (+x is forward), `spin` "
+                   "turns the object about `position` by `spin` (windmill sails)"),
     aq::float_param("swim_radius", 2.0, 0.0, 100.0, "radius of the swim loop (world units)"),
     aq::float_param("swim_speed", 0.35, -5.0, 5.0, "swim loop speed, radians per second"),
     aq::float_param("swim_wave", 0.056, 0.0, 0.5,
@@ -89,7 +97,23 @@ constexpr aq_param_desc kParams[] = {
     aq::float_param("swim_phase", 0.0, -360.0, 360.0,
                     "where on the swim loop the object is at time 0, degrees (0: +x of "
                     "`position`, 90: +z)",
-                    0.0, "angle")};
+                    0.0, "angle"),
+    aq::float_param("bleed", 0.0, 0.0, 1.0,
+                    "art direction: how much the object's colour bleeds (control map red)"),
+    aq::float_param("edge_darkening", 1.0, 0.0, 4.0,
+                    "art direction: edge darkening amount (control map green)"),
+    aq::float_param("tremor", 0.0, 0.0, 1.0,
+                    "art direction: hand tremor amplitude in world units (control map alpha)"),
+    aq::float_param("tremor_frequency", 4.0, 0.0, 100.0,
+                    "art direction: hand tremor waves per world unit"),
+    aq::float_param("fbm_density", 0.0, 0.0, 1.0,
+                    "art direction: 0 keeps the amounts constant over the object, 1 modulates "
+                    "them fully by object-space FBM"),
+    aq::float_param("fbm_scale", 2.0, 0.01, 100.0,
+                    "art direction: FBM lattice cells per object-space unit"),
+    aq::vec3_param("spin", 0, 0, 90, -36000, 36000,
+                   "animation `spin`: degrees per second about world x, y and z through "
+                   "`position`")};
 
 constexpr int kSourceFile = 0;
 constexpr double kTwoPi = 6.283185307179586;
@@ -115,6 +139,20 @@ glm::mat4 swim_frame(double time, double radius, double speed, double phase_degr
   const glm::vec3 tangent = direction * glm::vec3(-std::sin(angle), 0.0f, std::cos(angle));
   const float yaw = std::atan2(-tangent.z, tangent.x);
   return glm::rotate(glm::translate(glm::mat4(1.0f), at), yaw, glm::vec3(0, 1, 0));
+}
+
+// The spin animation at `time`: rotations about world x, y, z through `centre` (degrees per
+// second from the `spin` parameter).
+glm::mat4 spin_frame(const aq::Context& ctx, const glm::vec3& centre, double time) {
+  const double* rate = ctx.param_vec3(kSpin);
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), centre);
+  for (int axis = 2; axis >= 0; --axis) {
+    glm::vec3 along(0.0f);
+    along[axis] = 1.0f;
+    m = glm::rotate(m, static_cast<float>(glm::radians(std::fmod(rate[axis] * time, 360.0))),
+                    along);
+  }
+  return glm::translate(m, -centre);
 }
 
 // The travelling body wave of a swimming fish on any mesh whose +x is forward: sideways (z)
@@ -297,10 +335,11 @@ class ObjectNode {
       parts_valid_ = !deforming;
     }
     // The swim loop goes around `position`, the object turned and scaled in its own frame.
-    const glm::mat4 world = animation == kAnimationSwim
-                                ? glm::translate(glm::mat4(1.0f), glm::vec3(place[3])) * swim *
-                                      glm::translate(glm::mat4(1.0f), -glm::vec3(place[3])) * place
-                                : place;
+    glm::mat4 world = animation == kAnimationSwim
+                          ? glm::translate(glm::mat4(1.0f), glm::vec3(place[3])) * swim *
+                                glm::translate(glm::mat4(1.0f), -glm::vec3(place[3])) * place
+                          : place;
+    if (animation == kAnimationSpin) world = spin_frame(ctx, glm::vec3(place[3]), time) * place;
     for (size_t i = 0; i < parts_.size(); ++i) {
       parts_[i].model = world * instances[i].transform;
       parts_[i].data.object_id = static_cast<uint32_t>(ctx.param_int(kId));
@@ -344,6 +383,13 @@ class ObjectNode {
                                         part.data.texture->height, part.data.texture->revision};
         surface.alpha_cutoff = cutoff;
       }
+      surface.art_set = 1;
+      surface.bleed = static_cast<float>(ctx.param_float(kBleed));
+      surface.edge_darkening = static_cast<float>(ctx.param_float(kEdgeDarkening));
+      surface.tremor = static_cast<float>(ctx.param_float(kTremor));
+      surface.tremor_frequency = static_cast<float>(ctx.param_float(kTremorFrequency));
+      surface.fbm_density = static_cast<float>(ctx.param_float(kFbmDensity));
+      surface.fbm_scale = static_cast<float>(ctx.param_float(kFbmScale));
       surfaces_.push_back(surface);
       box_of(part.data, part.model, &lo, &hi);
     }

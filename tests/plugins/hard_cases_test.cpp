@@ -23,13 +23,16 @@ std::string case_name(const ::testing::TestParamInfo<Case>& info) {
 // Nodes whose output for a constant image is that same constant.
 bool keeps_constants(const std::string& node) {
   return node == "erode" || node == "dilate" || node == "blur" || node == "wobble" ||
-         node == "edge";
+         node == "edge" || node == "edge_darkening" || node == "tremor";
 }
 
 // How far (pixels) a node may carry a value from one pixel to another with default params.
 int reach(const std::string& node) {
   if (node == "blur") return 20;  // 4 sigma of sigma 4
   if (node == "wobble") return 12;
+  // Measured: a bad texel stops the darkening (d = 0) up to 14 px away, the shared Gaussian's
+  // footprint at sigma 3 (4 sigma = 12 plus its last taps).
+  if (node == "edge_darkening") return 14;
   return 3;
 }
 
@@ -135,7 +138,8 @@ std::vector<Case> all_cases() {
   std::vector<Case> cases;
   for (const char* gl : {"egl", "osmesa"}) {
     for (const char* node :
-         {"blur", "dilate", "edge", "erode", "pigment", "tint", "vignette", "wobble"}) {
+         {"blur", "dilate", "edge", "erode", "pigment", "tint", "vignette", "wobble",
+          "edge_darkening", "tremor"}) {
       cases.push_back({gl, node});
     }
   }

@@ -179,4 +179,17 @@ double worley2(Vec2 p, Vec2 period, uint32_t seed) {
   return nearest;
 }
 
+double fbm3(Vec3 p, int octaves) {
+  double sum = 0.0, amplitude = 1.0, total = 0.0, frequency = 1.0;
+  for (int k = 0; k < std::max(octaves, 1); ++k) {
+    const Vec3 q{p.x * frequency + k * 17.13, p.y * frequency + k * 31.71,
+                 p.z * frequency + k * 47.37};
+    sum += amplitude * perlin3(q, Vec3{0.0, 0.0, 0.0});
+    total += amplitude;
+    amplitude *= 0.5;
+    frequency *= 2.0;
+  }
+  return sum / total;
+}
+
 }  // namespace aq::reference::noise

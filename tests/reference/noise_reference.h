@@ -51,4 +51,8 @@ double gaussian_noise(Vec2 cell, float seed);
 // Exact Worley F1 distance.
 double worley2(Vec2 p, Vec2 period, uint32_t seed = 0);
 
+// aq_fbm3 (seed 002): `octaves` non-periodic perlin3 layers, frequency 2^k, amplitude 2^-k,
+// octave k shifted by k·(17.13, 31.71, 47.37), divided by the total amplitude.
+double fbm3(Vec3 p, int octaves);
+
 }  // namespace aq::reference::noise

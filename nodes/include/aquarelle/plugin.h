@@ -128,6 +128,16 @@ typedef struct aq_mesh_surface {
   aq_texture base_color; /* rgba NULL: none (white) */
   float alpha_cutoff;    /* 0: opaque whatever the alpha */
   uint32_t flags;        /* reserved, 0 */
+  /* Appended in ABI 1 (read only when aq_scene::surface_struct_size covers it; plugin.hpp's
+   * aq::surface_art does, with the defaults below when absent or art_set is 0): the object's
+   * art direction for the seed 002 (MNPR) passes. The control_map node turns it into images. */
+  uint32_t art_set;        /* 1: the fields below are set; 0: use the defaults */
+  float bleed;             /* bleeding amount [0, 1] (default 0) */
+  float edge_darkening;    /* edge darkening amount [0, 4] (default 1) */
+  float tremor;            /* hand tremor amplitude, world units (default 0) */
+  float tremor_frequency;  /* hand tremor waves per world unit (default 4) */
+  float fbm_density;       /* 0: amounts constant over the object, 1: fully FBM-modulated */
+  float fbm_scale;         /* FBM lattice cells per object-space unit (default 2) */
 } aq_mesh_surface;
 
 typedef struct aq_scene {

@@ -19,7 +19,9 @@
 
 #include <aquarelle/plugin.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <new>
 #include <string>
 #include <vector>
@@ -52,12 +54,44 @@ inline const aq_mesh_surface* scene_surface(const aq_scene& scene, uint32_t i) {
   const bool present = scene.struct_size >=
                        offsetof(aq_scene, surface_struct_size) + sizeof(scene.surface_struct_size);
   if (!present || scene.surfaces == nullptr || i >= scene.mesh_count ||
-      scene.surface_struct_size < sizeof(aq_mesh_surface)) {
+      scene.surface_struct_size < offsetof(aq_mesh_surface, art_set)) {
     return nullptr;
   }
   const char* base = reinterpret_cast<const char*>(scene.surfaces);
   return reinterpret_cast<const aq_mesh_surface*>(base + size_t{i} * scene.surface_struct_size);
 }
+// A copy of mesh i's surface with the fields its producer did not have zeroed (an older
+// producer's stride is shorter than aq_mesh_surface: copy only what it wrote); zeroed when the
+// scene has none.
+inline aq_mesh_surface copy_surface(const aq_scene& scene, uint32_t i) {
+  aq_mesh_surface copy{};
+  if (const aq_mesh_surface* s = scene_surface(scene, i)) {
+    std::memcpy(&copy, s, std::min<size_t>(scene.surface_struct_size, sizeof(aq_mesh_surface)));
+  }
+  return copy;
+}
+
+// Mesh i's art direction (seed 002): the producer's when its surface carries one, else the
+// defaults plugin.h gives (bleed 0, edge darkening 1, no tremor, no FBM variation).
+struct ArtDirection {
+  float bleed = 0.0f, edge_darkening = 1.0f, tremor = 0.0f, tremor_frequency = 4.0f;
+  float fbm_density = 0.0f, fbm_scale = 2.0f;
+};
+inline ArtDirection surface_art(const aq_scene& scene, uint32_t i) {
+  ArtDirection art;
+  const aq_mesh_surface* s = scene_surface(scene, i);
+  if (s == nullptr || scene.surface_struct_size < sizeof(aq_mesh_surface) || s->art_set == 0) {
+    return art;
+  }
+  art.bleed = s->bleed;
+  art.edge_darkening = s->edge_darkening;
+  art.tremor = s->tremor;
+  art.tremor_frequency = s->tremor_frequency;
+  art.fbm_density = s->fbm_density;
+  art.fbm_scale = s->fbm_scale;
+  return art;
+}
+
 // Whether the scene asks for an environment behind it (the gradient in environment_top/bottom).
 inline bool scene_has_environment(const aq_scene& scene) {
   const bool present = scene.struct_size >=

@@ -1,0 +1,120 @@
+// clouds: seed 002's volumetric clouds and spray, raymarched over the painted image from the
+// scene's camera and depth-tested against the g-buffer:
+//
+//   scene camera ──► a ray per pixel; gbuffer depth ──► where it stops (or max_distance)
+//   3D FBM density (drifting with time, optional stepped threshold, height/distance falloff)
+//   ──► τ by midpoint steps ──► C · e^(−τ) + light colour · (1 − e^(−τ))
+//
+// density 0 passes the image through. With noise 0 and no falloff the medium is homogeneous and
+// the result is Beer–Lambert's exactly (tests/reference/clouds.h).
+#include <aquarelle/plugin.hpp>
+#include <aquarelle/scene_math.hpp>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <string>
+
+#include "clouds_shaders.h"
+
+namespace {
+
+enum Input : uint32_t { kImage, kScene, kDepth };
+constexpr aq_port_desc kInputs[] = {
+    aq::image_port("image", "the painted image"), aq::scene_port("scene", "camera and time"),
+    aq::optional_image_port("depth",
+                            "gbuffer.depth: the march stops at surfaces; unconnected: "
+                            "the volume lies over everything")};
+constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "the image with the volume over it")};
+enum Param : uint32_t {
+  kDensity,
+  kNoise,
+  kScale,
+  kOctaves,
+  kThreshold,
+  kFalloff,
+  kFalloffStart,
+  kFalloffLength,
+  kCentre,
+  kDrift,
+  kLightColor,
+  kSteps,
+  kMaxDistance
+};
+constexpr aq_param_desc kParams[] = {
+    aq::float_param("density", 0.3, 0.0, 100.0,
+                    "extinction per world unit at full density; 0 passes the image through"),
+    aq::float_param("noise", 1.0, 0.0, 1.0, "0: homogeneous; 1: density fully shaped by FBM"),
+    aq::float_param("scale", 0.3, 0.001, 100.0, "FBM lattice cells per world unit"),
+    aq::int_param("octaves", 4, 1, 8, "FBM octaves"),
+    aq::float_param("threshold", 0.0, 0.0, 1.0,
+                    "shape below this is empty (the seed's stepped clouds: 0.3); 0: off"),
+    aq::enum_param("falloff", "none|height|distance", 1,
+                   "height: density ramps up from falloff_start over falloff_length (sky); "
+                   "distance: fades out falloff_length away from `centre` (spray)"),
+    aq::float_param("falloff_start", 2.0, -1000.0, 1000.0, "world y where the height ramp starts"),
+    aq::float_param("falloff_length", 4.0, 0.001, 1000.0, "length of the ramp (world units)"),
+    aq::vec3_param("centre", 0, 0, 0, -1000, 1000, "centre of the distance falloff (world)"),
+    aq::vec3_param("drift", 0.4, 0.0, 0.15, -100, 100, "wind: world units per second"),
+    aq::color_param("light_color", 1.0, 0.92, 0.8, "the volume's colour (the seed's warm clouds)"),
+    aq::int_param("steps", 32, 1, 512, "raymarch steps"),
+    aq::float_param("max_distance", 40.0, 0.0, 10000.0, "how far a ray marches (world units)")};
+
+struct Clouds {
+  int process(aq::Context& ctx) {
+    const aq_image in = ctx.input_image(kImage);
+    const aq_scene* scene = ctx.input_scene(kScene);
+    if (scene == nullptr) {
+      return ctx.fail(std::string("clouds '") + ctx.node_id() +
+                      "': input `scene` is not connected; connect the scene_join's `scene`");
+    }
+    if (!(ctx.param_float(kDensity) > 0.0) || !(ctx.param_float(kMaxDistance) > 0.0)) {
+      return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
+    }
+    aq_image out;
+    if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+    const GLuint program = ctx.program(shaders::clouds_frag);
+    if (program == 0) return AQ_ERROR;
+    const aq_camera& camera = scene->camera;
+    const glm::mat4 view_projection =
+        aq::scene_math::camera_projection(
+            camera, static_cast<float>(in.width) / static_cast<float>(in.height)) *
+        aq::scene_math::camera_view(camera);
+    const glm::mat4 inverse = glm::inverse(view_projection);
+    const glm::vec3 forward = glm::normalize(aq::scene_math::to_vec3(camera.target) -
+                                             aq::scene_math::to_vec3(camera.position));
+    const double* drift = ctx.param_vec3(kDrift);
+    const double time = ctx.time();
+    const double drifted[3] = {drift[0] * time, drift[1] * time, drift[2] * time};
+    glUseProgram(program);
+    aq::bind_texture(program, "u_image", 0, in);
+    aq::bind_texture(program, "u_depth", 1, ctx.connected(kDepth) ? ctx.input_image(kDepth) : in);
+    aq::set_int(program, "u_has_depth", ctx.connected(kDepth) ? 1 : 0);
+    aq::set_mat4(program, "u_inverse_view_projection", glm::value_ptr(inverse));
+    aq::set_vec3(program, "u_camera", camera.position);
+    aq::set_vec3(program, "u_forward", glm::value_ptr(forward));
+    aq::set_float(program, "u_density", ctx.param_float(kDensity));
+    aq::set_float(program, "u_noise", ctx.param_float(kNoise));
+    aq::set_float(program, "u_scale", ctx.param_float(kScale));
+    aq::set_int(program, "u_octaves", static_cast<int>(ctx.param_int(kOctaves)));
+    aq::set_float(program, "u_threshold", ctx.param_float(kThreshold));
+    aq::set_int(program, "u_falloff", static_cast<int>(ctx.param_enum(kFalloff)));
+    aq::set_float(program, "u_falloff_start", ctx.param_float(kFalloffStart));
+    aq::set_float(program, "u_falloff_length", ctx.param_float(kFalloffLength));
+    aq::set_vec3(program, "u_centre", ctx.param_vec3(kCentre));
+    aq::set_vec3(program, "u_drift", drifted);
+    aq::set_vec3(program, "u_light_color", ctx.param_vec3(kLightColor));
+    aq::set_int(program, "u_steps", static_cast<int>(ctx.param_int(kSteps)));
+    aq::set_float(program, "u_max_distance", ctx.param_float(kMaxDistance));
+    const bool drawn = ctx.draw(out);
+    aq::unbind_textures(2);
+    return drawn ? AQ_OK : AQ_ERROR;
+  }
+};
+
+}  // namespace
+
+AQ_NODE(kCloudsNode, Clouds, "clouds", "Watercolor",
+        "Seed 002 volumetric clouds / spray: raymarched 3D FBM density (stepped threshold, height "
+        "or distance falloff, drift, light colour), depth-tested against the g-buffer.",
+        AQ_NODE_TIME_DEPENDENT, kInputs, kOutputs, kParams);
+AQ_PLUGIN("clouds", "1.0", &kCloudsNode)

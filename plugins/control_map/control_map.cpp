@@ -1,0 +1,109 @@
+// control_map: MNPR's art-direction image (seed 002, Montesdeoca et al. 2017): the scene is
+// rasterised once more from its camera, each object writing its own amounts, so every later
+// screen-space pass (bleeding, edge darkening, tremor) reads what the artist asked for per pixel:
+//
+//   scene ──► per mesh: aq::surface_art (object node's bleed, edge darkening, tremor, FBM)
+//         ──► control  r bleed · f_b   g edge darkening · f_e   b grazing 1 − |N·V|   a tremor ·
+//         f_t
+//             object   object-space position (w = 1 on geometry): anchors noise to objects
+//
+// f = clamp(1 + 2 · fbm_density · fbm3(object position · fbm_scale), 0, 2), one lattice offset
+// per channel, so the amounts vary along an object and stay on it when it moves. The background
+// is 0 in every channel. Cut-outs are holes as in the gbuffer; same transforms, same pixels.
+#include <aquarelle/plugin.hpp>
+#include <aquarelle/scene_gpu.hpp>
+#include <aquarelle/scene_math.hpp>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <string>
+
+#include "control_map_shaders.h"
+
+namespace {
+
+constexpr aq_port_desc kInputs[] = {aq::scene_port("scene", "objects with their art direction")};
+enum Output { kControl, kObject, kOutputCount };
+constexpr aq_port_desc kOutputs[] = {
+    aq::image_port("control",
+                   "r bleed, g edge darkening, b grazing (1 - |N.V|), a tremor; 0 on the "
+                   "background"),
+    aq::image_port("object", "object-space position (xyz), w = 1 on geometry (RGBA32F)")};
+enum Param { kOctaves };
+constexpr aq_param_desc kParams[] = {
+    aq::int_param("octaves", 4, 1, 8, "octaves of the object-space FBM variation")};
+
+class ControlMap {
+ public:
+  int process(aq::Context& ctx) {
+    const aq_scene* scene = ctx.input_scene(0);
+    if (scene == nullptr) {
+      return ctx.fail(std::string("control_map '") + ctx.node_id() +
+                      "': input `scene` is not connected; connect a scene_join's `scene` port");
+    }
+    const int width = ctx.width(), height = ctx.height();
+    aq_image targets[kOutputCount];
+    if (!ctx.output(kControl, width, height, ctx.working_format(), &targets[kControl]) ||
+        !ctx.output(kObject, width, height, AQ_FORMAT_RGBA32F, &targets[kObject])) {
+      return AQ_ERROR;
+    }
+    aq_image depth_buffer;
+    if (!ctx.scratch(width, height, AQ_FORMAT_DEPTH32F, &depth_buffer)) return AQ_ERROR;
+    const GLuint program = ctx.program(shaders::control_map_vert, shaders::control_map_frag);
+    if (program == 0) return AQ_ERROR;
+    meshes_.update(*scene, ctx.raw()->gl_generation);
+    if (!ctx.bind_targets(targets, kOutputCount, &depth_buffer)) return AQ_ERROR;
+    const float zero[4] = {0, 0, 0, 0};
+    const float depth_one = 1.0f;
+    glClearBufferfv(GL_COLOR, kControl, zero);
+    glClearBufferfv(GL_COLOR, kObject, zero);
+    glClearBufferfv(GL_DEPTH, 0, &depth_one);
+
+    const glm::mat4 view = aq::scene_math::camera_view(scene->camera);
+    const glm::mat4 projection = aq::scene_math::camera_projection(
+        scene->camera, static_cast<float>(width) / static_cast<float>(height));
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(program);
+    aq::set_mat4(program, "u_view", glm::value_ptr(view));
+    aq::set_mat4(program, "u_projection", glm::value_ptr(projection));
+    aq::set_vec3(program, "u_camera", scene->camera.position);
+    aq::set_int(program, "u_octaves", static_cast<int>(ctx.param_int(kOctaves)));
+    aq::set_int(program, "u_base_color", 0);
+    const GLint model_location = glGetUniformLocation(program, "u_model");
+    const GLint normal_location = glGetUniformLocation(program, "u_normal_matrix");
+    const GLint amounts_location = glGetUniformLocation(program, "u_amounts");
+    const GLint density_location = glGetUniformLocation(program, "u_fbm_density");
+    const GLint scale_location = glGetUniformLocation(program, "u_fbm_scale");
+    const GLint cutoff_location = glGetUniformLocation(program, "u_alpha_cutoff");
+    for (uint32_t i = 0; i < scene->mesh_count; ++i) {
+      const aq_mesh& mesh = scene->meshes[i];
+      const aq::ArtDirection art = aq::surface_art(*scene, i);
+      const glm::mat4 model = glm::make_mat4(mesh.model);
+      const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(model)));
+      glUniformMatrix4fv(model_location, 1, GL_FALSE, mesh.model);
+      glUniformMatrix3fv(normal_location, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+      glUniform4f(amounts_location, art.bleed, art.edge_darkening, art.tremor, 0.0f);
+      glUniform1f(density_location, art.fbm_density);
+      glUniform1f(scale_location, art.fbm_scale);
+      glUniform1f(cutoff_location, meshes_.bind_surface(*scene, i, 0));
+      meshes_.draw(mesh);
+    }
+    glDisable(GL_DEPTH_TEST);
+    aq::unbind_textures(1);
+    return AQ_OK;
+  }
+
+ private:
+  aq::SceneMeshCache meshes_;
+};
+
+}  // namespace
+
+AQ_NODE(kControlMapNode, ControlMap, "control_map", "Scene",
+        "MNPR control map: per-pixel bleed, edge darkening, grazing angle (1 - |N.V|) and tremor "
+        "from each object's art direction, varied by object-space FBM; and object-space "
+        "positions for noise that sticks to objects.",
+        0, kInputs, kOutputs, kParams);
+AQ_PLUGIN("control_map", "1.0", &kControlMapNode)

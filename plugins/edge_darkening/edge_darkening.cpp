@@ -1,0 +1,77 @@
+// edge_darkening: MNPR / seed 002 edge darkening from the difference between an image and its
+// Gaussian blur (the seed: 11×11, σ = 3). Near an edge the blur differs from the image, so
+// raising each channel to the power 1 + k·d darkens it there and leaves flat areas alone:
+//
+//   source (or image) ──► aq::gaussian::blur σ ──► d = max_rgb |blur − source|
+//   control (optional): k = strength · (g edge amount + grazing · b grazing angle)
+//   image ──► C · min(C, 1)^(k·d) ──► image          (C^(1 + k d) for C in [0, 1])
+//
+// The blur is the SDK's shared exact Gaussian; tests/reference/edge_darkening.h is the reference.
+#include <aquarelle/gaussian_blur.hpp>
+#include <aquarelle/plugin.hpp>
+
+#include "edge_darkening_shaders.h"
+
+namespace {
+
+enum Input : uint32_t { kImage, kSource, kControl };
+constexpr aq_port_desc kInputs[] = {
+    aq::image_port("image", "colour to darken (e.g. after bleeding)"),
+    aq::optional_image_port("source",
+                            "image whose blur difference finds the edges (the seed's colour "
+                            "before bleeding); unconnected: the image itself"),
+    aq::optional_image_port("control",
+                            "control map: g edge-darkening amount, b grazing angle; "
+                            "unconnected: k = strength everywhere")};
+constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "colour with darkened edges")};
+enum Param : uint32_t { kSigma, kStrength, kGrazing };
+constexpr aq_param_desc kParams[] = {
+    aq::float_param("sigma", 3.0, 0.0, 64.0,
+                    "Gaussian sigma in output pixels (the seed's 3); 0 passes the image through"),
+    aq::float_param("strength", 4.0, 0.0, 100.0,
+                    "k: exponent gain per unit of blur difference; 0 passes the image through"),
+    aq::float_param("grazing", 1.0, 0.0, 10.0,
+                    "how much the grazing angle (control map blue) adds to k at silhouettes")};
+
+// The rounding of a blurred constant image stays under this (relative to max(1, |source|)).
+constexpr double kDeadZone = 1e-5;
+
+struct EdgeDarkening {
+  int process(aq::Context& ctx) {
+    const aq_image in = ctx.input_image(kImage);
+    const double sigma = ctx.param_float(kSigma) * ctx.render_scale();
+    if (!(sigma > 0.0) || !(ctx.param_float(kStrength) > 0.0)) {
+      return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
+    }
+    const aq_image source = ctx.connected(kSource) ? ctx.input_image(kSource) : in;
+    aq_image blurred, out;
+    if (!ctx.scratch(source.width, source.height, AQ_FORMAT_RGBA32F, &blurred) ||
+        !ctx.output_like(0, in, &out)) {
+      return AQ_ERROR;
+    }
+    if (!aq::gaussian::blur(ctx, source, blurred, sigma, /*linear_taps=*/false)) return AQ_ERROR;
+    const GLuint program = ctx.program(shaders::edge_darkening_frag);
+    if (program == 0) return AQ_ERROR;
+    glUseProgram(program);
+    aq::bind_texture(program, "u_image", 0, in);
+    aq::bind_texture(program, "u_source", 1, source);
+    aq::bind_texture(program, "u_blurred", 2, blurred);
+    aq::bind_texture(program, "u_control", 3,
+                     ctx.connected(kControl) ? ctx.input_image(kControl) : in);
+    aq::set_int(program, "u_has_control", ctx.connected(kControl) ? 1 : 0);
+    aq::set_float(program, "u_strength", ctx.param_float(kStrength));
+    aq::set_float(program, "u_grazing", ctx.param_float(kGrazing));
+    aq::set_float(program, "u_dead_zone", kDeadZone);
+    const bool drawn = ctx.draw(out);
+    aq::unbind_textures(4);
+    return drawn ? AQ_OK : AQ_ERROR;
+  }
+};
+
+}  // namespace
+
+AQ_NODE(kEdgeDarkeningNode, EdgeDarkening, "edge_darkening", "Watercolor",
+        "MNPR edge darkening: d = max_rgb |blur(C) - C| (sigma 3), output C^(1 + k d) with k from "
+        "the control map, stronger at grazing angles.",
+        0, kInputs, kOutputs, kParams);
+AQ_PLUGIN("edge_darkening", "1.0", &kEdgeDarkeningNode)

@@ -1,0 +1,46 @@
+// Edge darkening from the blur difference (plugins/edge_darkening/README.md):
+//   d = max_rgb |blur(S) − S|,  k = strength · (control.g + grazing · control.b)  (or strength)
+//   out_c = C_c · min(C_c, 1)^(k·d)   (= C_c^(1 + k d) for C_c in [0, 1]; values > 1 and <= 0 kept)
+// d at or under the dead zone (the rounding of a blurred constant) and non-finite d are 0, so a
+// flat area is returned bit-exact and a NaN neighbour never spreads.
+in vec2 v_uv;
+out vec4 o_color;
+
+uniform sampler2D u_image;
+uniform sampler2D u_source;
+uniform sampler2D u_blurred;  // blur(source), same size as source
+uniform sampler2D u_control;
+uniform int u_has_control;
+uniform float u_strength;
+uniform float u_grazing;
+uniform float u_dead_zone;
+
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 c = texelFetch(u_image, p, 0);
+  ivec2 ps = min(p * textureSize(u_source, 0) / textureSize(u_image, 0), textureSize(u_source, 0) - 1);
+  vec3 s = texelFetch(u_source, ps, 0).rgb;
+  vec3 b = texelFetch(u_blurred, ps, 0).rgb;
+  vec3 diff = abs(b - s);
+  float d = max(diff.r, max(diff.g, diff.b));
+  float scale = max(1.0, max(abs(s.r), max(abs(s.g), abs(s.b))));
+  if (!(d > u_dead_zone * scale) || isinf(d)) d = 0.0;  // also NaN
+  float k = u_strength;
+  if (u_has_control != 0) {
+    ivec2 pc = min(p * textureSize(u_control, 0) / textureSize(u_image, 0),
+                   textureSize(u_control, 0) - 1);
+    vec4 control = texelFetch(u_control, pc, 0);
+    k *= max(control.g + u_grazing * control.b, 0.0);
+    if (isnan(k) || isinf(k)) k = 0.0;
+  }
+  float e = k * d;
+  if (e <= 0.0) {
+    o_color = c;
+    return;
+  }
+  vec3 darker = c.rgb;
+  for (int i = 0; i < 3; ++i) {
+    if (c[i] > 0.0 && c[i] < 1.0) darker[i] = c[i] * pow(c[i], e);
+  }
+  o_color = vec4(darker, c.a);
+}

@@ -1,0 +1,35 @@
+// Screen-space hand tremor (plugins/tremor/README.md): each pixel reads the image displaced by
+//   offset = amplitude · m · (perlin3(p / size_px, t·speed, 0), perlin3(p / size_px, t·speed, 7.31))
+// pixels, m = the control map's alpha (1 when unconnected). Time is the noise's third axis, so
+// the wobble moves smoothly from frame to frame. A zero offset reads the texel itself.
+#include "aquarelle/noise.glsl"
+
+in vec2 v_uv;
+out vec4 o_color;
+
+uniform sampler2D u_image;
+uniform sampler2D u_control;
+uniform int u_has_control;
+uniform float u_amplitude;  // working pixels
+uniform float u_wavelength;  // working pixels
+uniform float u_phase;      // time · speed
+
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  ivec2 size = textureSize(u_image, 0);
+  float m = 1.0;
+  if (u_has_control != 0) {
+    ivec2 csize = textureSize(u_control, 0);
+    m = texelFetch(u_control, min(p * csize / size, csize - 1), 0).a;
+    if (!(m > 0.0) || isinf(m)) m = 0.0;
+  }
+  if (m == 0.0) {
+    o_color = texelFetch(u_image, p, 0);
+    return;
+  }
+  vec2 q = gl_FragCoord.xy / u_wavelength;
+  vec2 offset = u_amplitude * m *
+                vec2(aq_perlin3(vec3(q, u_phase), vec3(0.0)),
+                     aq_perlin3(vec3(q + vec2(7.31, 3.17), u_phase + 11.7), vec3(0.0)));
+  o_color = texture(u_image, (gl_FragCoord.xy + offset) / vec2(size));
+}

@@ -1,0 +1,103 @@
+// Headless tests of the `edge_darkening` node against tests/reference/edge_darkening.h: random
+// and stepped images with and without a control map, a constant image bit-exact, darker at
+// edges than in flat areas, grazing angles darken more, 1x1, NaN stays put.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "reference/edge_darkening.h"
+#include "support/harness.h"
+
+namespace {
+
+using aq::ImageF;
+using aq::reference::EdgeDarkeningParams;
+
+aq::Result<ImageF> run(const ImageF& image, const ImageF* source, const ImageF* control,
+                       const EdgeDarkeningParams& p, const char* precision = "float") {
+  std::map<std::string, ImageF> inputs{{"image", image}};
+  if (source) inputs["source"] = *source;
+  if (control) inputs["control"] = *control;
+  aq::test::RenderOptions options;
+  options.precision = precision;
+  return aq::test::run_node("edge_darkening", inputs,
+                            {{"sigma", p.sigma}, {"strength", p.strength}, {"grazing", p.grazing}},
+                            options);
+}
+
+ImageF step_image(int w, int h) {
+  ImageF image(w, h, 4, 1.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) image.at(x, y, c) = x < w / 2 ? 0.8f : 0.3f + 0.1f * c;
+  return image;
+}
+
+TEST(EdgeDarkening, MatchesReference) {
+  const ImageF image = aq::test::random_image(48, 40, 11);
+  const ImageF source = aq::test::random_image(48, 40, 12);
+  const ImageF control = aq::test::random_image(48, 40, 13);
+  const EdgeDarkeningParams p;
+  for (int variant = 0; variant < 3; ++variant) {
+    const ImageF* s = variant >= 1 ? &source : nullptr;
+    const ImageF* c = variant == 2 ? &control : nullptr;
+    const ImageF expected = aq::reference::blur_difference_darkening(image, s, c, p);
+    auto got = run(image, s, c, p);
+    ASSERT_TRUE(got.ok()) << got.message();
+    const double error = aq::test::max_abs_diff(*got, expected);
+    // The shared Gaussian truncates at 4 sigma (6.4e-5 of the range per pass); pow amplifies it
+    // by k · C^(1+kd) |ln C| < 2 for these values.
+    EXPECT_LE(error, 4e-4) << "variant " << variant;
+    auto half = run(image, s, c, p, "half");
+    ASSERT_TRUE(half.ok()) << half.message();
+    EXPECT_LE(aq::test::max_abs_diff(*half, expected), 3e-3);
+    std::printf("[edge_darkening] variant %d float max abs %.3g, PSNR %.1f dB\n", variant, error,
+                aq::test::psnr(*got, expected));
+  }
+}
+
+TEST(EdgeDarkening, ConstantImageIsBitExactIdentity) {
+  for (const char* precision : {"float", "half"}) {
+    const ImageF image = aq::test::constant_image(40, 30, 0.25f, 0.5f, 0.875f, 0.5f);
+    auto got = run(image, nullptr, nullptr, {}, precision);
+    ASSERT_TRUE(got.ok()) << got.message();
+    EXPECT_EQ(aq::test::max_abs_diff(*got, image), 0.0) << precision;
+  }
+}
+
+TEST(EdgeDarkening, DarkensEdgesOnlyAndMoreAtGrazingAngles) {
+  const ImageF image = step_image(64, 16);
+  auto got = run(image, nullptr, nullptr, {});
+  ASSERT_TRUE(got.ok()) << got.message();
+  EXPECT_LT(got->at(31, 8, 0), image.at(31, 8, 0) - 0.01f);  // beside the step
+  EXPECT_EQ(got->at(2, 8, 0), image.at(2, 8, 0));            // flat, far from it
+  ImageF facing = aq::test::constant_image(64, 16, 0.0f, 1.0f, 0.0f);
+  ImageF grazing = aq::test::constant_image(64, 16, 0.0f, 1.0f, 1.0f);
+  auto a = run(image, nullptr, &facing, {});
+  auto b = run(image, nullptr, &grazing, {});
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_LT(b->at(31, 8, 0), a->at(31, 8, 0));
+  ImageF none = aq::test::constant_image(64, 16, 0.0f, 0.0f, 0.0f);
+  auto c = run(image, nullptr, &none, {});
+  ASSERT_TRUE(c.ok());
+  EXPECT_EQ(aq::test::max_abs_diff(*c, image), 0.0);  // edge amount 0: untouched
+}
+
+TEST(EdgeDarkening, OnePixelAndNaN) {
+  const ImageF one = aq::test::constant_image(1, 1, 0.2f, 0.4f, 0.6f);
+  auto got = run(one, nullptr, nullptr, {});
+  ASSERT_TRUE(got.ok()) << got.message();
+  EXPECT_EQ(aq::test::max_abs_diff(*got, one), 0.0);
+  ImageF image = step_image(32, 32);
+  image.at(10, 10, 1) = std::numeric_limits<float>::quiet_NaN();
+  auto nan = run(image, nullptr, nullptr, {});
+  ASSERT_TRUE(nan.ok()) << nan.message();
+  int non_finite = 0;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x)
+      for (int c = 0; c < 4; ++c) non_finite += std::isfinite(nan->at(x, y, c)) ? 0 : 1;
+  EXPECT_EQ(non_finite, 1);
+}
+
+}  // namespace

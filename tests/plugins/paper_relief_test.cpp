@@ -1,0 +1,102 @@
+// Headless tests of the `paper_relief` node against tests/reference/paper_relief.h, with the
+// `paper` node's own height field and with random heights; flat paper and relief 0 exact; paper
+// colour through a mask; 1x1; NaN stays put.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "reference/paper_relief.h"
+#include "support/harness.h"
+
+namespace {
+
+using aq::ImageF;
+using aq::reference::PaperReliefParams;
+
+aq::Result<ImageF> run(const ImageF& image, const ImageF& paper, const ImageF* mask,
+                       const PaperReliefParams& p, const char* precision = "float") {
+  std::map<std::string, ImageF> inputs{{"image", image}, {"paper", paper}};
+  if (mask) inputs["mask"] = *mask;
+  aq::test::RenderOptions options;
+  options.precision = precision;
+  return aq::test::run_node(
+      "paper_relief", inputs,
+      {{"light", {p.light[0], p.light[1], p.light[2]}},
+       {"bump", p.bump},
+       {"relief", p.relief},
+       {"paper_color", {p.paper_color[0], p.paper_color[1], p.paper_color[2]}},
+       {"show", p.show}},
+      options);
+}
+
+TEST(PaperRelief, MatchesReference) {
+  const ImageF image = aq::test::random_image(48, 36, 21);
+  const ImageF mask = aq::test::random_image(24, 18, 22, -0.2f, 1.2f);
+  aq::test::RenderOptions paper_options;
+  paper_options.width = 48;
+  paper_options.height = 36;
+  auto paper = aq::test::run_node("paper", {}, {{"grain_scale", 12}}, paper_options);
+  ASSERT_TRUE(paper.ok()) << paper.message();
+  const ImageF random_paper = aq::test::random_image(30, 20, 23);
+  const ImageF* heights[] = {&*paper, &random_paper};
+  for (const ImageF* height : heights) {
+    for (const ImageF* m : {static_cast<const ImageF*>(nullptr), &mask}) {
+      PaperReliefParams p;
+      p.bump = 6.0;
+      const ImageF expected = aq::reference::paper_relief(image, *height, m, p);
+      auto got = run(image, *height, m, p);
+      ASSERT_TRUE(got.ok()) << got.message();
+      const double error = aq::test::max_abs_diff(*got, expected);
+      EXPECT_LE(error, 5e-6);
+      auto half = run(image, *height, m, p, "half");
+      ASSERT_TRUE(half.ok()) << half.message();
+      EXPECT_LE(aq::test::max_abs_diff(*half, expected), 2e-3);
+      std::printf("[paper_relief] float max abs %.3g\n", error);
+    }
+  }
+  EXPECT_GT(aq::test::max_abs_diff(*run(image, *paper, nullptr, {}), image), 0.01);  // relief shows
+}
+
+TEST(PaperRelief, FlatPaperAndZeroReliefAreExact) {
+  const ImageF image = aq::test::random_image(33, 17, 24, 0.0f, 2.0f);
+  const ImageF flat = aq::test::constant_image(16, 16, 0.5f, 0.5f, 0.5f);
+  auto got = run(image, flat, nullptr, {});
+  ASSERT_TRUE(got.ok()) << got.message();
+  EXPECT_EQ(aq::test::max_abs_diff(*got, image), 0.0);
+  PaperReliefParams none;
+  none.relief = 0.0;
+  auto zero = run(image, aq::test::random_image(16, 16, 25), nullptr, none);
+  ASSERT_TRUE(zero.ok()) << zero.message();
+  EXPECT_EQ(aq::test::max_abs_diff(*zero, image), 0.0);
+}
+
+TEST(PaperRelief, PaperColourShowsThroughTheMask) {
+  const ImageF image = aq::test::constant_image(8, 8, 0.1f, 0.2f, 0.3f);
+  const ImageF flat = aq::test::constant_image(8, 8, 0.5f, 0.5f, 0.5f);
+  const ImageF full = aq::test::constant_image(8, 8, 1.0f, 1.0f, 1.0f);
+  auto got = run(image, flat, &full, {});
+  ASSERT_TRUE(got.ok()) << got.message();
+  EXPECT_NEAR(got->at(3, 3, 0), 0.96f, 1e-6);
+  EXPECT_NEAR(got->at(3, 3, 2), 0.85f, 1e-6);
+}
+
+TEST(PaperRelief, OnePixelAndNaN) {
+  const ImageF one = aq::test::constant_image(1, 1, 0.2f, 0.4f, 0.6f);
+  auto got = run(one, aq::test::random_image(1, 1, 3), nullptr, {});
+  ASSERT_TRUE(got.ok()) << got.message();
+  EXPECT_EQ(aq::test::max_abs_diff(*got, one), 0.0);  // one texel: no slope
+  ImageF paper = aq::test::random_image(16, 16, 26);
+  paper.at(5, 5, 0) = std::numeric_limits<float>::quiet_NaN();
+  ImageF image = aq::test::random_image(16, 16, 27);
+  image.at(9, 9, 2) = std::numeric_limits<float>::quiet_NaN();
+  auto nan = run(image, paper, nullptr, {});
+  ASSERT_TRUE(nan.ok()) << nan.message();
+  int non_finite = 0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x)
+      for (int c = 0; c < 4; ++c) non_finite += std::isfinite(nan->at(x, y, c)) ? 0 : 1;
+  EXPECT_EQ(non_finite, 1);
+}
+
+}  // namespace

@@ -1,0 +1,134 @@
+// Headless tests of hand tremor: the screen-space `tremor` node against tests/reference/tremor.h
+// (identity at amplitude 0 and where the control is 0, smooth in time), and the geometry
+// `hand_tremor` node (amplitude 0: the g-buffer bit-exact; a tremor moves silhouettes, not the
+// middle of faces seen head-on, and changes smoothly with time).
+#include <gtest/gtest.h>
+
+#include "reference/tremor.h"
+#include "support/harness.h"
+
+namespace {
+
+using aq::ImageF;
+using aq::reference::TremorParams;
+
+aq::Result<ImageF> run(const ImageF& image, const ImageF* control, const TremorParams& p,
+                       int frame) {
+  std::map<std::string, ImageF> inputs{{"image", image}};
+  if (control) inputs["control"] = *control;
+  aq::test::RenderOptions options;
+  options.frame = frame;
+  return aq::test::run_node(
+      "tremor", inputs,
+      {{"amplitude", p.amplitude}, {"wavelength", p.wavelength}, {"speed", p.speed}}, options);
+}
+
+TEST(Tremor, ScreenSpaceMatchesReference) {
+  const ImageF image = aq::test::gradient_image(48, 40);
+  const ImageF control = aq::test::random_image(48, 40, 41);
+  const TremorParams p{3.0, 12.0, 1.5};
+  for (const ImageF* c : {static_cast<const ImageF*>(nullptr), &control}) {
+    const ImageF expected = aq::reference::tremor(image, c, 0.5, p);
+    auto got = run(image, c, p, 13);
+    ASSERT_TRUE(got.ok()) << got.message();
+    // llvmpipe's bilinear weights have 8 fractional bits: up to 1/512 of a texel step.
+    const double error = aq::test::max_abs_diff(*got, expected);
+    EXPECT_LE(error, 2e-3);
+    EXPECT_GT(aq::test::max_abs_diff(*got, image), 0.01);
+    std::printf("[tremor] float max abs %.3g\n", error);
+  }
+}
+
+TEST(Tremor, IdentityAtZeroAmplitudeAndWhereTheControlIsZero) {
+  const ImageF image = aq::test::random_image(25, 19, 42);
+  auto zero = run(image, nullptr, {0.0, 12.0, 1.0}, 7);
+  ASSERT_TRUE(zero.ok()) << zero.message();
+  EXPECT_EQ(aq::test::max_abs_diff(*zero, image), 0.0);
+  const ImageF none = aq::test::constant_image(25, 19, 1.0f, 1.0f, 1.0f, 0.0f);
+  auto masked = run(image, &none, {4.0, 12.0, 1.0}, 7);
+  ASSERT_TRUE(masked.ok()) << masked.message();
+  EXPECT_EQ(aq::test::max_abs_diff(*masked, image), 0.0);
+  const ImageF one = aq::test::constant_image(1, 1, 0.5f, 0.25f, 0.125f);
+  auto tiny = run(one, nullptr, {4.0, 12.0, 1.0}, 7);
+  ASSERT_TRUE(tiny.ok()) << tiny.message();
+  EXPECT_EQ(aq::test::max_abs_diff(*tiny, one), 0.0);
+}
+
+TEST(Tremor, ScreenSpaceIsTimeCoherent) {
+  const ImageF image = aq::test::gradient_image(48, 40);
+  const TremorParams p{3.0, 12.0, 1.0};
+  auto a = run(image, nullptr, p, 10);
+  auto b = run(image, nullptr, p, 11);
+  auto far = run(image, nullptr, p, 40);
+  ASSERT_TRUE(a.ok() && b.ok() && far.ok());
+  // One frame apart the wobble moves a little; 30 frames apart, much more.
+  EXPECT_LT(aq::test::mean_abs_diff(*a, *b), 0.5 * aq::test::mean_abs_diff(*a, *far));
+}
+
+std::string tremor_scene(double amplitude, bool with_node, const std::string& port) {
+  nlohmann::json nodes;
+  nodes["sphere"] = {{"type", "object"},
+                     {"params",
+                      {{"source", "sphere"},
+                       {"tremor", 0.08},
+                       {"tremor_frequency", 3.0},
+                       {"color_override", true},
+                       {"color", {0.8, 0.3, 0.2}}}}};
+  nodes["join"] = {
+      {"type", "scene_join"},
+      {"inputs", {{"objects", nlohmann::json::array({"sphere.object"})}}},
+      {"params", {{"camera_position", {0.0, 0.4, 3.0}}, {"camera_target", {0, 0, 0}}}}};
+  std::string scene = "join.scene";
+  if (with_node) {
+    nodes["tremor"] = {{"type", "hand_tremor"},
+                       {"inputs", {{"scene", "join.scene"}}},
+                       {"params", {{"amplitude", amplitude}}}};
+    scene = "tremor.scene";
+  }
+  nodes["gbuf"] = {{"type", "gbuffer"}, {"inputs", {{"scene", scene}}}};
+  return nlohmann::json({{"aquarelle", 1}, {"nodes", nodes}, {"output", "gbuf." + port}}).dump();
+}
+
+aq::Result<ImageF> render(const std::string& graph, int frame) {
+  aq::test::RenderOptions options;
+  options.width = 64;
+  options.height = 64;
+  options.frame = frame;
+  return aq::test::render_graph(graph, options);
+}
+
+TEST(HandTremor, ZeroAmplitudeLeavesTheGBufferBitExact) {
+  for (const char* port : {"depth", "normal", "position"}) {
+    auto plain = render(tremor_scene(0.0, false, port), 5);
+    auto zero = render(tremor_scene(0.0, true, port), 5);
+    ASSERT_TRUE(plain.ok() && zero.ok()) << plain.message() << zero.message();
+    EXPECT_EQ(aq::test::max_abs_diff(*plain, *zero), 0.0) << port;
+  }
+}
+
+TEST(HandTremor, MovesSilhouettesSmoothlyInTime) {
+  auto plain = render(tremor_scene(0.0, false, "depth"), 5);
+  auto shaken = render(tremor_scene(1.0, true, "depth"), 5);
+  auto next = render(tremor_scene(1.0, true, "depth"), 6);
+  auto later = render(tremor_scene(1.0, true, "depth"), 30);
+  ASSERT_TRUE(plain.ok() && shaken.ok() && next.ok() && later.ok());
+  int rim_changed = 0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const bool covered_before = plain->at(x, y, 0) < 100.0f;
+      const bool covered_after = shaken->at(x, y, 0) < 100.0f;
+      rim_changed += covered_before != covered_after ? 1 : 0;
+    }
+  EXPECT_GT(rim_changed, 0);  // the outline moved
+  // The middle of the sphere, seen head-on, barely moves (grazing ~ 0 there).
+  EXPECT_NEAR(shaken->at(32, 32, 0), plain->at(32, 32, 0), 5e-3);
+  auto changed = [](const ImageF& a, const ImageF& b) {
+    int n = 0;
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x) n += (a.at(x, y, 0) < 100.0f) != (b.at(x, y, 0) < 100.0f);
+    return n;
+  };
+  EXPECT_LE(changed(*shaken, *next), changed(*shaken, *later));
+}
+
+}  // namespace
