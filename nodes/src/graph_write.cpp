@@ -111,6 +111,21 @@ nlohmann::json settings_json(const Settings& settings) {
       {"precision", settings.precision}, {"quality", settings.quality}};
 }
 
+// A node's links: one source as a string, a port with several links (AQ_PORT_MULTI) as an array
+// in link order.
+template <class Json>
+Json inputs_json(const Node& node) {
+  Json inputs = Json::object();
+  for (const auto& [port, source] : node.inputs) {
+    if (node.inputs.count(port) == 1) {
+      inputs[port] = source.str();
+    } else {
+      inputs[port].push_back(source.str());
+    }
+  }
+  return inputs;
+}
+
 void write_node(const Node& node, std::string* out) {
   const std::string pad(6, ' ');
   *out += "{\n" + pad + "\"type\": " + string_literal(node.type);
@@ -121,14 +136,7 @@ void write_node(const Node& node, std::string* out) {
     write_value(params, 6, out);
   }
   if (!node.inputs.empty()) {
-    nlohmann::json inputs = nlohmann::json::object();
-    for (const auto& [port, source] : node.inputs) {
-      if (node.inputs.count(port) == 1) {
-        inputs[port] = source.str();
-      } else {
-        inputs[port].push_back(source.str());  // a port with several links: an array
-      }
-    }
+    const auto inputs = inputs_json<nlohmann::json>(node);
     *out += ",\n" + pad + "\"inputs\": ";
     write_value(inputs, 6, out);
   }
@@ -258,9 +266,7 @@ nlohmann::ordered_json graph_document(const Graph& graph, const nlohmann::ordere
       written["params"] = params;
     }
     if (!node.inputs.empty() || had(old_node, "inputs")) {
-      nlohmann::ordered_json inputs = nlohmann::ordered_json::object();
-      for (const auto& [port, source] : node.inputs) inputs[port] = source.str();
-      written["inputs"] = inputs;
+      written["inputs"] = inputs_json<nlohmann::ordered_json>(node);
     }
     nodes[id] = written;
   }

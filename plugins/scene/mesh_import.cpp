@@ -107,7 +107,10 @@ class ConfinedIOSystem final : public Assimp::DefaultIOSystem {
       return nullptr;
     }
     if (std::string why = allowed(file); !why.empty()) {
-      refuse(why);
+      // A missing file inside the folder is the format's to handle (OBJ: a missing mtllib
+      // renders with the default material, which the loader warns about); anything else
+      // (outside the folder, not a regular file) is refused.
+      if (!is_missing_inside(file)) refuse(why);
       return nullptr;
     }
     std::string why;
@@ -133,6 +136,12 @@ class ConfinedIOSystem final : public Assimp::DefaultIOSystem {
     std::error_code ec;
     auto rel = std::filesystem::path(file).lexically_relative(folder_);
     return ec || rel.empty() ? file : rel.string();
+  }
+  bool is_missing_inside(const std::string& file) const {
+    std::error_code ec;
+    const auto resolved = std::filesystem::weakly_canonical(file, ec);
+    return !ec && is_inside_folder(folder_, resolved.string()) &&
+           aq::files::regular_file_problem(resolved.string()).starts_with("no such file");
   }
   std::string allowed(const std::string& file) const {
     std::error_code ec;
@@ -273,7 +282,17 @@ std::string triangulate_large_polygons(aiScene& scene) {
     delete[] mesh.mFaces;
     mesh.mFaces = faces;
     mesh.mNumFaces = static_cast<unsigned>(total);
-    mesh.mPrimitiveTypes |= aiPrimitiveType_TRIANGLE;
+    // The primitive types must describe the faces as they are now: Assimp's triangulation
+    // step asserts that a mesh flagged as holding polygons really holds one.
+    unsigned types = 0;
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const unsigned n = mesh.mFaces[f].mNumIndices;
+      types |= n == 1   ? aiPrimitiveType_POINT
+               : n == 2 ? aiPrimitiveType_LINE
+               : n == 3 ? aiPrimitiveType_TRIANGLE
+                        : aiPrimitiveType_POLYGON;
+    }
+    mesh.mPrimitiveTypes = types;
   }
   return "";
 }

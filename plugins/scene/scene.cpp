@@ -115,7 +115,7 @@ class SceneNode {
     if (key.preset == kPresetFile) {
       std::string error = scene::load_model_file(key.path, &preset, ctx, textures_);
       if (!error.empty()) {
-        ctx.fail(std::string("scene '") + ctx.node_id() + "': " + error);
+        ctx.fail(std::string("scene '") + ctx.node_id() + "', parameter 'path': " + error);
         return false;
       }
     } else if (key.preset == 0) {

@@ -48,9 +48,20 @@ std::map<std::string, Backend*>& backends() {
   return *backends;
 }
 
+void destroy_backend(Backend* b) {
+  b->evaluator.reset();  // activates its context to delete its GL objects: before the context
+  b->context.reset();
+  delete b;
+}
+
 Backend& backend(const std::string& name) {
   auto it = backends().find(name);
   if (it != backends().end()) return *it->second;
+  // One GL implementation at a time, as in `aquarelle render` and the editor: a test that
+  // switches between EGL and OSMesa gets a fresh context for each, so no GL state of one
+  // implementation (current context, dispatch) is ever resumed after the other's ran.
+  for (auto& [other, b] : backends()) destroy_backend(b);
+  backends().clear();
   auto* b = new Backend();
   auto parsed = parse_backend(name);
   if (!parsed.ok()) {
@@ -75,11 +86,7 @@ const Registry& registry() {
 }
 
 void shutdown() {
-  for (auto& [name, b] : backends()) {
-    b->evaluator.reset();  // activates its context to delete its GL objects: before the context
-    b->context.reset();
-    delete b;
-  }
+  for (auto& [name, b] : backends()) destroy_backend(b);
   backends().clear();
 }
 
