@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "view_setup.h"
+
 namespace {
 
 constexpr aq_port_desc kInputs[] = {
@@ -105,28 +107,12 @@ class JoinNode {
       scene_.bounds_min[c] = meshes_.empty() ? 0.0f : static_cast<float>(lo[c]);
       scene_.bounds_max[c] = meshes_.empty() ? 0.0f : static_cast<float>(hi[c]);
     }
-    aq_camera& camera = scene_.camera;
-    const double* eye = ctx.param_vec3(kCameraPosition);
-    const double* target = ctx.param_vec3(kCameraTarget);
+    scene::set_camera_and_light(
+        {ctx.param_vec3(kCameraPosition), ctx.param_vec3(kCameraTarget), ctx.param_float(kFov),
+         ctx.param_vec3(kLightDirection), ctx.param_vec3(kLightColor),
+         ctx.param_float(kLightIntensity), ctx.param_vec3(kAmbient)},
+        &scene_);
     for (int c = 0; c < 3; ++c) {
-      camera.position[c] = static_cast<float>(eye[c]);
-      camera.target[c] = static_cast<float>(target[c]);
-    }
-    camera.up[1] = 1.0f;
-    camera.fov_y_degrees = static_cast<float>(ctx.param_float(kFov));
-    camera.near_plane = 0.05f;
-    camera.far_plane = 200.0f;
-    const double* direction = ctx.param_vec3(kLightDirection);
-    const double length = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] +
-                                    direction[2] * direction[2]);
-    const double* color = ctx.param_vec3(kLightColor);
-    const double* ambient = ctx.param_vec3(kAmbient);
-    const double intensity = ctx.param_float(kLightIntensity);
-    for (int c = 0; c < 3; ++c) {
-      scene_.light.direction[c] =
-          length > 1e-9 ? static_cast<float>(direction[c] / length) : (c == 1 ? -1.0f : 0.0f);
-      scene_.light.color[c] = static_cast<float>(color[c] * intensity);
-      scene_.light.ambient[c] = static_cast<float>(ambient[c]);
       scene_.environment_top[c] = static_cast<float>(ctx.param_vec3(kEnvironmentTop)[c]);
       scene_.environment_bottom[c] = static_cast<float>(ctx.param_vec3(kEnvironmentBottom)[c]);
     }

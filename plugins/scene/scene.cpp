@@ -15,6 +15,7 @@
 #include "presets.h"
 #include "revision.h"
 #include "textures.h"
+#include "view_setup.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -215,30 +216,11 @@ class SceneNode {
     scene_.mesh_count = static_cast<uint32_t>(meshes_.size());
     scene_.surfaces = surfaces_.data();
     scene_.surface_struct_size = sizeof(aq_mesh_surface);
-    aq_camera& camera = scene_.camera;
-    const double* eye = ctx.param_vec3(kCameraPosition);
-    const double* target = ctx.param_vec3(kCameraTarget);
-    for (int k = 0; k < 3; ++k) {
-      camera.position[k] = static_cast<float>(eye[k]);
-      camera.target[k] = static_cast<float>(target[k]);
-    }
-    camera.up[1] = 1.0f;
-    camera.fov_y_degrees = static_cast<float>(ctx.param_float(kFov));
-    camera.near_plane = 0.05f;
-    camera.far_plane = 200.0f;
-
-    const double* direction = ctx.param_vec3(kLightDirection);
-    double length = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] +
-                              direction[2] * direction[2]);
-    const double* color = ctx.param_vec3(kLightColor);
-    const double* ambient = ctx.param_vec3(kAmbient);
-    double intensity = ctx.param_float(kLightIntensity);
-    for (int k = 0; k < 3; ++k) {
-      scene_.light.direction[k] =
-          length > 1e-9 ? static_cast<float>(direction[k] / length) : (k == 1 ? -1.0f : 0.0f);
-      scene_.light.color[k] = static_cast<float>(color[k] * intensity);
-      scene_.light.ambient[k] = static_cast<float>(ambient[k]);
-    }
+    scene::set_camera_and_light(
+        {ctx.param_vec3(kCameraPosition), ctx.param_vec3(kCameraTarget), ctx.param_float(kFov),
+         ctx.param_vec3(kLightDirection), ctx.param_vec3(kLightColor),
+         ctx.param_float(kLightIntensity), ctx.param_vec3(kAmbient)},
+        &scene_);
     for (int k = 0; k < 3; ++k) {
       scene_.bounds_min[k] = lo[k];
       scene_.bounds_max[k] = hi[k];
