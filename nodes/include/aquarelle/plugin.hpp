@@ -472,22 +472,8 @@ constexpr uint32_t count_of(const T (&)[N]) {
 
 // Same, for a source node: no inputs (generators such as noise, caustics, scene).
 #define AQ_SOURCE_NODE(NAME, NodeClass, type_name, category, description, flags, outputs, params) \
-  static const aq_node_desc NAME = {sizeof(aq_node_desc),                                         \
-                                    type_name,                                                    \
-                                    category,                                                     \
-                                    description,                                                  \
-                                    flags,                                                        \
-                                    nullptr,                                                      \
-                                    0,                                                            \
-                                    outputs,                                                      \
-                                    aq::count_of(outputs),                                        \
-                                    params,                                                       \
-                                    aq::count_of(params),                                         \
-                                    &aq::NodeAdapter<NodeClass>::create,                          \
-                                    &aq::NodeAdapter<NodeClass>::destroy,                         \
-                                    &aq::NodeAdapter<NodeClass>::process,                         \
-                                    nullptr,                                                      \
-                                    nullptr}
+  AQ_SOURCE_NODE_CHECKED(NAME, NodeClass, type_name, category, description, flags, outputs, params, \
+                         nullptr)
 
 // Same as AQ_SOURCE_NODE with a validate-time file check (aq_node_desc::check).
 #define AQ_SOURCE_NODE_CHECKED(NAME, NodeClass, type_name, category, description, flags, outputs, \
