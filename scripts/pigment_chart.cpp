@@ -6,7 +6,7 @@
 //   oiiotool /tmp/chart.ppm -o docs/pigment_chart.png
 #include <cmath>
 #include <cstdio>
-#include "reference/pigment_mix.h"
+#include "aquarelle/reference/pigment_mix.h"
 using namespace aq::reference;
 int main() {
   const auto& chart = kPigmentChart;

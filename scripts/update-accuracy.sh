@@ -95,7 +95,7 @@ for n in modes["every_node_runs"]["nodes"]:
                  f"| {c['runs'] if c else '-'} of {report['frames']} | {ms(n['gpu_ms']['median'])} |")
 lines.append("")
 if not report["cpu_references"]:
-    lines.append("No CPU references in this build (configure with AQUARELLE_BUILD_TESTS=ON).")
+    lines.append("No CPU references in this build (configure with -DAQUARELLE_BUILD_REFERENCES=ON).")
     lines.append("")
 for sweep in report["sweeps"]:
     lines.append(f"#### {sweep['series']} ({sweep['kind'].replace('_', ' ')})")

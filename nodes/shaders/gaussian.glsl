@@ -1,5 +1,5 @@
 // Shared exact separable Gaussian: the body of one 1D pass, `#include "aquarelle/gaussian.glsl"`.
-// The C++ side is nodes/include/aquarelle/gaussian_blur.hpp (aq::gaussian::blur), which
+// The C++ side is nodes/include/aquarelle/sdk/gaussian_blur.hpp (aq::gaussian::blur), which
 // computes the taps on the CPU in double, sets these uniforms and draws; most plugins never
 // include this file themselves. A plugin that wants the pass inside its own shader includes it
 // and calls aq_gaussian_pass(gl_FragCoord.xy) with the uniforms set by

@@ -3,7 +3,7 @@
 // Every function is pure (no uniforms, no textures) and built on integer hashes (PCG2D/PCG3D,
 // Jarzynski & Olano, "Hash Functions for GPU Rendering", JCGT 2020), so a given input gives the
 // same lattice values on every GPU; only the final float arithmetic (fade curves, sqrt, log, cos)
-// is subject to the usual GLSL precision rules. tests/reference/noise_reference.h implements the
+// is subject to the usual GLSL precision rules. reference/noise_reference.h implements the
 // same definitions in double precision on the CPU.
 //
 // Lattice cells are the integer parts floor(p). Periods are in lattice cells and must be whole

@@ -1,5 +1,5 @@
 // Shared subtractive colour mixing for plugin shaders: `#include "aquarelle/pigment.glsl"`.
-// Pure functions (no uniforms). tests/reference/pigment_mix.h implements the same maths in
+// Pure functions (no uniforms). reference/pigment_mix.h implements the same maths in
 // double; the maths and its sources are in plugins/pigment_mix/README.md.
 //
 //   aq_mix_rgb(a, b, t)   additive lerp, for comparison

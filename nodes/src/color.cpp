@@ -3,7 +3,7 @@
 // aq::Error values that name the config file and the colour space involved.
 #include <aquarelle/core/color.h>
 
-#include <aquarelle/regular_file.hpp>
+#include <aquarelle/sdk/regular_file.hpp>
 
 #include "color_config_data.h"
 

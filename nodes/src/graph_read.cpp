@@ -18,7 +18,7 @@
 #include <limits>
 #include <tuple>
 
-#include <aquarelle/regular_file.hpp>
+#include <aquarelle/sdk/regular_file.hpp>
 
 #include "graph_checks.h"
 #include "json_locator.h"

@@ -5,7 +5,7 @@
 // a failed write (disk full, unwritable directory) never leaves a partial or truncated image.
 #include <aquarelle/core/image_io.h>
 
-#include <aquarelle/regular_file.hpp>
+#include <aquarelle/sdk/regular_file.hpp>
 
 #include "color_config_data.h"
 #include "image_limits.h"

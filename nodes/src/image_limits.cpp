@@ -1,6 +1,6 @@
 #include "image_limits.h"
 
-#include <aquarelle/regular_file.hpp>
+#include <aquarelle/sdk/regular_file.hpp>
 
 #include <sys/stat.h>
 #include <unistd.h>

@@ -8,7 +8,7 @@
 //   colour_h, key_h, image ──► vertical gated pass ──► mix(image, blurred, amount)
 //
 // The two 1D passes define the operator (each gate compares a tap with the pixel it runs
-// into, the vertical pass on the horizontal one's results); tests/reference/bleed.h computes the
+// into, the vertical pass on the horizontal one's results); reference/bleed.h computes the
 // same definition in double. Amount 0 at a pixel returns its texel unchanged (bit-exact).
 #include <aquarelle/plugin.hpp>
 

@@ -23,8 +23,8 @@
 // `reduced_resolution` runs Gaussians above 4 px on a pyramid of 2×2 means and back up.
 //
 // `strided`: the seed's 5×5 kernel read with strides 0.3σ and σ, kept to show its artefacts.
-#include <aquarelle/gaussian_blur.hpp>
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/gaussian_blur.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -161,7 +161,7 @@ struct Blur {
   static uint32_t scratch_format(const aq::Context&) { return AQ_FORMAT_RGBA32F; }
 
   // Exact separable Gaussian of `in` into `out` (same size), through `horizontal`, a
-  // texture of the same size: the SDK's shared Gaussian (aquarelle/gaussian_blur.hpp).
+  // texture of the same size: the SDK's shared Gaussian (aquarelle/sdk/gaussian_blur.hpp).
   static bool gaussian(aq::Context& ctx, const aq_image& in, const aq_image& horizontal,
                        const aq_image& out, double sigma) {
     return aq::gaussian::blur(ctx, in, horizontal, out, sigma, ctx.param_bool(kLinearTaps));

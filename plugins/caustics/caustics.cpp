@@ -8,9 +8,9 @@
 //     │    area of overlap, integer atomics -> counts; counts minus flat water's -> intensity
 //     └─ point (Stam's): refracted triangles rasterised at texel centres with intensity
 //          original / refracted area, additive blend; optional read-back normalisation
-#include <aquarelle/gl_raii.hpp>
 #include <aquarelle/plugin.hpp>
-#include <aquarelle/scene_math.hpp>
+#include <aquarelle/sdk/gl_raii.hpp>
+#include <aquarelle/sdk/scene_math.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -125,8 +125,8 @@ struct Caustics {
     const int quality = static_cast<int>(ctx.quality());
     const int grid_asked = static_cast<int>(ctx.param_int(kGrid));
     int grid = std::max(4, quality >= 2 ? grid_asked
-                                 : point      ? grid_asked / (quality == 0 ? 8 : 4)
-                                              : grid_asked * (quality == 0 ? 2 : 3) / 4);
+                           : point      ? grid_asked / (quality == 0 ? 8 : 4)
+                                        : grid_asked * (quality == 0 ? 2 : 3) / 4);
     // With `auto_grid` and `auto_resolution` at final: no finer than a cell per two texels of the
     // footprint's texture (off by default: measured with the point estimator it cost 1.5 dB of
     // pipeline PSNR, see README).

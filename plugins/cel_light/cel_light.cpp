@@ -7,9 +7,9 @@
 //   position, normal, albedo, id ──┐
 //   shadow (optional) ─────────────┼──► cel_light.frag ──► image (working format)
 //   caustics (optional) ───────────┘                    └─► plain (the same without caustics)
-#include <aquarelle/gl_raii.hpp>
 #include <aquarelle/plugin.hpp>
-#include <aquarelle/scene_math.hpp>
+#include <aquarelle/sdk/gl_raii.hpp>
+#include <aquarelle/sdk/scene_math.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
 

@@ -6,9 +6,9 @@
 //   ──► τ by midpoint steps ──► C · e^(−τ) + light colour · (1 − e^(−τ))
 //
 // density 0 passes the image through. With noise 0 and no falloff the medium is homogeneous and
-// the result is Beer–Lambert's exactly (tests/reference/clouds.h).
+// the result is Beer–Lambert's exactly (reference/clouds.h).
 #include <aquarelle/plugin.hpp>
-#include <aquarelle/scene_math.hpp>
+#include <aquarelle/sdk/scene_math.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
 

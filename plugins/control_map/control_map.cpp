@@ -11,8 +11,8 @@
 // per channel, so the amounts vary along an object and stay on it when it moves. The background
 // is 0 in every channel. Cut-outs are holes as in the gbuffer; same transforms, same pixels.
 #include <aquarelle/plugin.hpp>
-#include <aquarelle/scene_gpu.hpp>
-#include <aquarelle/scene_math.hpp>
+#include <aquarelle/sdk/scene_gpu.hpp>
+#include <aquarelle/sdk/scene_math.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
 

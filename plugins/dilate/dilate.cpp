@@ -1,7 +1,7 @@
 // dilate: morphological dilation (seed §3.3, extended as in §7.4): the maximum over a square or
 // disc window of odd size up to 9, per channel or in luminance order. Description and process()
-// are shared with `erode` (aquarelle/morphology_node.hpp); the shader differs by one define.
-#include <aquarelle/morphology_node.hpp>
+// are shared with `erode` (aquarelle/sdk/morphology_node.hpp); the shader differs by one define.
+#include <aquarelle/sdk/morphology_node.hpp>
 
 #include "dilate_shaders.h"
 

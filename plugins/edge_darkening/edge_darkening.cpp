@@ -6,9 +6,9 @@
 //   control (optional): k = strength · (g edge amount + grazing · b grazing angle)
 //   image ──► C · min(C, 1)^(k·d) ──► image          (C^(1 + k d) for C in [0, 1])
 //
-// The blur is the SDK's shared exact Gaussian; tests/reference/edge_darkening.h is the reference.
-#include <aquarelle/gaussian_blur.hpp>
+// The blur is the SDK's shared exact Gaussian; reference/edge_darkening.h is the reference.
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/gaussian_blur.hpp>
 
 #include "edge_darkening_shaders.h"
 

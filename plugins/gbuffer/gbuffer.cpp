@@ -12,8 +12,8 @@
 // The background is marked explicitly (id 0, w = 0), never by a zero normal. Texture alpha
 // under a mesh's cut-off is a hole (cut-out cards).
 #include <aquarelle/plugin.hpp>
-#include <aquarelle/scene_gpu.hpp>
-#include <aquarelle/scene_math.hpp>
+#include <aquarelle/sdk/scene_gpu.hpp>
+#include <aquarelle/sdk/scene_math.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
 

@@ -7,9 +7,9 @@
 //                                        │ ranges of 4 ids (one RGBA channel per object)
 //   paper ─► paper pass ─► under         ▼
 //   per range:  segment+light (MRT) ─► intensity, diffuse, depth   (4 objects per texture)
-//               shared Gaussian ×3 ─► abstraction blur             (aquarelle/gaussian_blur.hpp)
-//               3x3 Laplacian + threshold ─► edges ─► Gaussian ─► wet-edge widths
-//               composite: glaze the 4 layers over `under` ─► under (ping-pong) ... ─► image
+//               shared Gaussian ×3 ─► abstraction blur (aquarelle/sdk/gaussian_blur.hpp) 3x3
+//               Laplacian + threshold ─► edges ─► Gaussian ─► wet-edge widths composite: glaze the
+//               4 layers over `under` ─► under (ping-pong) ... ─► image
 //
 // Why packed channels: a texture array or one texture per id would make every later step one
 // pass per id; four objects per RGBA texture let each pass (segment, blur, edges, composite)
@@ -18,8 +18,8 @@
 // count (ranges run one after the other), and ranges sorted far to near make the per-range
 // composite a painter's algorithm across ranges too. 8 colour attachments would pack 32 ids
 // per pass but every later pass reads at most 4 channels per texture fetch anyway.
-#include <aquarelle/gaussian_blur.hpp>
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/gaussian_blur.hpp>
 
 #include <algorithm>
 #include <cmath>

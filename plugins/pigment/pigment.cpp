@@ -8,8 +8,8 @@
 //   [turbulence] [grain] [paper] ────────┤
 //   [position] (object) ─────────────────┼──► pigment.frag ──► image
 //   [scene] camera ─► pan, zoom (screen) ┘
-#include <aquarelle/gl_raii.hpp>
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/gl_raii.hpp>
 
 #include <algorithm>
 #include <array>

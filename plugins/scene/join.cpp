@@ -9,8 +9,8 @@
 //
 // The aq_scene and the arrays it points to live in this instance until the next process.
 #include <aquarelle/plugin.hpp>
-#include <aquarelle/scene_math.hpp>
-#include <aquarelle/view_bounds.hpp>
+#include <aquarelle/sdk/scene_math.hpp>
+#include <aquarelle/sdk/view_bounds.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -1,6 +1,6 @@
 #include "mesh_file_checks.h"
 
-#include <aquarelle/regular_file.hpp>
+#include <aquarelle/sdk/regular_file.hpp>
 
 #include <nlohmann/json.hpp>
 

@@ -2,7 +2,7 @@
 
 #include "mesh_file_checks.h"
 
-#include <aquarelle/regular_file.hpp>
+#include <aquarelle/sdk/regular_file.hpp>
 
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/scene.h>

@@ -12,8 +12,8 @@
 //
 // Per-object settings later nodes read (an object's colour override today; the art-direction
 // amounts of seed 002 next) live here, next to the id that tags its g-buffer pixels.
-#include <aquarelle/mesh_smoothing.hpp>
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/mesh_smoothing.hpp>
 
 #include "model.h"
 #include "object_shapes.h"

@@ -9,8 +9,8 @@
 //   camera / light params ──────────────────► aq_scene fields only (no geometry rebuilt)
 //
 // The aq_scene and every array it points to live in this instance until the next process.
-#include <aquarelle/mesh_smoothing.hpp>
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/mesh_smoothing.hpp>
 
 #include "presets.h"
 #include "revision.h"

@@ -1,17 +1,17 @@
 // shadowmap: depth of the scene seen from its directional light (Paré-Vogt & Chaid §2.3),
 // through an orthographic projection fitted to the receivers the camera can see (the scene's
 // depth range, so casters out of view still cast). The matrix comes from
-// aquarelle/scene_math.hpp so cel_light, which reads this map, uses exactly the same one.
+// aquarelle/sdk/scene_math.hpp so cel_light, which reads this map, uses exactly the same one.
 //
 //   scene ──► fit_to_view ──► light_view_projection(scene, fit, size) ──► draw every mesh
 //                                                    ──► depth (R32F, size x size)
 //             value = window depth in [0, 1] + slope-scaled bias; 1 where nothing is
 //
 // A point P is in shadow when 0.5 * (M * P).z / w + 0.5 > depth at its texel (M the matrix).
-#include <aquarelle/gl_raii.hpp>
 #include <aquarelle/plugin.hpp>
-#include <aquarelle/scene_gpu.hpp>
-#include <aquarelle/scene_math.hpp>
+#include <aquarelle/sdk/gl_raii.hpp>
+#include <aquarelle/sdk/scene_gpu.hpp>
+#include <aquarelle/sdk/scene_math.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
 

@@ -5,8 +5,8 @@
 // place in the world while the camera moves, and the fallback when nothing is in view.
 #include <gtest/gtest.h>
 
-#include <aquarelle/scene_math.hpp>
-#include <aquarelle/view_bounds.hpp>
+#include <aquarelle/sdk/scene_math.hpp>
+#include <aquarelle/sdk/view_bounds.hpp>
 
 #include <array>
 #include <cmath>

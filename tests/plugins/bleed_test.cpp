@@ -1,4 +1,4 @@
-// Headless tests of the `bleed` node against tests/reference/bleed.h: random images with random
+// Headless tests of the `bleed` node against reference/bleed.h: random images with random
 // bleed, depth and ids; zero bleed bit-exact; a farther bleeding object never runs into a nearer
 // one of another id while one object's parts bleed together; colour runs past a border; 1x1;
 // NaN stays where it is; the separable passes against the 2D gate (printed, bounded).
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "reference/bleed.h"
+#include "aquarelle/reference/bleed.h"
 #include "support/harness.h"
 
 namespace {

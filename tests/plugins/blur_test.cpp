@@ -1,4 +1,4 @@
-// Headless tests of the `blur` node against the CPU double references (tests/reference/blur.h):
+// Headless tests of the `blur` node against the CPU double references (reference/blur.h):
 // exact Gaussian within 1e-4 in float precision (both tap modes), impulse response symmetric and
 // summing to 1, identity at sigma 0, sigma larger than the image, no checkerboard artefacts
 // with `gaussian` while `strided` shows them, the variable (depth and radial) blur against its
@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 
-#include "reference/blur.h"
+#include "aquarelle/reference/blur.h"
 #include "support/harness.h"
 
 namespace {

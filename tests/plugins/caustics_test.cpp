@@ -2,7 +2,7 @@
 // `point`): flat water is exactly 1, energy (tile mean 1; by construction for coverage), no
 // NaN/Inf and full coverage at extreme waves and on a surface with many folds, seamless
 // tiling, determinism and animation, the same grid as the CPU references, and convergence to
-// the exact box-filtered flux (tests/reference/caustics_flux_reference.h) within the error the
+// the exact box-filtered flux (reference/caustics_flux_reference.h) within the error the
 // CPU predicts for the same grid.
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "reference/caustics_flux_reference.h"
-#include "reference/caustics_reference.h"
+#include "aquarelle/reference/caustics_flux_reference.h"
+#include "aquarelle/reference/caustics_reference.h"
 #include "support/harness.h"
 
 namespace {

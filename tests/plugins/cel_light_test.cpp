@@ -1,5 +1,5 @@
 // Headless tests of the `cel_light` node fed with synthetic gbuffer images, against the CPU
-// double-precision reference (tests/reference/cel_shading.h, HSV done the textbook way):
+// double-precision reference (reference/cel_shading.h, HSV done the textbook way):
 // float and half precision, a sweep over levels, the hard cases (grey, black, values above 1,
 // exactly on a level boundary, levels = 1, NaN input), the background, the shadow input and
 // the caustic projection (neutral texture, strength, tiling, projection along the light).
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "reference/cel_shading.h"
+#include "aquarelle/reference/cel_shading.h"
 #include "support/harness.h"
 
 namespace {

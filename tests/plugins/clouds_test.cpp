@@ -1,4 +1,4 @@
-// Headless tests of the `clouds` node against tests/reference/clouds.h: a homogeneous medium
+// Headless tests of the `clouds` node against reference/clouds.h: a homogeneous medium
 // (Beer–Lambert, exact whatever the steps) stopped by the depth image, FBM clouds with the
 // height falloff, the stepped threshold and drift; zero density bit-exact; 1x1; NaN depth and
 // colour stay put.
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "reference/clouds.h"
+#include "aquarelle/reference/clouds.h"
 #include "support/harness.h"
 
 namespace {

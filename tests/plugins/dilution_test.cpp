@@ -1,4 +1,4 @@
-// Headless tests of the `dilution` node against tests/reference/dilution.h: random normals and
+// Headless tests of the `dilution` node against reference/dilution.h: random normals and
 // albedo without and with object-space turbulence; full light dilutes to the paper colour, the
 // shade darkens only as asked, the background passes unchanged; NaN stays put.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "reference/dilution.h"
+#include "aquarelle/reference/dilution.h"
 #include "support/harness.h"
 
 namespace {

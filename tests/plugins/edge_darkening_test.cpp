@@ -1,4 +1,4 @@
-// Headless tests of the `edge_darkening` node against tests/reference/edge_darkening.h: random
+// Headless tests of the `edge_darkening` node against reference/edge_darkening.h: random
 // and stepped images with and without a control map, a constant image bit-exact, darker at
 // edges than in flat areas, grazing angles darken more, 1x1, NaN stays put.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "reference/edge_darkening.h"
+#include "aquarelle/reference/edge_darkening.h"
 #include "support/harness.h"
 
 namespace {

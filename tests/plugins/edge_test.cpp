@@ -1,11 +1,11 @@
 // Headless tests of the `edge` node against the double-precision reference
-// (tests/reference/edge.h, which goes through HSV): a constant image changes nothing, factor 1
+// (reference/edge.h, which goes through HSV): a constant image changes nothing, factor 1
 // is the identity, both kernels match the reference over a sweep of factor, threshold and
 // softness in both precisions, the darkening ramps smoothly, the `source` input decides where
 // edges are (seed §7.3), and NaN in the source does not spread.
 #include <gtest/gtest.h>
 
-#include "reference/edge.h"
+#include "aquarelle/reference/edge.h"
 #include "support/harness.h"
 
 #include <cmath>

@@ -1,11 +1,11 @@
 // Headless tests of the `erode` and `dilate` nodes against the direct 2D CPU reference
-// (tests/reference/morphology.h): every size, footprint and order in both precisions, odd image
+// (reference/morphology.h): every size, footprint and order in both precisions, odd image
 // shapes, the size-1 identity and the error for an even size. Properties that relate the two
 // (ordering, idempotence, borders, no new colours) live in morphology_test.cpp.
 #include <gtest/gtest.h>
 
+#include "aquarelle/reference/morphology.h"
 #include "plugins/watercolor_test_images.h"
-#include "reference/morphology.h"
 #include "support/harness.h"
 
 #include <string>

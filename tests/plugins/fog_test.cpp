@@ -1,4 +1,4 @@
-// Headless tests of the `fog` node against the CPU reference (tests/reference/fog.h):
+// Headless tests of the `fog` node against the CPU reference (reference/fog.h):
 // reference comparison in float and half precision, monotonic in depth, density 0 identity,
 // emissive objects glowing through the fog, background and non-finite depth, bad id lists.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "reference/fog.h"
+#include "aquarelle/reference/fog.h"
 #include "support/harness.h"
 
 namespace {

@@ -1,5 +1,5 @@
 // Headless tests of the `layered` node (Luft & Deussen's layered watercolor) against the CPU
-// double reference (tests/reference/layered.h) on synthetic g-buffers, and its hard cases: one
+// double reference (reference/layered.h) on synthetic g-buffers, and its hard cases: one
 // object covering the image, one-pixel objects, 256 ids, ids absent from the frame, masks
 // touching the border, NaN and Inf inputs; and the behaviour each step promises (highlights
 // left as paper, wet-in-wet feathering out, wet-to-dry darker rims, the blurred depth test,
@@ -10,7 +10,7 @@
 #include <limits>
 #include <vector>
 
-#include "reference/layered.h"
+#include "aquarelle/reference/layered.h"
 #include "support/harness.h"
 
 namespace {

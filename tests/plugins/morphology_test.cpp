@@ -4,8 +4,8 @@
 // does, which is the seed's §7.4 complaint and why the luminance order exists).
 #include <gtest/gtest.h>
 
+#include "aquarelle/reference/morphology.h"
 #include "plugins/watercolor_test_images.h"
-#include "reference/morphology.h"
 #include "support/harness.h"
 
 #include <algorithm>

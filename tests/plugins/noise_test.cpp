@@ -1,5 +1,5 @@
 // Headless tests of the `noise` texture node against the CPU reference
-// (tests/reference/noise_texture_reference.h): every type in float and half precision, seamless
+// (reference/noise_texture_reference.h): every type in float and half precision, seamless
 // tiling, resolution independence, seeds (same seed identical, other seed different), value
 // ranges and Gaussian statistics, and a parameter sweep.
 #include <gtest/gtest.h>
@@ -8,8 +8,8 @@
 #include <cmath>
 #include <string>
 
-#include "reference/noise_reference.h"
-#include "reference/noise_texture_reference.h"
+#include "aquarelle/reference/noise_reference.h"
+#include "aquarelle/reference/noise_texture_reference.h"
 #include "support/harness.h"
 
 namespace {

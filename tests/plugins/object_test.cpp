@@ -2,7 +2,7 @@
 // case (OBJ Kd, OBJ map_Kd x Kd, glTF baseColorTexture embedded and beside the file x base
 // colour x vertex colours, a colour override, a missing texture or material file) and each
 // transform case (position, rotation, scale; fit) against the CPU reference of the albedo in
-// tests/reference/scene_albedo.h; texture alpha as cut-outs in the g-buffer and the shadow
+// reference/scene_albedo.h; texture alpha as cut-outs in the g-buffer and the shadow
 // map; keyframe and swim animation; several objects joined with their own ids.
 #include <gtest/gtest.h>
 
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "reference/scene_albedo.h"
+#include "aquarelle/reference/scene_albedo.h"
 #include "support/harness.h"
 
 namespace {

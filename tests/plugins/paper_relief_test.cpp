@@ -1,4 +1,4 @@
-// Headless tests of the `paper_relief` node against tests/reference/paper_relief.h, with the
+// Headless tests of the `paper_relief` node against reference/paper_relief.h, with the
 // `paper` node's own height field and with random heights; flat paper and relief 0 exact; paper
 // colour through a mask; 1x1; NaN stays put.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "reference/paper_relief.h"
+#include "aquarelle/reference/paper_relief.h"
 #include "support/harness.h"
 
 namespace {

@@ -1,5 +1,5 @@
 // Headless tests of the `paper` texture node against the CPU reference
-// (tests/reference/paper_reference.h): float and half precision, flat paper at roughness 0,
+// (reference/paper_reference.h): float and half precision, flat paper at roughness 0,
 // seamless tiling, resolution independence, seeds, range, and a parameter sweep.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "reference/paper_reference.h"
+#include "aquarelle/reference/paper_reference.h"
 #include "support/harness.h"
 
 namespace {

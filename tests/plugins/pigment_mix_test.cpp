@@ -1,5 +1,5 @@
 // Headless tests of the `pigment_mix` node against the CPU double reference
-// (tests/reference/pigment_mix.h): each mode against its definition on random colours, blue and
+// (reference/pigment_mix.h): each mode against its definition on random colours, blue and
 // yellow make green with Kubelka–Munk (and not with rgb or cmyk), a colour mixed with itself is
 // itself, factors 0 and 1, mixing with white and black, NaN and Inf inputs stay finite.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "reference/pigment_mix.h"
+#include "aquarelle/reference/pigment_mix.h"
 #include "support/harness.h"
 
 namespace {

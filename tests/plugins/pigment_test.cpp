@@ -1,5 +1,5 @@
 // Headless tests of the `pigment` node against the double-precision reference
-// (tests/reference/pigment.h): density 1 is the identity, values in [0, 1] stay in [0, 1] for
+// (reference/pigment.h): density 1 is the identity, values in [0, 1] stay in [0, 1] for
 // any weight, procedural and connected textures match the reference in both precisions, object
 // anchoring keeps the pattern on a moving object (screen anchoring does not), and bad inputs give
 // errors or finite output, never NaN.
@@ -8,8 +8,8 @@
 #include <aquarelle/core/evaluator.h>
 #include <aquarelle/core/graph_io.h>
 
+#include "aquarelle/reference/pigment.h"
 #include "plugins/watercolor_test_images.h"
-#include "reference/pigment.h"
 #include "support/harness.h"
 
 #include <cmath>

@@ -1,9 +1,9 @@
-// Tests of the `scene` node and of load-time normal smoothing (aquarelle/mesh_smoothing.hpp):
+// Tests of the `scene` node and of load-time normal smoothing (aquarelle/sdk/mesh_smoothing.hpp):
 // smoothing on a cube, a double-sided plane and a clay pot (unit, finite normals, positions
 // untouched, smoother than before), welding by tolerance, and headless renders of the scene
 // presets through gbuffer: same seed gives the same image bit for bit, smoothing keeps the
 // silhouette, the fish moves while static geometry stays.
-#include <aquarelle/mesh_smoothing.hpp>
+#include <aquarelle/sdk/mesh_smoothing.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Headless tests of the `shadowmap` node, read through cel_light (unquantised, no ambient, so a
 // plane pixel is either lit: albedo * N.L, or black). Compared against exact ray casting
-// against the box of the `plane_box` preset (tests/reference/shadow_reference.h): the shadow
+// against the box of the `plane_box` preset (reference/shadow_reference.h): the shadow
 // lies where expected, there is no acne on the plane at grazing (80 degree) light, the shadow
 // does not detach from the box, a light parallel to the plane gives finite black, and the size
 // parameter sets the map's resolution.
@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "reference/shadow_reference.h"
+#include "aquarelle/reference/shadow_reference.h"
 #include "support/harness.h"
 
 namespace {

@@ -1,8 +1,8 @@
-// Headless tests of the `tint` node against the CPU reference (tests/reference/tint.h): float
+// Headless tests of the `tint` node against the CPU reference (reference/tint.h): float
 // and half precision, amount 0 and 1 exact, alpha kept, a parameter sweep.
 #include <gtest/gtest.h>
 
-#include "reference/tint.h"
+#include "aquarelle/reference/tint.h"
 #include "support/harness.h"
 
 namespace {

@@ -1,10 +1,10 @@
-// Headless tests of hand tremor: the screen-space `tremor` node against tests/reference/tremor.h
+// Headless tests of hand tremor: the screen-space `tremor` node against reference/tremor.h
 // (identity at amplitude 0 and where the control is 0, smooth in time), and the geometry
 // `hand_tremor` node (amplitude 0: the g-buffer bit-exact; a tremor moves silhouettes, not the
 // middle of faces seen head-on, and changes smoothly with time).
 #include <gtest/gtest.h>
 
-#include "reference/tremor.h"
+#include "aquarelle/reference/tremor.h"
 #include "support/harness.h"
 
 namespace {

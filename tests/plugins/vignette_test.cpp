@@ -1,11 +1,11 @@
-// Headless tests of the `vignette` node against the CPU reference (tests/reference/vignette.h):
+// Headless tests of the `vignette` node against the CPU reference (reference/vignette.h):
 // identity cases, exactness at strength 0 and 1, aspect ratio, radius beyond the corners, and a
 // parameter sweep in float and half precision.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "reference/vignette.h"
+#include "aquarelle/reference/vignette.h"
 #include "support/harness.h"
 
 namespace {

@@ -1,11 +1,11 @@
 // Headless tests of the `wobble` node against the double-precision reference
-// (tests/reference/wobble.h): strength 0 is the identity, a connected paper and the procedural
+// (reference/wobble.h): strength 0 is the identity, a connected paper and the procedural
 // paper both match the reference, lookups clamp at the borders (no value from outside the
 // image, whatever the strength), the displacement does not change with resolution, and a paper
 // holding NaN leaves the image finite.
 #include <gtest/gtest.h>
 
-#include "reference/wobble.h"
+#include "aquarelle/reference/wobble.h"
 #include "support/harness.h"
 
 #include <cmath>
