@@ -5,7 +5,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdint>
+#include <cstring>
 
 namespace aq {
 namespace {
@@ -109,6 +112,46 @@ Status check_exr_header(const std::string& path) {
       at += static_cast<uint64_t>(declared);
     }
     if (!multipart || attributes == 0) break;  // single part, or the empty header ending parts
+  }
+  ::close(fd);
+  return Ok{};
+}
+
+Status check_png_chunks(const std::string& path) {
+  std::string why;
+  const int fd = files::open_regular_file(path, &why);
+  if (fd < 0) return make_error("cannot read image " + path + ": " + why);
+  struct stat info {};
+  ::fstat(fd, &info);
+  const auto size = static_cast<uint64_t>(info.st_size);
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  unsigned char head[8] = {};
+  if (::pread(fd, head, 8, 0) != 8 || std::memcmp(head, kSignature, 8) != 0) {
+    ::close(fd);
+    return Ok{};  // not a PNG file
+  }
+  uint64_t at = 8;
+  // Each chunk: 4-byte big-endian length, 4-byte type, data, 4-byte CRC.
+  for (int chunks = 0; at + 8 <= size; ++chunks) {
+    unsigned char header[8] = {};
+    if (::pread(fd, header, 8, static_cast<off_t>(at)) != 8) break;
+    const uint64_t length = (uint64_t{header[0]} << 24) | (uint64_t{header[1]} << 16) |
+                            (uint64_t{header[2]} << 8) | uint64_t{header[3]};
+    const std::string type(reinterpret_cast<const char*>(header + 4), 4);
+    at += 8;
+    const uint64_t left = size - at;
+    if (length > 0x7fffffffu || length + 4 > left) {
+      ::close(fd);
+      const bool printable =
+          std::all_of(type.begin(), type.end(), [](char c) { return std::isalpha(uint8_t(c)); });
+      return make_error("cannot read image " + path + ": its PNG chunk " +
+                        (printable ? "'" + type + "' " : "") + "number " +
+                        std::to_string(chunks + 1) + " declares " + std::to_string(length) +
+                        " bytes but only " + std::to_string(left) +
+                        " follow (the file is truncated, corrupt or forged; re-export it)");
+    }
+    at += length + 4;
+    if (type == "IEND") break;
   }
   ::close(fd);
   return Ok{};

@@ -27,4 +27,10 @@ Status check_declared_size(const std::string& path, const std::string& ext, uint
 // rest of the file. Other files pass.
 Status check_exr_header(const std::string& path);
 
+// libpng allocates a chunk's declared length before reading it (a 320-byte PNG declaring a
+// 1.9 GB text chunk made the reader pass 1 GB): walks the chunks of a PNG file (found by its
+// signature, whatever its extension) and refuses a length larger than the rest of the file or
+// beyond the PNG limit of 2^31 - 1. Other files pass.
+Status check_png_chunks(const std::string& path);
+
 }  // namespace aq

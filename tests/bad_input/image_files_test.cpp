@@ -76,6 +76,31 @@ TEST(ImageDeclaredSizes, ExrAttributeLargerThanTheFileIsRefused) {
   }
 }
 
+// Found by the image fuzzer: a 320-byte PNG whose second text chunk declares 1.9 GB; libpng
+// reserved it before reading, past the fuzzer's 1 GB limit. A well-formed PNG with text
+// chunks still reads.
+TEST(ImageDeclaredSizes, PngChunkLongerThanTheFileIsRefused) {
+  const fs::path dir = scratch_dir("bad_input_png_chunk");
+  const std::string ihdr = big_endian(4) + big_endian(3) + std::string("\x08\x02\x00\x00\x00", 5);
+  const std::string head = std::string("\x89PNG\r\n\x1a\n", 8) + png_chunk("IHDR", ihdr) +
+                           png_chunk("tEXt", std::string("Comment\0fine", 12));
+  const std::string forged = big_endian(0x70670067u) + "tEXt" + "Software" + std::string(40, 'x');
+  write_bytes(dir / "forged.png", head + forged);
+  auto refused = read_image((dir / "forged.png").string(), config());
+  ASSERT_FALSE(refused.ok());
+  EXPECT_TRUE(mentions(refused.message(), "forged.png")) << refused.message();
+  EXPECT_TRUE(mentions(refused.message(), "'tEXt'")) << refused.message();
+  EXPECT_TRUE(mentions(refused.message(), "1885798503 bytes")) << refused.message();
+
+  ASSERT_TRUE(write_image((dir / "fine.png").string(), constant_image(4, 3, 0.5f, 0.25f, 1.0f),
+                          WriteOptions{false, 8})
+                  .ok());
+  auto fine = read_image((dir / "fine.png").string(), config());
+  ASSERT_TRUE(fine.ok()) << fine.message();
+  EXPECT_EQ(fine->width, 4);
+  EXPECT_EQ(fine->height, 3);
+}
+
 TEST(ImageDeclaredSizes, MemoryBudgetRefusesLargeDecodes) {
   const fs::path dir = scratch_dir("bad_input_budget");
   ASSERT_TRUE(write_image((dir / "big.exr").string(), constant_image(512, 512, 0.5f, 0.5f, 0.5f),
