@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 
 namespace aq {
 namespace {
@@ -19,6 +20,35 @@ constexpr uint64_t kDeflateMaxRatio = 1100;
 
 std::string megabytes(uint64_t bytes) {
   return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
+}
+
+// A header is read through its own descriptor, closed on every return path.
+class HeaderFile {
+ public:
+  explicit HeaderFile(int fd) : fd_(fd) {
+    struct stat info {};
+    if (fd_ >= 0 && ::fstat(fd_, &info) == 0) size_ = static_cast<uint64_t>(info.st_size);
+  }
+  HeaderFile(const HeaderFile&) = delete;
+  HeaderFile& operator=(const HeaderFile&) = delete;
+  ~HeaderFile() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  bool read(void* out, size_t n, uint64_t at) const {
+    return ::pread(fd_, out, n, static_cast<off_t>(at)) == static_cast<ssize_t>(n);
+  }
+  uint64_t size() const { return size_; }
+
+ private:
+  int fd_ = -1;
+  uint64_t size_ = 0;
+};
+
+Result<std::unique_ptr<HeaderFile>> open_header(const std::string& path) {
+  std::string why;
+  const int fd = files::open_regular_file(path, &why);
+  if (fd < 0) return make_error("cannot read image " + path + ": " + why);
+  return std::make_unique<HeaderFile>(fd);
 }
 
 }  // namespace
@@ -59,16 +89,13 @@ Status check_declared_size(const std::string& path, const std::string& ext, uint
 }
 
 Status check_exr_header(const std::string& path) {
-  std::string why;
-  const int fd = files::open_regular_file(path, &why);
-  if (fd < 0) return make_error("cannot read image " + path + ": " + why);
-  struct stat info {};
-  ::fstat(fd, &info);
-  const auto size = static_cast<uint64_t>(info.st_size);
+  auto file = open_header(path);
+  if (!file.ok()) return file.error();
+  const HeaderFile& header = **file;
+  const uint64_t size = header.size();
   uint64_t at = 0;
   auto read_at = [&](void* out, size_t n) {
-    const ssize_t got = ::pread(fd, out, n, static_cast<off_t>(at));
-    if (got != static_cast<ssize_t>(n)) return false;
+    if (!header.read(out, n, at)) return false;
     at += n;
     return true;
   };
@@ -84,14 +111,12 @@ Status check_exr_header(const std::string& path) {
     return false;
   };
   auto refuse = [&](const std::string& what) {
-    ::close(fd);
     return make_error("cannot read image " + path + ": its OpenEXR header " + what +
                       " (the file is corrupt or forged; re-export it)");
   };
   unsigned char magic[8] = {};
   if (!read_at(magic, 8) || magic[0] != 0x76 || magic[1] != 0x2f || magic[2] != 0x31 ||
       magic[3] != 0x01) {
-    ::close(fd);
     return Ok{};  // not an EXR file
   }
   const bool multipart = (magic[5] & 0x10) != 0;
@@ -113,35 +138,30 @@ Status check_exr_header(const std::string& path) {
     }
     if (!multipart || attributes == 0) break;  // single part, or the empty header ending parts
   }
-  ::close(fd);
   return Ok{};
 }
 
 Status check_png_chunks(const std::string& path) {
-  std::string why;
-  const int fd = files::open_regular_file(path, &why);
-  if (fd < 0) return make_error("cannot read image " + path + ": " + why);
-  struct stat info {};
-  ::fstat(fd, &info);
-  const auto size = static_cast<uint64_t>(info.st_size);
+  auto file = open_header(path);
+  if (!file.ok()) return file.error();
+  const HeaderFile& header = **file;
+  const uint64_t size = header.size();
   static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   unsigned char head[8] = {};
-  if (::pread(fd, head, 8, 0) != 8 || std::memcmp(head, kSignature, 8) != 0) {
-    ::close(fd);
+  if (!header.read(head, 8, 0) || std::memcmp(head, kSignature, 8) != 0) {
     return Ok{};  // not a PNG file
   }
   uint64_t at = 8;
   // Each chunk: 4-byte big-endian length, 4-byte type, data, 4-byte CRC.
   for (int chunks = 0; at + 8 <= size; ++chunks) {
-    unsigned char header[8] = {};
-    if (::pread(fd, header, 8, static_cast<off_t>(at)) != 8) break;
-    const uint64_t length = (uint64_t{header[0]} << 24) | (uint64_t{header[1]} << 16) |
-                            (uint64_t{header[2]} << 8) | uint64_t{header[3]};
-    const std::string type(reinterpret_cast<const char*>(header + 4), 4);
+    unsigned char chunk[8] = {};
+    if (!header.read(chunk, 8, at)) break;
+    const uint64_t length = (uint64_t{chunk[0]} << 24) | (uint64_t{chunk[1]} << 16) |
+                            (uint64_t{chunk[2]} << 8) | uint64_t{chunk[3]};
+    const std::string type(reinterpret_cast<const char*>(chunk + 4), 4);
     at += 8;
     const uint64_t left = size - at;
     if (length > 0x7fffffffu || length + 4 > left) {
-      ::close(fd);
       const bool printable =
           std::all_of(type.begin(), type.end(), [](char c) { return std::isalpha(uint8_t(c)); });
       return make_error("cannot read image " + path + ": its PNG chunk " +
@@ -153,7 +173,6 @@ Status check_png_chunks(const std::string& path) {
     at += length + 4;
     if (type == "IEND") break;
   }
-  ::close(fd);
   return Ok{};
 }
 
