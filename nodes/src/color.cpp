@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
+#include <vector>
 
 namespace aq {
 namespace {
@@ -101,6 +102,61 @@ Result<ColorConfig> ColorConfig::load() {
   return make_error(message);
 }
 
+namespace {
+
+// Every FileTransform under `transform`, groups included.
+void collect_file_transforms(const OCIO::ConstTransformRcPtr& transform,
+                             std::vector<std::string>* sources) {
+  if (!transform) return;
+  if (auto file = OCIO::DynamicPtrCast<const OCIO::FileTransform>(transform)) {
+    if (file->getSrc() != nullptr && *file->getSrc() != '\0') sources->emplace_back(file->getSrc());
+  } else if (auto group = OCIO::DynamicPtrCast<const OCIO::GroupTransform>(transform)) {
+    for (int i = 0; i < group->getNumTransforms(); ++i) {
+      collect_file_transforms(group->getTransform(i), sources);
+    }
+  }
+}
+
+// OCIO opens a config's LUT files only when a processor needs them, and would block on a FIFO
+// or read /dev/zero without end as it would for the config itself: every file named by a
+// colour space, look or view transform must resolve to a regular file before it is used.
+Status check_lut_files(const OCIO::Config& config) {
+  std::vector<std::string> sources;
+  for (int i = 0; i < config.getNumColorSpaces(); ++i) {
+    auto space = config.getColorSpace(config.getColorSpaceNameByIndex(i));
+    if (!space) continue;
+    collect_file_transforms(space->getTransform(OCIO::COLORSPACE_DIR_TO_REFERENCE), &sources);
+    collect_file_transforms(space->getTransform(OCIO::COLORSPACE_DIR_FROM_REFERENCE), &sources);
+  }
+  for (int i = 0; i < config.getNumLooks(); ++i) {
+    auto look = config.getLook(config.getLookNameByIndex(i));
+    if (!look) continue;
+    collect_file_transforms(look->getTransform(), &sources);
+    collect_file_transforms(look->getInverseTransform(), &sources);
+  }
+  for (int i = 0; i < config.getNumViewTransforms(); ++i) {
+    auto view = config.getViewTransform(config.getViewTransformNameByIndex(i));
+    if (!view) continue;
+    collect_file_transforms(view->getTransform(OCIO::VIEWTRANSFORM_DIR_TO_REFERENCE), &sources);
+    collect_file_transforms(view->getTransform(OCIO::VIEWTRANSFORM_DIR_FROM_REFERENCE), &sources);
+  }
+  auto context = config.getCurrentContext();
+  for (const std::string& source : sources) {
+    std::string resolved;
+    try {
+      resolved = context->resolveFileLocation(source.c_str());
+    } catch (const OCIO::Exception&) {
+      continue;  // missing: OCIO says so, by name, if a transform ever needs it
+    }
+    if (std::string why = files::regular_file_problem(resolved); !why.empty()) {
+      return make_error("its LUT file " + resolved + ": " + why);
+    }
+  }
+  return Ok{};
+}
+
+}  // namespace
+
 Result<ColorConfig> ColorConfig::load_file(const std::string& path) {
   // Only a regular file: OCIO would block on a FIFO and read /dev/zero without end.
   if (std::string why = files::regular_file_problem(path); !why.empty()) {
@@ -113,6 +169,9 @@ Result<ColorConfig> ColorConfig::load_file(const std::string& path) {
     data->config->validate();
   } catch (const OCIO::Exception& e) {
     return make_error("cannot load OpenColorIO config " + path + ": " + e.what());
+  }
+  if (auto luts = check_lut_files(*data->config); !luts) {
+    return make_error("cannot load OpenColorIO config " + path + ": " + luts.message());
   }
   auto linear = data->config->getColorSpace(OCIO::ROLE_SCENE_LINEAR);
   if (!linear) {

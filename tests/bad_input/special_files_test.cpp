@@ -85,6 +85,40 @@ TEST(SpecialFiles, OcioConfigMustBeRegular) {
   }
 }
 
+// A LUT named inside the config is opened by OCIO only when a transform needs it, where a FIFO
+// would block: it is checked when the config loads. A regular LUT file loads as before.
+TEST(SpecialFiles, OcioLutFilesMustBeRegular) {
+  const fs::path dir = scratch_dir("bad_input_special_ocio_lut");
+  auto config_with_lut = [&](const std::string& lut) {
+    const fs::path path = dir / ("config_" + lut + ".ocio");
+    write_bytes(path,
+                "ocio_profile_version: 2.1\n"
+                "search_path: \".\"\n"
+                "roles:\n  default: raw\n  scene_linear: raw\n  reference: raw\n"
+                "displays:\n  sRGB:\n    - !<View> {name: Raw, colorspace: raw}\n"
+                "colorspaces:\n"
+                "  - !<ColorSpace>\n    name: raw\n    isdata: true\n"
+                "  - !<ColorSpace>\n    name: graded\n"
+                "    from_scene_reference: !<GroupTransform>\n      children:\n"
+                "        - !<FileTransform> {src: " +
+                    lut + ", interpolation: linear}\n");
+    return path;
+  };
+  write_bytes(dir / "curve.spi1d",
+              "Version 1\nFrom 0.0 1.0\nLength 2\nComponents 1\n{\n0.0\n1.0\n}\n");
+  make_fifo(dir / "pipe.spi1d");
+
+  auto fine = ColorConfig::load_file(config_with_lut("curve.spi1d").string());
+  ASSERT_TRUE(fine.ok()) << fine.message();
+  auto fifo = ColorConfig::load_file(config_with_lut("pipe.spi1d").string());
+  ASSERT_FALSE(fifo.ok());
+  EXPECT_NE(fifo.message().find("pipe.spi1d"), std::string::npos) << fifo.message();
+  EXPECT_NE(fifo.message().find("FIFO"), std::string::npos) << fifo.message();
+  auto device = ColorConfig::load_file(config_with_lut("/dev/zero").string());
+  ASSERT_FALSE(device.ok());
+  EXPECT_NE(device.message().find("/dev/zero"), std::string::npos) << device.message();
+}
+
 TEST(SpecialFiles, RenderOfAFifoGraphEndsWithExitOne) {
   const fs::path dir = scratch_dir("bad_input_special_cli");
   const fs::path fifo = make_fifo(dir / "graph.json");
