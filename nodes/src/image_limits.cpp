@@ -88,6 +88,49 @@ Status check_declared_size(const std::string& path, const std::string& ext, uint
   return Ok{};
 }
 
+// OpenEXR reads these attribute types by their own structure, not by their declared size: a
+// channel list runs until its empty name, a string vector and a preview allocate what they
+// declare inside. Their structure must end within the declared size ("" when it does).
+std::string exr_attribute_problem(const std::string& type, const std::string& value) {
+  const uint64_t size = value.size();
+  auto u32_at = [&](uint64_t at) {
+    uint32_t v = 0;
+    std::memcpy(&v, value.data() + at, 4);
+    return v;
+  };
+  if (type == "chlist") {
+    uint64_t at = 0;
+    while (at < size) {
+      const auto end = value.find('\0', at);
+      if (end == std::string::npos) break;
+      if (end == at) return {};  // the empty name ends the list
+      at = end + 1 + 16;         // pixel type, pLinear + reserved, x and y sampling
+    }
+    return "is a channel list that does not end within its " + std::to_string(size) + " bytes";
+  }
+  if (type == "stringvector") {
+    for (uint64_t at = 0; at < size;) {
+      if (at + 4 > size) return "is a string vector cut inside a length";
+      const uint64_t length = u32_at(at);
+      if (length > size - at - 4) {
+        return "holds a string of " + std::to_string(length) + " bytes in " + std::to_string(size) +
+               " bytes";
+      }
+      at += 4 + length;
+    }
+    return {};
+  }
+  if (type == "preview") {
+    if (size < 8) return "is a preview without its size";
+    const uint64_t pixels = uint64_t{u32_at(0)} * uint64_t{u32_at(4)};
+    if (pixels * 4 + 8 != size) {
+      return "declares a " + std::to_string(u32_at(0)) + "x" + std::to_string(u32_at(4)) +
+             " preview in " + std::to_string(size) + " bytes";
+    }
+  }
+  return {};
+}
+
 Status check_exr_header(const std::string& path) {
   auto file = open_header(path);
   if (!file.ok()) return file.error();
@@ -99,13 +142,21 @@ Status check_exr_header(const std::string& path) {
     at += n;
     return true;
   };
-  // A null-terminated name of at most 255 characters (OpenEXR's long-name limit).
+  unsigned char magic[8] = {};
+  if (!read_at(magic, 8) || magic[0] != 0x76 || magic[1] != 0x2f || magic[2] != 0x31 ||
+      magic[3] != 0x01) {
+    return Ok{};  // not an EXR file
+  }
+  // A null-terminated name of at most 255 characters (OpenEXR's long-name limit); without the
+  // long-names flag OpenEXR reads at most 31 characters and takes the next byte as the following
+  // field: a longer name would desynchronise our walk from its reading.
+  const size_t longest_name = (magic[5] & 0x04) != 0 ? 255 : 31;
   auto read_name = [&](std::string* name) {
     name->clear();
     char c = 0;
     while (read_at(&c, 1)) {
       if (c == '\0') return true;
-      if (name->size() >= 255) return false;
+      if (name->size() >= longest_name) return false;
       name->push_back(c);
     }
     return false;
@@ -114,17 +165,15 @@ Status check_exr_header(const std::string& path) {
     return make_error("cannot read image " + path + ": its OpenEXR header " + what +
                       " (the file is corrupt or forged; re-export it)");
   };
-  unsigned char magic[8] = {};
-  if (!read_at(magic, 8) || magic[0] != 0x76 || magic[1] != 0x2f || magic[2] != 0x31 ||
-      magic[3] != 0x01) {
-    return Ok{};  // not an EXR file
-  }
   const bool multipart = (magic[5] & 0x10) != 0;
   std::string name, type;
   for (int headers = 0; headers < 1024; ++headers) {
     int attributes = 0;
     while (true) {
-      if (!read_name(&name)) return refuse("ends inside an attribute name");
+      if (!read_name(&name)) {
+        return refuse("ends inside an attribute name, or has one longer than " +
+                      std::to_string(longest_name) + " characters");
+      }
       if (name.empty()) break;  // end of this header
       if (++attributes > 4096) return refuse("has more than 4096 attributes");
       if (!read_name(&type)) return refuse("ends inside the type of attribute " + name);
@@ -133,6 +182,13 @@ Status check_exr_header(const std::string& path) {
       if (declared < 0 || static_cast<uint64_t>(declared) > size - at) {
         return refuse("declares " + std::to_string(declared) + " bytes for attribute '" + name +
                       "' but only " + std::to_string(size - at) + " bytes follow");
+      }
+      if (type == "chlist" || type == "stringvector" || type == "preview") {
+        std::string value(static_cast<size_t>(declared), '\0');
+        if (!header.read(value.data(), value.size(), at)) return refuse("ends inside " + name);
+        if (std::string why = exr_attribute_problem(type, value); !why.empty()) {
+          return refuse("attribute '" + name + "' " + why);
+        }
       }
       at += static_cast<uint64_t>(declared);
     }

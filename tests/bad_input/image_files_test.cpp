@@ -76,6 +76,29 @@ TEST(ImageDeclaredSizes, ExrAttributeLargerThanTheFileIsRefused) {
   }
 }
 
+// Found by the image fuzzer: an EXR whose channel list does not end within its declared size.
+// OpenEXR reads a channel list up to its empty name, whatever the size says, so it read past
+// it and took later bytes as a 2 GB string attribute.
+TEST(ImageDeclaredSizes, ExrChannelListRunningPastItsSizeIsRefused) {
+  const fs::path dir = scratch_dir("bad_input_exr_chlist");
+  auto little = [](uint32_t v) {
+    return std::string{static_cast<char>(v), static_cast<char>(v >> 8), static_cast<char>(v >> 16),
+                       static_cast<char>(v >> 24)};
+  };
+  const std::string channel =
+      std::string("R\0", 2) + little(1) + std::string(4, '\0') + little(1) + little(1);
+  const std::string list = channel + std::string("G\0", 2);  // no empty name before the end
+  const std::string exr = std::string("\x76\x2f\x31\x01\x02\x00\x00\x00", 8) +
+                          std::string("channels\0chlist\0", 16) + little(list.size()) + list +
+                          std::string(64, '\x7f') + std::string(1, '\0');
+  write_bytes(dir / "chlist.exr", exr);
+  auto image = read_image((dir / "chlist.exr").string(), config());
+  ASSERT_FALSE(image.ok());
+  EXPECT_TRUE(mentions(image.message(), "chlist.exr")) << image.message();
+  EXPECT_TRUE(mentions(image.message(), "'channels'")) << image.message();
+  EXPECT_TRUE(mentions(image.message(), "channel list")) << image.message();
+}
+
 // Found by the image fuzzer: a 320-byte PNG whose second text chunk declares 1.9 GB; libpng
 // reserved it before reading, past the fuzzer's 1 GB limit. A well-formed PNG with text
 // chunks still reads.
