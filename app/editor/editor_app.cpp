@@ -541,6 +541,12 @@ void EditorApp::draw_menu_bar() {
       (void)actions::paste(state_, text != nullptr ? text : "", std::nullopt);
     }
     if (ImGui::MenuItem("Bypass / enable", "D", false, any)) (void)actions::toggle_bypass(state_);
+    if (ImGui::MenuItem("Group / collapse", "Ctrl+G", false, any)) {
+      (void)actions::group_selection(state_);
+    }
+    if (ImGui::MenuItem("Ungroup", "Ctrl+Alt+G", false, any)) {
+      (void)actions::ungroup_selection(state_);
+    }
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {

@@ -174,8 +174,8 @@ void Viewer::take_finished() {
 
 void Viewer::update(const EditorState& state, bool force) {
   take_finished();
-  // Bypassed nodes are wired around before evaluation (they pass their input through).
-  const Graph graph = with_bypass(state.doc.graph(), state.doc.registry());
+  // Bypassed nodes are wired around by the evaluator itself (core/bypass.h).
+  const Graph& graph = state.doc.graph();
   std::optional<PortRef> output = state.shown_output();
   if (!output) {
     shown_texture_.reset();
