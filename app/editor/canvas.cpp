@@ -526,13 +526,6 @@ void Canvas::handle_keys(EditorState& state, const std::vector<KeyChord>& chords
       case GLFW_KEY_1:
         if (plain) state.canvas.zoom_to(origin_, anchor, 1.0f);
         break;
-      case GLFW_KEY_G:
-        if (chord.ctrl && chord.alt) {
-          (void)actions::ungroup_selection(state);
-        } else if (chord.ctrl) {
-          (void)actions::group_selection(state);
-        }
-        break;
       case GLFW_KEY_L:
         if (plain) (void)actions::auto_layout(state);
         break;

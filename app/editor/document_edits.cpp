@@ -111,6 +111,7 @@ std::string Document::copy_nodes(const std::vector<std::string>& ids) const {
     auto it = graph_.nodes.find(id);
     if (it == graph_.nodes.end()) continue;
     nlohmann::json node = {{"type", it->second.type}};
+    if (it->second.bypass) node["bypass"] = true;
     for (const auto& [name, value] : it->second.params) node["params"][name] = value;
     for (const auto& [port, source] : it->second.inputs) node["inputs"][port] = source.str();
     nodes[id] = node;
@@ -167,6 +168,8 @@ Result<std::vector<std::string>> Document::paste_nodes(const std::string& text,
   for (const auto& [id, node] : pasted["nodes"].items()) {
     const std::string& fresh = new_id_of[id];
     Node& copy = edited.nodes[fresh];
+    auto bypass = node.find("bypass");
+    copy.bypass = bypass != node.end() && bypass->is_boolean() && bypass->get<bool>();
     if (node.contains("params") && node["params"].is_object()) {
       for (const auto& [name, value] : node["params"].items()) copy.params[name] = value;
     }

@@ -476,6 +476,11 @@ void EditorApp::handle_shortcuts() {
       case GLFW_KEY_Y:
         actions::redo(state_);
         break;
+      case GLFW_KEY_G:  // acts on the selection wherever the mouse is, like the Edit menu
+        if (typing) break;
+        chord.alt ? (void)actions::ungroup_selection(state_)
+                  : (void)actions::group_selection(state_);
+        break;
       case GLFW_KEY_S:
         if (chord.shift) {
           file_dialog_.open("Save graph as", document_.path());
