@@ -195,6 +195,11 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
         draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 4) * z,
                         IM_COL32(255, 255, 255, 255), 0, 2.0f);
       }
+      if (state.compare && state.compare->node == layout.id && state.compare->port == spot.port) {
+        // B of the viewer's A/B wipe.
+        draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 7) * z,
+                        IM_COL32(255, 170, 60, 255), 0, 2.0f);
+      }
       const Vec2 label = text_size(z, spot.port);
       text(draw, {spot.at.x - 9 * z - label.x, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
            spot.port);
@@ -439,6 +444,8 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
     if (!left_down) {
       if (target && target->spot.is_input) {
         (void)actions::link(state, link_from_, target->node, target->spot.port);
+      } else if (!drag_moved_ && ImGui::GetIO().KeyShift) {
+        (void)actions::compare_with(state, link_from_);  // shift+click: B of the A/B wipe
       } else if (!drag_moved_) {
         (void)actions::select_output(state, link_from_);  // a click on an output views it
       }
@@ -720,6 +727,11 @@ void Canvas::draw_node_menu(EditorState& state) {
         }
       }
       for (const auto& port : type->outputs) {
+        if (ImGui::MenuItem(("compare with: " + port.name).c_str(), "shift+click")) {
+          (void)actions::compare_with(state, PortRef{id, port.name});
+        }
+      }
+      for (const auto& port : type->outputs) {
         if (ImGui::MenuItem(("make graph output: " + port.name).c_str())) {
           (void)actions::set_graph_output(state, {id, port.name});
         }
@@ -830,6 +842,10 @@ void Canvas::draw_group_node(EditorState& state, ImDrawList* draw, const NodeLay
     draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type));
     if (shown && shown->node == spot.node && shown->port == spot.port) {
       draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 4) * z, IM_COL32(255, 255, 255, 255),
+                      0, 2.0f);
+    }
+    if (state.compare && state.compare->node == spot.node && state.compare->port == spot.port) {
+      draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 7) * z, IM_COL32(255, 170, 60, 255),
                       0, 2.0f);
     }
     const std::string label = spot.node + "." + spot.port;

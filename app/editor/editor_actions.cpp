@@ -38,6 +38,7 @@ std::vector<std::string> selected_nodes(const EditorState& state) {
 void forget_missing(EditorState& state) {
   std::erase_if(state.selection, [&](const std::string& id) { return !exists(state, id); });
   if (state.viewed && !state.doc.graph().nodes.count(state.viewed->node)) state.viewed.reset();
+  if (state.compare && !state.doc.graph().nodes.count(state.compare->node)) state.compare.reset();
 }
 
 }  // namespace
@@ -301,6 +302,29 @@ Status set_group_collapsed(EditorState& state, const std::string& name, bool col
   report(state, done, (collapsed ? "collapsed " : "expanded ") + name);
   forget_missing(state);
   return done;
+}
+
+Status compare_with(EditorState& state, const std::optional<PortRef>& output) {
+  if (!output) {
+    state.compare.reset();
+    report(state, Ok{}, "compare off");
+    return Ok{};
+  }
+  auto node = state.doc.graph().nodes.find(output->node);
+  const NodeType* type = node != state.doc.graph().nodes.end()
+                             ? state.doc.registry().find(node->second.type)
+                             : nullptr;
+  if (type == nullptr || type->output(output->port) == nullptr) {
+    Status refused = make_error("cannot compare with " + output->str() +
+                                ": no such node output (pick one of the graph's outputs)");
+    report(state, refused, "");
+    return refused;
+  }
+  state.compare = output;
+  const auto shown = state.shown_output();
+  report(state, Ok{},
+         "compare A " + (shown ? shown->str() : std::string("(none)")) + " | B " + output->str());
+  return Ok{};
 }
 
 Status auto_layout(EditorState& state) {

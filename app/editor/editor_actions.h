@@ -62,6 +62,9 @@ Status backdrop_around_selection(EditorState& state, const std::string& label = 
 
 // The viewer shows `output` (any node's any output); the graph's own output is unchanged.
 Status select_output(EditorState& state, const PortRef& output);
+// The viewer compares the viewed output (A) with `output` (B) in a wipe; nullopt stops.
+// Refused when the node or its output does not exist.
+Status compare_with(EditorState& state, const std::optional<PortRef>& output);
 // Steps the viewer through every output of the graph in node order (+1 or -1).
 void cycle_output(EditorState& state, int step);
 // Changes what the graph renders (`output` in the file).

@@ -166,6 +166,12 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
     auto inserted = actions::add_node_at_cursor(state, type, at);
     return inserted ? Status(Ok{}) : Status(inserted.error());
   }
+  if (kind == "compare") {
+    if (!action.contains("output") || action["output"].is_null()) {
+      return actions::compare_with(state, std::nullopt);
+    }
+    return actions::compare_with(state, port_field(action, "output"));
+  }
   if (kind == "group") {
     if (action.contains("nodes")) actions::select(state, nodes_field(action));
     return actions::group_selection(state);
@@ -186,7 +192,7 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
       "' (add_node, link, unlink, set_param, move, select_output, "
       "set_output, delete, duplicate, select, undo, redo, save, frame, fit, add_menu, play, key, "
       "copy, paste, rename, bypass, auto_layout, insert, backdrop, wait, view, dot, group, "
-      "ungroup, collapse, expand)");
+      "ungroup, collapse, expand, compare)");
 }
 
 }  // namespace

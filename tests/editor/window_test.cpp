@@ -322,4 +322,35 @@ TEST_F(EditorWindowTest, GroupCollapsesNodesLinksAtItsPortsAndUngroups) {
   EXPECT_EQ(shot->width, 1280);
 }
 
+// A/B wipe of two outputs: A (the viewed tint.image, the lit underwater picture) left of the
+// line, B (gbuf.albedo, black where nothing was drawn: the water above the sea floor) right.
+TEST_F(EditorWindowTest, WipeComparesTwoOutputs) {
+  fs::copy_file(aq::test::source_path("graphs/tint.json"), dir_ / "graph.json");
+  nlohmann::json script = {
+      {{"do", "compare"}, {"output", "gbuf.albedo"}},
+      {{"do", "view"}, {"wipe", 0.3}},
+      {{"do", "compare"}, {"output", "nosuch.image"}, {"expect", "refused"}},
+  };
+  std::ofstream(dir_ / "script.json") << script.dump(2);
+  std::string log;
+  ASSERT_EQ(run_editor("graph.json --script script.json --screenshot shot.png --quit --size "
+                       "1280x720",
+                       &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("compare A tint.image | B gbuf.albedo"), std::string::npos) << log;
+  auto config = aq::ColorConfig::load();
+  ASSERT_TRUE(config.ok());
+  auto shot = aq::read_image((dir_ / "shot.png").string(), *config);
+  ASSERT_TRUE(shot.ok()) << shot.message();
+  ASSERT_EQ(shot->width, 1280);
+  // The viewer's picture spans x 741..1253 at this window size, the water at its top (y 100
+  // from the top, PNG rows read bottom-up). Left of the line (30 %): A's water, blue-green.
+  const int row = shot->height - 1 - 100;
+  EXPECT_GT(shot->at(780, row, 2), 0.1f) << "A: the tinted water";
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_LT(shot->at(1200, row, c), 0.02f) << "B: albedo is black where nothing was drawn";
+  }
+}
+
 }  // namespace
