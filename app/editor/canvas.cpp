@@ -542,7 +542,8 @@ void Canvas::handle_keys(EditorState& state, const std::vector<KeyChord>& chords
       case GLFW_KEY_F2:
         if (state.selection.size() == 1) {
           rename_node_ = *state.selection.begin();
-          rename_text_ = rename_node_;
+          // A collapsed group is renamed by its name.
+          rename_text_ = group_name_of_item(rename_node_).value_or(rename_node_);
         }
         break;
       case GLFW_KEY_TAB:
@@ -569,11 +570,14 @@ void Canvas::draw_minimap(EditorState& state, const Rect& bounds) {
   ImDrawList* draw = ImGui::GetWindowDrawList();
   draw->AddRectFilled(im(map.box.min), im(map.box.max), IM_COL32(20, 21, 24, 220), 4.0f);
   draw->AddRect(im(map.box.min), im(map.box.max), IM_COL32(90, 92, 100, 255), 4.0f);
-  for (const auto& [id, node] : graph.nodes) {
-    Rect rect = node_rect(graph, state.doc.registry(), id);
-    draw->AddRectFilled(
-        im(map.to_minimap(rect.min)), im(map.to_minimap(rect.max)),
-        state.selection.count(id) ? IM_COL32(255, 220, 120, 255) : IM_COL32(140, 145, 160, 255));
+  // What the canvas shows: a collapsed group as one box.
+  CanvasView identity;
+  identity.pan = {0, 0};
+  identity.zoom = 1.0f;
+  for (const auto& layout : layout_graph(graph, state.doc.registry(), identity, {0, 0})) {
+    draw->AddRectFilled(im(map.to_minimap(layout.rect.min)), im(map.to_minimap(layout.rect.max)),
+                        state.selection.count(layout.id) ? IM_COL32(255, 220, 120, 255)
+                                                         : IM_COL32(140, 145, 160, 255));
   }
   // The part of the canvas on screen.
   Vec2 view_min = view.to_canvas(origin_, origin_);
@@ -714,6 +718,10 @@ void Canvas::draw_node_menu(EditorState& state) {
     const std::string name = *group_name_of_item(*menu_node_);
     ImGui::TextDisabled("group %s", name.c_str());
     if (ImGui::MenuItem("expand")) (void)actions::set_group_collapsed(state, name, false);
+    if (ImGui::MenuItem("rename...", "F2")) {
+      rename_node_ = *menu_node_;
+      rename_text_ = name;
+    }
     if (ImGui::MenuItem("ungroup", "Ctrl+Alt+G")) (void)actions::ungroup_selection(state);
     if (ImGui::MenuItem("delete its nodes", "Del")) (void)actions::delete_selection(state);
   } else if (menu_node_ && state.doc.graph().nodes.count(*menu_node_)) {

@@ -203,6 +203,7 @@ class Document {
   Status set_group_collapsed(const std::string& name, bool collapsed);
   // Removes the group; its nodes stay where they are, shown again.
   Status ungroup(const std::string& name);
+  Status rename_group(const std::string& name, const std::string& new_name);
 
  private:
   NodeState state_of(const std::string& id) const;
@@ -297,6 +298,9 @@ std::vector<Group> read_groups(const Graph& graph);
 void write_groups(Graph& graph, const std::vector<Group>& groups);
 // The collapsed group that hides node `id`, if any.
 const Group* collapsed_group_of(const std::vector<Group>& groups, const std::string& id);
+// The top-left corner of the nodes' rectangles (where a group collapses to).
+Position members_top_left(const Graph& graph, const Registry& registry,
+                          const std::vector<std::string>& members);
 // The id a collapsed group has on the canvas and in the selection: a node id never holds '.'.
 std::string group_item_id(const std::string& name);
 // The group's name when `item` is a group_item_id, else nullopt.

@@ -28,6 +28,36 @@ nlohmann::json whole_or_float(float v) {
 
 }  // namespace
 
+Position members_top_left(const Graph& graph, const Registry& registry,
+                          const std::vector<std::string>& members) {
+  Position top_left{1e30f, 1e30f};
+  for (const auto& id : members) {
+    Rect r = node_rect(graph, registry, id);
+    top_left = {std::min(top_left.x, r.min.x), std::min(top_left.y, r.min.y)};
+  }
+  if (top_left.x > 1e29f) return {};
+  return {std::round(top_left.x), std::round(top_left.y)};
+}
+
+Status Document::rename_group(const std::string& name, const std::string& new_name) {
+  auto groups = read_groups(graph_);
+  auto it =
+      std::find_if(groups.begin(), groups.end(), [&](const Group& g) { return g.name == name; });
+  if (it == groups.end()) return make_error("no group named '" + name + "'");
+  if (new_name == name) return Ok{};
+  if (new_name.empty()) return make_error("cannot rename group '" + name + "': give it a name");
+  if (std::any_of(groups.begin(), groups.end(),
+                  [&](const Group& g) { return g.name == new_name; })) {
+    return make_error("cannot rename group '" + name + "' to '" + new_name +
+                      "': another group has that name");
+  }
+  it->name = new_name;
+  Graph edited = graph_;
+  write_groups(edited, groups);
+  commit_edit("rename group " + name + " to " + new_name, edited);
+  return Ok{};
+}
+
 std::string group_item_id(const std::string& name) {
   return kGroupPrefix + name;
 }
@@ -175,15 +205,11 @@ Result<std::string> Document::group_nodes(const std::vector<std::string>& ids,
     chosen = base;
     for (int n = 2; taken(chosen); ++n) chosen = base + std::to_string(n);
   }
-  Position top_left{1e30f, 1e30f};
-  for (const auto& id : members) {
-    Rect r = node_rect(graph_, registry_, id);
-    top_left = {std::min(top_left.x, r.min.x), std::min(top_left.y, r.min.y)};
-  }
+  const Position top_left = members_top_left(graph_, registry_, members);
   Graph edited = graph_;
   // Every member gets a saved position, so the group's drag moves what it shows.
   for (const auto& id : members) write_position(edited, id, node_position(graph_, id));
-  groups.push_back({chosen, members, true, {std::round(top_left.x), std::round(top_left.y)}});
+  groups.push_back({chosen, members, true, top_left});
   write_groups(edited, groups);
   commit_edit("group " + std::to_string(members.size()) + " nodes as " + chosen, edited);
   return chosen;
@@ -197,6 +223,8 @@ Status Document::set_group_collapsed(const std::string& name, bool collapsed) {
   if (it == groups.end()) return make_error("no group named '" + name + "'");
   if (it->collapsed == collapsed) return Ok{};
   it->collapsed = collapsed;
+  // Collapsed where its nodes are now (they may have moved while it was open).
+  if (collapsed) it->position = members_top_left(graph_, registry_, it->nodes);
   write_groups(edited, groups);
   commit_edit((collapsed ? "collapse " : "expand ") + name, edited);
   return Ok{};

@@ -215,6 +215,12 @@ Status paste(EditorState& state, const std::string& text, std::optional<Position
 }
 
 Status rename(EditorState& state, const std::string& id, const std::string& new_id) {
+  if (auto group = group_name_of_item(id)) {
+    Status renamed = state.doc.rename_group(*group, new_id);
+    if (renamed && state.selection.erase(id)) state.selection.insert(group_item_id(new_id));
+    report(state, renamed, "renamed group " + *group + " to " + new_id);
+    return renamed;
+  }
   Status renamed = state.doc.rename_node(id, new_id);
   if (renamed && state.selection.erase(id)) state.selection.insert(new_id);
   if (renamed && state.viewed && state.viewed->node == id) state.viewed->node = new_id;

@@ -216,6 +216,29 @@ TEST_F(GroupTest, GroupsAreSavedInTheEditorSectionAndReadBackByteStably) {
   fs::remove_all(dir);
 }
 
+TEST_F(GroupTest, ACollapsedGroupSitsWhereItsNodesAreAndCanBeRenamed) {
+  ASSERT_TRUE(doc.group_nodes({"a", "b"}).ok());
+  ASSERT_TRUE(doc.set_group_collapsed("Group", false));
+  // Its nodes moved while it was open: it collapses where they are now.
+  ASSERT_TRUE(doc.move_nodes({{"a", {260, 100}}, {"b", {520, 90}}}));
+  ASSERT_TRUE(doc.set_group_collapsed("Group", true));
+  EXPECT_EQ(read_groups(doc.graph())[0].position, (Position{260, 90}));
+  // Auto-layout moves the group with its nodes.
+  ASSERT_TRUE(actions::auto_layout(state));
+  EXPECT_EQ(read_groups(doc.graph())[0].position,
+            members_top_left(doc.graph(), registry(), {"a", "b"}));
+  // F2 on a selected group renames it; the selection follows.
+  actions::select(state, {item});
+  ASSERT_TRUE(actions::rename(state, item, "smooth"));
+  EXPECT_EQ(read_groups(doc.graph())[0].name, "smooth");
+  EXPECT_EQ(state.selection, (std::set<std::string>{group_item_id("smooth")}));
+  ASSERT_TRUE(doc.group_nodes({"c"}, "other").ok());
+  EXPECT_FALSE(doc.rename_group("other", "smooth")) << "names are unique";
+  ASSERT_TRUE(doc.undo());
+  ASSERT_TRUE(doc.undo());
+  EXPECT_EQ(read_groups(doc.graph())[0].name, "Group");
+}
+
 TEST(GroupFile, AHandWrittenGroupKeepsItsBytesWhenAnotherEditIsSaved) {
   const std::string text = R"({
   "aquarelle": 1,
