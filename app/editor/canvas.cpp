@@ -50,20 +50,6 @@ void draw_link(ImDrawList* draw, Vec2 from, Vec2 to, ImU32 colour, float zoom) {
                        colour, std::max(1.5f, 2.5f * zoom));
 }
 
-const NodeLayout* find_layout(const std::vector<NodeLayout>& layouts, const std::string& id) {
-  for (const auto& layout : layouts) {
-    if (layout.id == id) return &layout;
-  }
-  return nullptr;
-}
-
-const PortSpot* find_spot(const std::vector<PortSpot>& spots, const std::string& port) {
-  for (const auto& spot : spots) {
-    if (spot.port == port) return &spot;
-  }
-  return nullptr;
-}
-
 }  // namespace
 
 void Canvas::text(ImDrawList* draw, Vec2 at, float zoom, ImU32 colour,
@@ -139,14 +125,13 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
 
   draw_backdrops(state, draw);
 
-  // Links.
+  draw_groups(state, draw, layouts);
+
+  // Links (to and from a collapsed group: at its port for the inner node's).
   for (const auto& [id, node] : graph.nodes) {
-    const NodeLayout* target = find_layout(layouts, id);
     for (const auto& [port, source] : node.inputs) {
-      const NodeLayout* from = find_layout(layouts, source.node);
-      if (target == nullptr || from == nullptr) continue;
-      const PortSpot* out = find_spot(from->outputs, source.port);
-      const PortSpot* in = find_spot(target->inputs, port);
+      const PortSpot* out = find_port_spot(layouts, source.node, source.port, false);
+      const PortSpot* in = find_port_spot(layouts, id, port, true);
       if (out == nullptr || in == nullptr) continue;
       // Through its reroute dots, if any.
       Vec2 from_at = out->at;
@@ -165,6 +150,10 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
   const float z = view.zoom;
   const float rounding = 5.0f * z;
   for (const auto& layout : layouts) {
+    if (layout.group) {
+      draw_group_node(state, draw, layout, feedback);
+      continue;
+    }
     const Node& node = graph.nodes.at(layout.id);
     const NodeType* type = registry.find(node.type);
     auto problems = state.doc.problems_of(layout.id);
@@ -205,6 +194,11 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
       if (shown && shown->node == layout.id && shown->port == spot.port) {
         draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 4) * z,
                         IM_COL32(255, 255, 255, 255), 0, 2.0f);
+      }
+      if (state.compare && state.compare->node == layout.id && state.compare->port == spot.port) {
+        // B of the viewer's A/B wipe.
+        draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 7) * z,
+                        IM_COL32(255, 170, 60, 255), 0, 2.0f);
       }
       const Vec2 label = text_size(z, spot.port);
       text(draw, {spot.at.x - 9 * z - label.x, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
@@ -343,6 +337,15 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
         (void)actions::unlink(state, port->node, port->spot.port);
         drag_ = Drag::kLink;
       }
+    } else if (!node && group_title_at(state, layouts, mouse)) {
+      // The title of an expanded group: a double-click collapses it, a click selects its nodes.
+      const Group group = *group_title_at(state, layouts, mouse);
+      if (twice) {
+        (void)actions::set_group_collapsed(state, group.name, true);
+      } else {
+        actions::select(state, group.nodes, io.KeyCtrl);
+      }
+      drag_ = Drag::kNone;
     } else if (!node && backdrop_title_at(state, mouse)) {
       backdrop_ = *backdrop_title_at(state, mouse);
       backdrop_moved_ = {0, 0};
@@ -358,6 +361,12 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
       } else if (!state.selection.count(*node)) {
         actions::select(state, {*node});
       }
+      if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && group_name_of_item(*node)) {
+        // A double-click opens a collapsed group.
+        (void)actions::set_group_collapsed(state, *group_name_of_item(*node), false);
+        drag_ = Drag::kNone;
+        return;
+      }
       if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
         const NodeType* type = state.doc.registry().find(state.doc.graph().nodes.at(*node).type);
         if (type != nullptr && !type->outputs.empty()) {
@@ -367,7 +376,7 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
       drag_ = Drag::kNodes;
       drag_origins_.clear();
       for (const auto& id : state.selection) {
-        drag_origins_[id] = node_position(state.doc.graph(), id);
+        drag_origins_[id] = item_position(state.doc.graph(), id);
       }
     } else {
       if (!io.KeyCtrl) actions::clear_selection(state);
@@ -418,11 +427,7 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
   }
 
   if (drag_ == Drag::kLink) {
-    const NodeLayout* from_layout = nullptr;
-    for (const auto& layout : layouts) {
-      if (layout.id == link_from_.node) from_layout = &layout;
-    }
-    const PortSpot* from = from_layout ? find_spot(from_layout->outputs, link_from_.port) : nullptr;
+    const PortSpot* from = find_port_spot(layouts, link_from_.node, link_from_.port, false);
     auto target = port_at(layouts, mouse, reach);
     std::string why;
     if (target && target->spot.is_input) {
@@ -439,6 +444,8 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
     if (!left_down) {
       if (target && target->spot.is_input) {
         (void)actions::link(state, link_from_, target->node, target->spot.port);
+      } else if (!drag_moved_ && ImGui::GetIO().KeyShift) {
+        (void)actions::compare_with(state, link_from_);  // shift+click: B of the A/B wipe
       } else if (!drag_moved_) {
         (void)actions::select_output(state, link_from_);  // a click on an output views it
       }
@@ -476,7 +483,7 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
       for (const auto& [other, node] : graph.nodes) {
         for (const auto& [in, from] : node.inputs) linked = linked || from.node == id;
       }
-      if (!linked) {
+      if (!linked && graph.nodes.count(id)) {
         if (auto hit = link_at(graph, layouts, mouse, 8.0f, view.zoom); hit && hit->node != id) {
           Status dropped = state.doc.splice_into_link(id, hit->node, hit->input);
           actions::report(state, dropped,
@@ -535,7 +542,8 @@ void Canvas::handle_keys(EditorState& state, const std::vector<KeyChord>& chords
       case GLFW_KEY_F2:
         if (state.selection.size() == 1) {
           rename_node_ = *state.selection.begin();
-          rename_text_ = rename_node_;
+          // A collapsed group is renamed by its name.
+          rename_text_ = group_name_of_item(rename_node_).value_or(rename_node_);
         }
         break;
       case GLFW_KEY_TAB:
@@ -562,11 +570,14 @@ void Canvas::draw_minimap(EditorState& state, const Rect& bounds) {
   ImDrawList* draw = ImGui::GetWindowDrawList();
   draw->AddRectFilled(im(map.box.min), im(map.box.max), IM_COL32(20, 21, 24, 220), 4.0f);
   draw->AddRect(im(map.box.min), im(map.box.max), IM_COL32(90, 92, 100, 255), 4.0f);
-  for (const auto& [id, node] : graph.nodes) {
-    Rect rect = node_rect(graph, state.doc.registry(), id);
-    draw->AddRectFilled(
-        im(map.to_minimap(rect.min)), im(map.to_minimap(rect.max)),
-        state.selection.count(id) ? IM_COL32(255, 220, 120, 255) : IM_COL32(140, 145, 160, 255));
+  // What the canvas shows: a collapsed group as one box.
+  CanvasView identity;
+  identity.pan = {0, 0};
+  identity.zoom = 1.0f;
+  for (const auto& layout : layout_graph(graph, state.doc.registry(), identity, {0, 0})) {
+    draw->AddRectFilled(im(map.to_minimap(layout.rect.min)), im(map.to_minimap(layout.rect.max)),
+                        state.selection.count(layout.id) ? IM_COL32(255, 220, 120, 255)
+                                                         : IM_COL32(140, 145, 160, 255));
   }
   // The part of the canvas on screen.
   Vec2 view_min = view.to_canvas(origin_, origin_);
@@ -703,7 +714,17 @@ void Canvas::draw_add_menu(EditorState& state) {
 
 void Canvas::draw_node_menu(EditorState& state) {
   if (!ImGui::BeginPopup("node_menu")) return;
-  if (menu_node_ && state.doc.graph().nodes.count(*menu_node_)) {
+  if (menu_node_ && group_name_of_item(*menu_node_)) {
+    const std::string name = *group_name_of_item(*menu_node_);
+    ImGui::TextDisabled("group %s", name.c_str());
+    if (ImGui::MenuItem("expand")) (void)actions::set_group_collapsed(state, name, false);
+    if (ImGui::MenuItem("rename...", "F2")) {
+      rename_node_ = *menu_node_;
+      rename_text_ = name;
+    }
+    if (ImGui::MenuItem("ungroup", "Ctrl+Alt+G")) (void)actions::ungroup_selection(state);
+    if (ImGui::MenuItem("delete its nodes", "Del")) (void)actions::delete_selection(state);
+  } else if (menu_node_ && state.doc.graph().nodes.count(*menu_node_)) {
     const std::string id = *menu_node_;
     const NodeType* type = state.doc.registry().find(state.doc.graph().nodes.at(id).type);
     ImGui::TextDisabled("%s", id.c_str());
@@ -711,6 +732,11 @@ void Canvas::draw_node_menu(EditorState& state) {
       for (const auto& port : type->outputs) {
         if (ImGui::MenuItem(("view " + port.name).c_str())) {
           (void)actions::select_output(state, {id, port.name});
+        }
+      }
+      for (const auto& port : type->outputs) {
+        if (ImGui::MenuItem(("compare with: " + port.name).c_str(), "shift+click")) {
+          (void)actions::compare_with(state, PortRef{id, port.name});
         }
       }
       for (const auto& port : type->outputs) {
@@ -727,6 +753,8 @@ void Canvas::draw_node_menu(EditorState& state) {
     if (ImGui::MenuItem(state.doc.bypassed(id) ? "enable" : "bypass", "D")) {
       (void)actions::toggle_bypass(state);
     }
+    if (ImGui::MenuItem("group", "Ctrl+G")) (void)actions::group_selection(state);
+    if (ImGui::MenuItem("ungroup", "Ctrl+Alt+G")) (void)actions::ungroup_selection(state);
     if (ImGui::MenuItem("copy", "Ctrl+C")) {
       std::string copied = actions::copy_selection(state);
       if (!copied.empty()) ImGui::SetClipboardText(copied.c_str());
@@ -735,6 +763,108 @@ void Canvas::draw_node_menu(EditorState& state) {
     if (ImGui::MenuItem("delete", "Del")) (void)actions::delete_selection(state);
   }
   ImGui::EndPopup();
+}
+
+std::optional<Rect> Canvas::expanded_group_frame(const std::vector<NodeLayout>& layouts,
+                                                 const Group& group) const {
+  if (group.collapsed) return std::nullopt;
+  Rect box{{1e30f, 1e30f}, {-1e30f, -1e30f}};
+  for (const auto& layout : layouts) {
+    if (std::find(group.nodes.begin(), group.nodes.end(), layout.id) == group.nodes.end()) continue;
+    box.min = {std::min(box.min.x, layout.rect.min.x), std::min(box.min.y, layout.rect.min.y)};
+    box.max = {std::max(box.max.x, layout.rect.max.x), std::max(box.max.y, layout.rect.max.y)};
+  }
+  if (box.min.x > box.max.x) return std::nullopt;
+  return box;
+}
+
+std::optional<Group> Canvas::group_title_at(const EditorState& state,
+                                            const std::vector<NodeLayout>& layouts,
+                                            Vec2 screen) const {
+  const float z = state.canvas.zoom;
+  for (const auto& group : read_groups(state.doc.graph())) {
+    auto frame = expanded_group_frame(layouts, group);
+    if (!frame) continue;
+    Rect title{{frame->min.x - 12 * z, frame->min.y - 40 * z},
+               {frame->max.x + 12 * z, frame->min.y - 12 * z}};
+    if (title.contains(screen)) return group;
+  }
+  return std::nullopt;
+}
+
+void Canvas::draw_groups(EditorState& state, ImDrawList* draw,
+                         const std::vector<NodeLayout>& layouts) {
+  // An expanded group: a dashed-looking frame around its nodes, its name in the title bar.
+  const float z = state.canvas.zoom;
+  for (const auto& group : read_groups(state.doc.graph())) {
+    auto frame = expanded_group_frame(layouts, group);
+    if (!frame) continue;
+    const ImVec2 lo(frame->min.x - 12 * z, frame->min.y - 40 * z);
+    const ImVec2 hi(frame->max.x + 12 * z, frame->max.y + 12 * z);
+    draw->AddRectFilled(lo, hi, IM_COL32(90, 70, 120, 60), 6.0f * z);
+    draw->AddRectFilled(lo, ImVec2(hi.x, lo.y + 28 * z), IM_COL32(110, 84, 150, 200), 6.0f * z,
+                        ImDrawFlags_RoundCornersTop);
+    draw->AddRect(lo, hi, IM_COL32(160, 130, 210, 220), 6.0f * z, 0, 1.5f);
+    text(draw, {lo.x + 8 * z, lo.y + 6 * z}, z, IM_COL32(240, 235, 250, 255),
+         group.name + "  (group, double-click to collapse)");
+  }
+}
+
+void Canvas::draw_group_node(EditorState& state, ImDrawList* draw, const NodeLayout& layout,
+                             const NodeFeedback& feedback) {
+  const float z = state.canvas.zoom;
+  const float rounding = 5.0f * z;
+  const bool selected = state.selection.count(layout.id) > 0;
+  bool failed = false;
+  double gpu_ms = 0;
+  for (const auto& id : layout.members) {
+    failed = failed || !state.doc.problems_of(id).empty() || feedback.error_node == id;
+    if (auto timing = feedback.timings.find(id); timing != feedback.timings.end()) {
+      gpu_ms += timing->second.gpu_ms;
+    }
+  }
+  draw->AddRectFilled(im(layout.rect.min), im(layout.rect.max), IM_COL32(62, 56, 74, 245),
+                      rounding);
+  draw->AddRectFilled(im(layout.header.min), im(layout.header.max), IM_COL32(110, 84, 150, 255),
+                      rounding, ImDrawFlags_RoundCornersTop);
+  const ImU32 border = failed     ? IM_COL32(255, 80, 70, 255)
+                       : selected ? IM_COL32(255, 220, 120, 255)
+                                  : IM_COL32(160, 130, 210, 255);
+  draw->AddRect(im(layout.rect.min), im(layout.rect.max), border, rounding, 0,
+                failed || selected ? 2.5f : 1.5f);
+  const std::string name = group_name_of_item(layout.id).value_or(layout.id);
+  text(draw, {layout.header.min.x + 6 * z, layout.header.min.y + 4 * z}, z,
+       IM_COL32(245, 245, 245, 255),
+       (failed ? "! " : "") + name + " (" + std::to_string(layout.members.size()) + " nodes)");
+  const auto shown = state.shown_output();
+  const Graph& graph = state.doc.graph();
+  for (const auto& spot : layout.inputs) {
+    const bool linked = graph.nodes.at(spot.node).inputs.count(spot.port) > 0;
+    draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z,
+                          linked ? port_colour(spot.type) : IM_COL32(70, 70, 76, 255));
+    draw->AddCircle(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type), 0, 1.5f);
+    text(draw, {spot.at.x + 9 * z, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
+         spot.node + "." + spot.port);
+  }
+  for (const auto& spot : layout.outputs) {
+    draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type));
+    if (shown && shown->node == spot.node && shown->port == spot.port) {
+      draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 4) * z, IM_COL32(255, 255, 255, 255),
+                      0, 2.0f);
+    }
+    if (state.compare && state.compare->node == spot.node && state.compare->port == spot.port) {
+      draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 7) * z, IM_COL32(255, 170, 60, 255),
+                      0, 2.0f);
+    }
+    const std::string label = spot.node + "." + spot.port;
+    const Vec2 size = text_size(z, label);
+    text(draw, {spot.at.x - 9 * z - size.x, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
+         label);
+  }
+  char footer[64];
+  std::snprintf(footer, sizeof footer, "group  gpu %.2f ms", gpu_ms);
+  text(draw, {layout.rect.min.x + 6 * z, layout.rect.max.y - NodeMetrics::kFooter * z}, z,
+       IM_COL32(190, 170, 220, 255), footer);
 }
 
 }  // namespace aq::editor

@@ -91,6 +91,14 @@ class Canvas {
   void draw_minimap(EditorState& state, const Rect& bounds);
   void draw_rename(EditorState& state);
   void draw_backdrops(EditorState& state, ImDrawList* draw);
+  // Node groups: frames around expanded ones, a collapsed one as one node.
+  void draw_groups(EditorState& state, ImDrawList* draw, const std::vector<NodeLayout>& layouts);
+  void draw_group_node(EditorState& state, ImDrawList* draw, const NodeLayout& layout,
+                       const NodeFeedback& feedback);
+  std::optional<Rect> expanded_group_frame(const std::vector<NodeLayout>& layouts,
+                                           const Group& group) const;
+  std::optional<Group> group_title_at(const EditorState& state,
+                                      const std::vector<NodeLayout>& layouts, Vec2 screen) const;
   std::optional<size_t> backdrop_title_at(const EditorState& state, Vec2 screen) const;
   void text(ImDrawList* draw, Vec2 at, float zoom, ImU32 colour, const std::string& text) const;
   Vec2 text_size(float zoom, const std::string& text) const;

@@ -19,11 +19,11 @@ const NodeLayout* find(const std::vector<NodeLayout>& layouts, const std::string
 Result<Vec2> spot(const std::vector<NodeLayout>& layouts, const std::string& text, bool input) {
   auto ref = PortRef::parse(text);
   if (!ref) return make_error("'" + text + "' is not \"node.port\"");
-  const NodeLayout* layout = find(layouts, ref->node);
-  if (layout == nullptr) return make_error("node '" + ref->node + "' is not on the canvas");
-  for (const auto& port : input ? layout->inputs : layout->outputs) {
-    if (port.port == ref->port) return port.at;
+  // A node inside a collapsed group shows its ports on the group.
+  if (find_node_layout(layouts, ref->node) == nullptr) {
+    return make_error("node '" + ref->node + "' is not on the canvas");
   }
+  if (const PortSpot* at = find_port_spot(layouts, ref->node, ref->port, input)) return at->at;
   return make_error("node '" + ref->node + "' shows no " + (input ? "input" : "output") + " '" +
                     ref->port + "'");
 }

@@ -46,6 +46,7 @@ NodeLayout layout_node(const std::string& id, const Node& node, const NodeType* 
                        Position position, const CanvasView& view, Vec2 origin) {
   NodeLayout layout;
   layout.id = id;
+  layout.position = position;
   std::vector<PortInfo> inputs;
   std::vector<PortInfo> outputs;
   if (type != nullptr) {
@@ -68,13 +69,65 @@ NodeLayout layout_node(const std::string& id, const Node& node, const NodeType* 
     return top_left.y + (NodeMetrics::kHeader + (i + 0.5f) * NodeMetrics::kRow) * view.zoom;
   };
   for (size_t i = 0; i < inputs.size(); ++i) {
-    layout.inputs.push_back({inputs[i].name, true, inputs[i].type, {layout.rect.min.x, row_y(i)}});
+    layout.inputs.push_back(
+        {id, inputs[i].name, true, inputs[i].type, {layout.rect.min.x, row_y(i)}});
   }
   for (size_t i = 0; i < outputs.size(); ++i) {
     layout.outputs.push_back(
-        {outputs[i].name, false, outputs[i].type, {layout.rect.max.x, row_y(i)}});
+        {id, outputs[i].name, false, outputs[i].type, {layout.rect.max.x, row_y(i)}});
   }
   return layout;
+}
+
+NodeLayout layout_group(const Graph& graph, const Registry& registry, const Group& group,
+                        const CanvasView& view, Vec2 origin) {
+  NodeLayout layout;
+  layout.id = group_item_id(group.name);
+  layout.group = true;
+  layout.members = group.nodes;
+  layout.position = group.position;
+  const GroupPorts ports = group_ports(graph, registry, group);
+  const size_t rows = std::max<size_t>(std::max(ports.inputs.size(), ports.outputs.size()), 1);
+  const float width = NodeMetrics::kWidth + 60.0f;  // room for "node.port" labels
+  const float height = NodeMetrics::kHeader + rows * NodeMetrics::kRow + NodeMetrics::kFooter;
+  const Vec2 top_left = view.to_screen(origin, {group.position.x, group.position.y});
+  layout.rect = {top_left, {top_left.x + width * view.zoom, top_left.y + height * view.zoom}};
+  layout.header = {top_left, {layout.rect.max.x, top_left.y + NodeMetrics::kHeader * view.zoom}};
+  auto row_y = [&](size_t i) {
+    return top_left.y + (NodeMetrics::kHeader + (i + 0.5f) * NodeMetrics::kRow) * view.zoom;
+  };
+  for (size_t i = 0; i < ports.inputs.size(); ++i) {
+    const GroupPort& port = ports.inputs[i];
+    layout.inputs.push_back(
+        {port.inner.node, port.inner.port, true, port.type, {layout.rect.min.x, row_y(i)}});
+  }
+  for (size_t i = 0; i < ports.outputs.size(); ++i) {
+    const GroupPort& port = ports.outputs[i];
+    layout.outputs.push_back(
+        {port.inner.node, port.inner.port, false, port.type, {layout.rect.max.x, row_y(i)}});
+  }
+  return layout;
+}
+
+const PortSpot* find_port_spot(const std::vector<NodeLayout>& layouts, const std::string& node,
+                               const std::string& port, bool input) {
+  for (const auto& layout : layouts) {
+    for (const auto& spot : input ? layout.inputs : layout.outputs) {
+      if (spot.node == node && spot.port == port) return &spot;
+    }
+  }
+  return nullptr;
+}
+
+const NodeLayout* find_node_layout(const std::vector<NodeLayout>& layouts,
+                                   const std::string& node) {
+  for (const auto& layout : layouts) {
+    if (layout.id == node ||
+        std::find(layout.members.begin(), layout.members.end(), node) != layout.members.end()) {
+      return &layout;
+    }
+  }
+  return nullptr;
 }
 
 Position node_position(const Graph& graph, const std::string& id) {
@@ -82,6 +135,15 @@ Position node_position(const Graph& graph, const std::string& id) {
   auto automatic = automatic_positions(graph);
   auto it = automatic.find(id);
   return it != automatic.end() ? it->second : Position{};
+}
+
+Position item_position(const Graph& graph, const std::string& id) {
+  if (auto name = group_name_of_item(id)) {
+    for (const auto& group : read_groups(graph)) {
+      if (group.name == *name) return group.position;
+    }
+  }
+  return node_position(graph, id);
 }
 
 std::vector<NodeLayout> layout_graph(const Graph& graph, const Registry& registry,
@@ -93,9 +155,14 @@ std::vector<NodeLayout> layout_graph(const Graph& graph, const Registry& registr
   if (!all_placed) automatic = automatic_positions(graph);
   std::vector<NodeLayout> out;
   out.reserve(graph.nodes.size());
+  const std::vector<Group> groups = read_groups(graph);
   for (const auto& [id, node] : graph.nodes) {
+    if (collapsed_group_of(groups, id) != nullptr) continue;  // drawn as its group
     Position at = read_position(graph, id).value_or(automatic[id]);
     out.push_back(layout_node(id, node, registry.find(node.type), at, view, origin));
+  }
+  for (const auto& group : groups) {
+    if (group.collapsed) out.push_back(layout_group(graph, registry, group, view, origin));
   }
   return out;
 }
@@ -192,30 +259,17 @@ Vec2 link_point(Vec2 from, Vec2 to, float zoom, float t) {
 
 std::optional<LinkHit> link_at(const Graph& graph, const std::vector<NodeLayout>& layouts,
                                Vec2 screen, float reach, float zoom) {
-  auto find = [&](const std::string& id) -> const NodeLayout* {
-    for (const auto& layout : layouts) {
-      if (layout.id == id) return &layout;
-    }
-    return nullptr;
-  };
-  auto spot = [](const std::vector<PortSpot>& spots, const std::string& port) -> const PortSpot* {
-    for (const auto& s : spots) {
-      if (s.port == port) return &s;
-    }
-    return nullptr;
-  };
   for (const auto& [id, node] : graph.nodes) {
-    const NodeLayout* target = find(id);
+    const NodeLayout* target = find_node_layout(layouts, id);
     for (const auto& [input, source] : node.inputs) {
-      const NodeLayout* from = find(source.node);
-      if (target == nullptr || from == nullptr) continue;
-      const PortSpot* out = spot(from->outputs, source.port);
-      const PortSpot* in = spot(target->inputs, input);
+      if (target == nullptr) continue;
+      const PortSpot* out = find_port_spot(layouts, source.node, source.port, false);
+      const PortSpot* in = find_port_spot(layouts, id, input, true);
       if (out == nullptr || in == nullptr) continue;
       // The curve runs through the reroute dots; their screen places follow from the ports'.
       std::vector<Vec2> points = {out->at};
-      const Vec2 origin{target->rect.min.x - node_position(graph, id).x * zoom,
-                        target->rect.min.y - node_position(graph, id).y * zoom};
+      const Vec2 origin{target->rect.min.x - target->position.x * zoom,
+                        target->rect.min.y - target->position.y * zoom};
       for (const Position& dot : read_reroutes(graph, id, input)) {
         points.push_back({origin.x + dot.x * zoom, origin.y + dot.y * zoom});
       }
@@ -278,7 +332,7 @@ std::optional<PortHit> port_at(const std::vector<NodeLayout>& layouts, Vec2 scre
         float d = dx * dx + dy * dy;
         if (d <= best_distance) {
           best_distance = d;
-          best = PortHit{layout.id, spot};
+          best = PortHit{spot.node, spot};
         }
       }
     }

@@ -66,6 +66,7 @@ struct NodeMetrics {
 };
 
 struct PortSpot {
+  std::string node;  // the node the port belongs to (for a collapsed group: the inner node)
   std::string port;
   bool is_input = false;
   aq_port_type type = AQ_PORT_IMAGE;
@@ -73,8 +74,11 @@ struct PortSpot {
 };
 
 struct NodeLayout {
-  std::string id;
-  Rect rect;  // screen
+  std::string id;  // a node id, or group_item_id(name) for a collapsed group
+  bool group = false;
+  std::vector<std::string> members;  // a collapsed group's nodes
+  Position position;                 // canvas units
+  Rect rect;                         // screen
   Rect header;
   std::vector<PortSpot> inputs;
   std::vector<PortSpot> outputs;
@@ -85,13 +89,20 @@ struct NodeLayout {
 NodeLayout layout_node(const std::string& id, const Node& node, const NodeType* type,
                        Position position, const CanvasView& view, Vec2 origin);
 
-// Lays out every node; nodes without a saved position are placed in a column by topological
-// depth so a graph written by hand still opens tidy.
+// Lays out a collapsed group as one node: its ports are the inner nodes' (group_ports).
+NodeLayout layout_group(const Graph& graph, const Registry& registry, const Group& group,
+                        const CanvasView& view, Vec2 origin);
+
+// Lays out every node, a collapsed group as one node in place of its members; nodes without a saved
+// position are placed in a column by topological depth so a graph written by hand still opens tidy.
 std::vector<NodeLayout> layout_graph(const Graph& graph, const Registry& registry,
                                      const CanvasView& view, Vec2 origin);
 
 // The position a node is drawn at (saved, or the automatic one).
 Position node_position(const Graph& graph, const std::string& id);
+
+// The position of a node, or of a collapsed group by its group_item_id.
+Position item_position(const Graph& graph, const std::string& id);
 
 // Canvas-unit bounds of all nodes (empty graph: a unit box at the origin).
 Rect graph_bounds(const Graph& graph, const Registry& registry);
@@ -157,9 +168,14 @@ Minimap minimap_for(Rect graph_bounds, Vec2 origin, Vec2 size);
 void centre_on(CanvasView& view, Vec2 canvas, Vec2 size);
 
 struct PortHit {
-  std::string node;
+  std::string node;  // the node whose port it is (inside a collapsed group: the inner node)
   PortSpot spot;
 };
+// The spot where node.port is drawn: on the node's layout, or on its collapsed group's.
+const PortSpot* find_port_spot(const std::vector<NodeLayout>& layouts, const std::string& node,
+                               const std::string& port, bool input);
+// The layout a node is drawn in: its own, or its collapsed group's.
+const NodeLayout* find_node_layout(const std::vector<NodeLayout>& layouts, const std::string& node);
 // The port within reach of `screen` (radius grows a little for the mouse), if any.
 std::optional<PortHit> port_at(const std::vector<NodeLayout>& layouts, Vec2 screen, float reach);
 // The topmost node under `screen` (later in the list is on top).

@@ -527,6 +527,21 @@ Status Document::remove_nodes(const std::vector<std::string>& ids) {
       change.after[id] = NodeState{kept, read_position(graph_, id)};
     }
   }
+  // Groups forget deleted members; a group left empty goes.
+  auto groups = read_groups(graph_);
+  bool regrouped = false;
+  for (auto& group : groups) {
+    regrouped |= std::erase_if(group.nodes, [&](const auto& id) { return doomed.count(id); }) > 0;
+  }
+  if (regrouped) {
+    std::erase_if(groups, [](const Group& group) { return group.nodes.empty(); });
+    Graph edited = graph_;
+    write_groups(edited, groups);
+    change.extras_before =
+        nlohmann::json{{"groups", graph_.editor.value("groups", nlohmann::json())}};
+    change.extras_after =
+        nlohmann::json{{"groups", edited.editor.value("groups", nlohmann::json())}};
+  }
   change.output_before = change.output_after = graph_.output;
   if (graph_.output && doomed.count(graph_.output->node)) change.output_after.reset();
   change.settings_before = change.settings_after = graph_.settings;
@@ -683,6 +698,10 @@ Status Document::unlink(const std::string& node, const std::string& input) {
 Status Document::move_nodes(const std::map<std::string, Position>& positions,
                             const std::string& coalesce_key) {
   if (positions.empty()) return Ok{};
+  if (std::any_of(positions.begin(), positions.end(),
+                  [](const auto& entry) { return group_name_of_item(entry.first).has_value(); })) {
+    return move_with_groups(positions, coalesce_key);
+  }
   Change change;
   for (const auto& [id, at] : positions) {
     if (!graph_.nodes.count(id)) return make_error("cannot move node '" + id + "': no such node");

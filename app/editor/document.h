@@ -43,7 +43,7 @@ struct Position {
 struct NodeState {
   std::optional<Node> node;
   std::optional<Position> position;
-  bool bypassed = false;  // editor.bypassed[id]: the node passes its input through
+  bool bypassed = false;  // the node's bypass (kept with the node; here for clarity of edits)
 };
 
 // What one edit changed; applying `after` redoes it, applying `before` undoes it.
@@ -128,7 +128,8 @@ class Document {
   std::string why_not_link(const PortRef& from, const std::string& to_node,
                            const std::string& to_input) const;
   Status unlink(const std::string& node, const std::string& input);
-  // Moves nodes to absolute positions. Pass a coalesce key (e.g. "move") for a drag.
+  // Moves nodes (or collapsed groups, by group_item_id) to absolute positions. Pass a coalesce
+  // key (e.g. "move") for a drag.
   Status move_nodes(const std::map<std::string, Position>& positions,
                     const std::string& coalesce_key = "");
   // Sets a parameter (checked against its type and range); a null value resets it to its
@@ -173,7 +174,7 @@ class Document {
                           const std::string& to_input);
   // Renames a node; links, the output, its position and bypass follow.
   Status rename_node(const std::string& id, const std::string& new_id);
-  // Bypassed nodes pass their first input of each output's type through (see with_bypass).
+  // Bypassed nodes pass their first input of each output's type through (core/bypass.h).
   Status set_bypassed(const std::vector<std::string>& ids, bool bypassed);
   bool bypassed(const std::string& id) const;
   // Moves every node to the automatic layout (columns by depth).
@@ -193,6 +194,17 @@ class Document {
                       const std::string& coalesce_key = "");
   Status remove_reroute(const std::string& node, const std::string& input, size_t index);
 
+  // ---- Node groups: a sub-graph shown as one node (editor.groups) -------------------------
+  // Groups the nodes (none may be in a group already) collapsed, at their top-left; returns the
+  // group's name ("Group", "Group2"... unless `name` is given and free).
+  Result<std::string> group_nodes(const std::vector<std::string>& ids,
+                                  const std::string& name = "");
+  // Collapses (true) or expands (false) a group.
+  Status set_group_collapsed(const std::string& name, bool collapsed);
+  // Removes the group; its nodes stay where they are, shown again.
+  Status ungroup(const std::string& name);
+  Status rename_group(const std::string& name, const std::string& new_name);
+
  private:
   NodeState state_of(const std::string& id) const;
   void apply_side(const std::map<std::string, NodeState>& side, const std::optional<PortRef>& out,
@@ -211,6 +223,9 @@ class Document {
   // settings) as one change.
   void commit_edit(const std::string& label, const Graph& edited,
                    const std::string& coalesce_key = "");
+  // move_nodes when some of the items moved are collapsed groups (their nodes move with them).
+  Status move_with_groups(const std::map<std::string, Position>& positions,
+                          const std::string& coalesce_key);
   // editor[key] = value for each key of `value` (null: removed).
   void apply_extras(const nlohmann::json& value);
   // The first input of `type_node` that accepts an output of `type`, or "".
@@ -264,13 +279,49 @@ std::vector<Position> read_reroutes(const Graph& graph, const std::string& node,
 void write_reroutes(Graph& graph, const std::string& node, const std::string& input,
                     const std::vector<Position>& dots);
 
-// Bypass marks live in graph.editor["bypassed"][id] = true.
+// Bypass is the node's own ("bypass": true in the file, Node::bypass), so `aquarelle render`
+// honours it too; the evaluator wires around bypassed nodes (aquarelle/core/bypass.h). Graphs
+// that kept it in editor.bypassed are migrated when read.
 bool read_bypassed(const Graph& graph, const std::string& id);
 void write_bypassed(Graph& graph, const std::string& id, bool bypassed);
-// The graph evaluation sees: every link from a bypassed node goes to the source of that node's
-// first input of the same port type (a chain of bypassed nodes is followed); a bypassed node
-// with no such input is left as it is.
-Graph with_bypass(const Graph& graph, const Registry& registry);
+
+// A node group: presentation only (evaluation and `aquarelle render` never read it). Saved in
+// graph.editor["groups"] = [{"name", "nodes": [ids], "collapsed", "position": [x, y]}...];
+// `position` is where the collapsed group is drawn: moving it moves its nodes with it.
+struct Group {
+  std::string name;
+  std::vector<std::string> nodes;
+  bool collapsed = true;
+  Position position;
+};
+std::vector<Group> read_groups(const Graph& graph);
+void write_groups(Graph& graph, const std::vector<Group>& groups);
+// The collapsed group that hides node `id`, if any.
+const Group* collapsed_group_of(const std::vector<Group>& groups, const std::string& id);
+// The top-left corner of the nodes' rectangles (where a group collapses to).
+Position members_top_left(const Graph& graph, const Registry& registry,
+                          const std::vector<std::string>& members);
+// The id a collapsed group has on the canvas and in the selection: a node id never holds '.'.
+std::string group_item_id(const std::string& name);
+// The group's name when `item` is a group_item_id, else nullopt.
+std::optional<std::string> group_name_of_item(const std::string& item);
+
+// The ports a collapsed group shows: each is an inner node's port. Inputs: every input of a
+// member not fed from inside the group (linked from outside, or unlinked, so a new link can be
+// made to it); outputs: every member output read outside the group or giving the graph's
+// output, and every output of a member no other member reads (the group's result).
+struct GroupPort {
+  PortRef inner;  // member node and its port
+  aq_port_type type = AQ_PORT_IMAGE;
+};
+struct GroupPorts {
+  std::vector<GroupPort> inputs;
+  std::vector<GroupPort> outputs;
+};
+GroupPorts group_ports(const Graph& graph, const Registry& registry, const Group& group);
+// The ids with every group item replaced by its member nodes (each id once, in order).
+std::vector<std::string> expand_group_items(const Graph& graph,
+                                            const std::vector<std::string>& ids);
 
 // Returns the ids it placed.
 std::vector<std::string> place_unplaced_nodes(Graph& graph);

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <set>
 
 namespace aq::editor {
@@ -17,7 +16,8 @@ namespace {
 bool same_node(const std::optional<Node>& a, const std::optional<Node>& b) {
   if (a.has_value() != b.has_value()) return false;
   if (!a) return true;
-  return a->type == b->type && a->params == b->params && a->inputs == b->inputs;
+  return a->type == b->type && a->params == b->params && a->inputs == b->inputs &&
+         a->bypass == b->bypass;
 }
 
 std::string join(const std::vector<std::string>& items) {
@@ -33,51 +33,13 @@ bool valid_id(const std::string& id) {
 }  // namespace
 
 bool read_bypassed(const Graph& graph, const std::string& id) {
-  if (!graph.editor.is_object()) return false;
-  auto bypassed = graph.editor.find("bypassed");
-  if (bypassed == graph.editor.end() || !bypassed->is_object()) return false;
-  auto it = bypassed->find(id);
-  return it != bypassed->end() && it->is_boolean() && it->get<bool>();
+  auto node = graph.nodes.find(id);
+  return node != graph.nodes.end() && node->second.bypass;
 }
 
 void write_bypassed(Graph& graph, const std::string& id, bool bypassed) {
-  if (!bypassed && !read_bypassed(graph, id)) return;  // keeps files without bypass untouched
-  if (!graph.editor.is_object()) graph.editor = nlohmann::json::object();
-  nlohmann::json& marks = graph.editor["bypassed"];
-  if (!marks.is_object()) marks = nlohmann::json::object();
-  if (bypassed) {
-    marks[id] = true;
-  } else {
-    marks.erase(id);
-    if (marks.empty()) graph.editor.erase("bypassed");
-  }
-}
-
-Graph with_bypass(const Graph& graph, const Registry& registry) {
-  Graph out = graph;
-  // Where an output of a bypassed node really comes from.
-  std::function<PortRef(const PortRef&, int)> resolve = [&](const PortRef& ref,
-                                                            int depth) -> PortRef {
-    if (depth > 64 || !read_bypassed(graph, ref.node)) return ref;
-    auto node = graph.nodes.find(ref.node);
-    if (node == graph.nodes.end()) return ref;
-    const NodeType* type = registry.find(node->second.type);
-    if (type == nullptr) return ref;
-    const PortInfo* port = type->output(ref.port);
-    if (port == nullptr) return ref;
-    for (const auto& input : type->inputs) {
-      auto linked = node->second.inputs.find(input.name);
-      if (input.type == port->type && linked != node->second.inputs.end()) {
-        return resolve(linked->second, depth + 1);
-      }
-    }
-    return ref;
-  };
-  for (auto& [id, node] : out.nodes) {
-    for (auto& [port, source] : node.inputs) source = resolve(source, 0);
-  }
-  if (out.output) out.output = resolve(*out.output, 0);
-  return out;
+  auto node = graph.nodes.find(id);
+  if (node != graph.nodes.end()) node->second.bypass = bypassed;
 }
 
 void Document::apply_extras(const nlohmann::json& value) {
@@ -97,10 +59,10 @@ void Document::commit_edit(const std::string& label, const Graph& edited,
   Change change;
   change.label = label;
   change.coalesce_key = coalesce_key;
-  // Editor data that belongs to no node: backdrops and reroute dots.
+  // Editor data that belongs to no node: backdrops, reroute dots and groups.
   auto extras_of = [](const Graph& graph) {
     nlohmann::json extras = nlohmann::json::object();
-    for (const char* key : {"backdrops", "reroutes"}) {
+    for (const char* key : {"backdrops", "reroutes", "groups"}) {
       extras[key] = graph.editor.is_object() && graph.editor.contains(key) ? graph.editor[key]
                                                                            : nlohmann::json();
     }
@@ -149,6 +111,7 @@ std::string Document::copy_nodes(const std::vector<std::string>& ids) const {
     auto it = graph_.nodes.find(id);
     if (it == graph_.nodes.end()) continue;
     nlohmann::json node = {{"type", it->second.type}};
+    if (it->second.bypass) node["bypass"] = true;
     for (const auto& [name, value] : it->second.params) node["params"][name] = value;
     for (const auto& [port, source] : it->second.inputs) node["inputs"][port] = source.str();
     nodes[id] = node;
@@ -205,6 +168,8 @@ Result<std::vector<std::string>> Document::paste_nodes(const std::string& text,
   for (const auto& [id, node] : pasted["nodes"].items()) {
     const std::string& fresh = new_id_of[id];
     Node& copy = edited.nodes[fresh];
+    auto bypass = node.find("bypass");
+    copy.bypass = bypass != node.end() && bypass->is_boolean() && bypass->get<bool>();
     if (node.contains("params") && node["params"].is_object()) {
       for (const auto& [name, value] : node["params"].items()) copy.params[name] = value;
     }
@@ -362,8 +327,9 @@ Status Document::rename_node(const std::string& id, const std::string& new_id) {
   if (edited.output && edited.output->node == id) edited.output->node = new_id;
   write_position(edited, new_id, read_position(graph_, id));
   write_position(edited, id, std::nullopt);
-  write_bypassed(edited, new_id, read_bypassed(graph_, id));
-  write_bypassed(edited, id, false);
+  auto groups = read_groups(graph_);
+  for (auto& group : groups) std::replace(group.nodes.begin(), group.nodes.end(), id, new_id);
+  if (!groups.empty()) write_groups(edited, groups);
   commit_edit("rename " + id + " to " + new_id, edited);
   return Ok{};
 }
@@ -559,6 +525,10 @@ Status Document::auto_layout() {
   if (graph_.nodes.empty()) return make_error("nothing to lay out: the graph is empty");
   Graph edited = graph_;
   for (const auto& [id, at] : automatic_positions(graph_)) write_position(edited, id, at);
+  // Collapsed groups go where their nodes went.
+  auto groups = read_groups(edited);
+  for (auto& group : groups) group.position = members_top_left(edited, registry_, group.nodes);
+  if (!groups.empty()) write_groups(edited, groups);
   commit_edit("auto-layout", edited);
   return Ok{};
 }

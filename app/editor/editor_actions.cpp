@@ -3,6 +3,7 @@
 #include "editor_actions.h"
 
 #include <algorithm>
+#include <set>
 
 namespace aq::editor {
 
@@ -19,10 +20,25 @@ namespace actions {
 namespace {
 
 // The selection and viewed output may name nodes an undo just removed.
+bool exists(const EditorState& state, const std::string& id) {
+  if (auto name = group_name_of_item(id)) {
+    for (const auto& group : read_groups(state.doc.graph())) {
+      if (group.name == *name && group.collapsed) return true;
+    }
+    return false;
+  }
+  return state.doc.graph().nodes.count(id) > 0;
+}
+
+// The selected nodes, a selected collapsed group standing for its members.
+std::vector<std::string> selected_nodes(const EditorState& state) {
+  return expand_group_items(state.doc.graph(), {state.selection.begin(), state.selection.end()});
+}
+
 void forget_missing(EditorState& state) {
-  std::erase_if(state.selection,
-                [&](const std::string& id) { return !state.doc.graph().nodes.count(id); });
+  std::erase_if(state.selection, [&](const std::string& id) { return !exists(state, id); });
   if (state.viewed && !state.doc.graph().nodes.count(state.viewed->node)) state.viewed.reset();
+  if (state.compare && !state.doc.graph().nodes.count(state.compare->node)) state.compare.reset();
 }
 
 }  // namespace
@@ -103,7 +119,7 @@ Status delete_nodes(EditorState& state, const std::vector<std::string>& ids) {
 }
 
 Status delete_selection(EditorState& state) {
-  return delete_nodes(state, {state.selection.begin(), state.selection.end()});
+  return delete_nodes(state, selected_nodes(state));
 }
 
 Status duplicate_selection(EditorState& state) {
@@ -111,7 +127,7 @@ Status duplicate_selection(EditorState& state) {
   const Graph& graph = state.doc.graph();
   float top = 1e30f;
   float bottom = -1e30f;
-  for (const auto& id : state.selection) {
+  for (const auto& id : selected_nodes(state)) {
     auto node = graph.nodes.find(id);
     if (node == graph.nodes.end()) continue;
     Rect rect = node_rect(graph, state.doc.registry(), id);
@@ -119,7 +135,7 @@ Status duplicate_selection(EditorState& state) {
     bottom = std::max(bottom, rect.max.y);
   }
   const Position offset{30.0f, bottom > top ? bottom - top + 30.0f : 40.0f};
-  auto copies = state.doc.duplicate_nodes({state.selection.begin(), state.selection.end()}, offset);
+  auto copies = state.doc.duplicate_nodes(selected_nodes(state), offset);
   if (!copies) {
     report(state, copies.error(), "");
     return copies.error();
@@ -132,7 +148,7 @@ Status duplicate_selection(EditorState& state) {
 void select(EditorState& state, const std::vector<std::string>& ids, bool add) {
   if (!add) state.selection.clear();
   for (const auto& id : ids) {
-    if (state.doc.graph().nodes.count(id)) state.selection.insert(id);
+    if (exists(state, id)) state.selection.insert(id);
   }
   state.status = std::to_string(state.selection.size()) + " node(s) selected";
   state.status_is_error = false;
@@ -184,7 +200,7 @@ std::string copy_selection(EditorState& state) {
     return "";
   }
   report(state, Ok{}, "copied " + std::to_string(state.selection.size()) + " node(s)");
-  return state.doc.copy_nodes({state.selection.begin(), state.selection.end()});
+  return state.doc.copy_nodes(selected_nodes(state));
 }
 
 Status paste(EditorState& state, const std::string& text, std::optional<Position> at) {
@@ -199,6 +215,12 @@ Status paste(EditorState& state, const std::string& text, std::optional<Position
 }
 
 Status rename(EditorState& state, const std::string& id, const std::string& new_id) {
+  if (auto group = group_name_of_item(id)) {
+    Status renamed = state.doc.rename_group(*group, new_id);
+    if (renamed && state.selection.erase(id)) state.selection.insert(group_item_id(new_id));
+    report(state, renamed, "renamed group " + *group + " to " + new_id);
+    return renamed;
+  }
   Status renamed = state.doc.rename_node(id, new_id);
   if (renamed && state.selection.erase(id)) state.selection.insert(new_id);
   if (renamed && state.viewed && state.viewed->node == id) state.viewed->node = new_id;
@@ -207,7 +229,7 @@ Status rename(EditorState& state, const std::string& id, const std::string& new_
 }
 
 Status toggle_bypass(EditorState& state) {
-  std::vector<std::string> ids(state.selection.begin(), state.selection.end());
+  std::vector<std::string> ids = selected_nodes(state);
   const bool all = !ids.empty() && std::all_of(ids.begin(), ids.end(), [&](const auto& id) {
     return state.doc.bypassed(id);
   });
@@ -217,9 +239,98 @@ Status toggle_bypass(EditorState& state) {
 }
 
 Status backdrop_around_selection(EditorState& state, const std::string& label) {
-  auto added = state.doc.add_backdrop({state.selection.begin(), state.selection.end()}, label);
+  auto added = state.doc.add_backdrop(selected_nodes(state), label);
   report(state, added ? Status(Ok{}) : Status(added.error()), "backdrop '" + label + "' added");
   return added ? Status(Ok{}) : Status(added.error());
+}
+
+Status group_selection(EditorState& state) {
+  const std::vector<std::string> nodes = selected_nodes(state);
+  // The nodes of one expanded group, selected: Ctrl+G collapses it again.
+  for (const auto& group : read_groups(state.doc.graph())) {
+    if (group.collapsed || nodes.empty()) continue;
+    if (std::all_of(nodes.begin(), nodes.end(), [&](const std::string& id) {
+          return std::find(group.nodes.begin(), group.nodes.end(), id) != group.nodes.end();
+        })) {
+      return set_group_collapsed(state, group.name, true);
+    }
+  }
+  auto grouped = state.doc.group_nodes(nodes);
+  if (!grouped) {
+    report(state, grouped.error(), "");
+    return grouped.error();
+  }
+  state.selection = {group_item_id(*grouped)};
+  report(state, Ok{}, "grouped " + std::to_string(nodes.size()) + " node(s) as " + *grouped);
+  return Ok{};
+}
+
+Status ungroup_selection(EditorState& state) {
+  std::set<std::string> names;
+  const std::vector<std::string> nodes = selected_nodes(state);
+  for (const auto& group : read_groups(state.doc.graph())) {
+    for (const auto& id : nodes) {
+      if (std::find(group.nodes.begin(), group.nodes.end(), id) != group.nodes.end()) {
+        names.insert(group.name);
+      }
+    }
+  }
+  if (names.empty()) {
+    Status none = make_error("nothing to ungroup: select a group or nodes in one");
+    report(state, none, "");
+    return none;
+  }
+  for (const auto& name : names) {
+    Status done = state.doc.ungroup(name);
+    if (!done) {
+      report(state, done, "");
+      return done;
+    }
+  }
+  state.selection = {nodes.begin(), nodes.end()};
+  report(state, Ok{}, "ungrouped " + std::to_string(names.size()) + " group(s)");
+  return Ok{};
+}
+
+Status set_group_collapsed(EditorState& state, const std::string& name, bool collapsed) {
+  std::vector<std::string> members;
+  for (const auto& group : read_groups(state.doc.graph())) {
+    if (group.name == name) members = group.nodes;
+  }
+  Status done = state.doc.set_group_collapsed(name, collapsed);
+  if (done) {
+    if (collapsed) {
+      state.selection = {group_item_id(name)};
+    } else {
+      state.selection = {members.begin(), members.end()};
+    }
+  }
+  report(state, done, (collapsed ? "collapsed " : "expanded ") + name);
+  forget_missing(state);
+  return done;
+}
+
+Status compare_with(EditorState& state, const std::optional<PortRef>& output) {
+  if (!output) {
+    state.compare.reset();
+    report(state, Ok{}, "compare off");
+    return Ok{};
+  }
+  auto node = state.doc.graph().nodes.find(output->node);
+  const NodeType* type = node != state.doc.graph().nodes.end()
+                             ? state.doc.registry().find(node->second.type)
+                             : nullptr;
+  if (type == nullptr || type->output(output->port) == nullptr) {
+    Status refused = make_error("cannot compare with " + output->str() +
+                                ": no such node output (pick one of the graph's outputs)");
+    report(state, refused, "");
+    return refused;
+  }
+  state.compare = output;
+  const auto shown = state.shown_output();
+  report(state, Ok{},
+         "compare A " + (shown ? shown->str() : std::string("(none)")) + " | B " + output->str());
+  return Ok{};
 }
 
 Status auto_layout(EditorState& state) {

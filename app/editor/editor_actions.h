@@ -50,11 +50,21 @@ Status rename(EditorState& state, const std::string& id, const std::string& new_
 // Bypasses the selection, or enables it again when every selected node is bypassed.
 Status toggle_bypass(EditorState& state);
 Status auto_layout(EditorState& state);
+// Ctrl+G: the selected nodes become a collapsed group (selected); the selected nodes of an
+// expanded group collapse it again.
+Status group_selection(EditorState& state);
+// Ctrl+Alt+G: removes the groups the selection is in (or is); their nodes become the selection.
+Status ungroup_selection(EditorState& state);
+// Collapses or expands a group; the selection follows (the group, or its nodes).
+Status set_group_collapsed(EditorState& state, const std::string& name, bool collapsed);
 // A labelled backdrop around the selection.
 Status backdrop_around_selection(EditorState& state, const std::string& label = "Backdrop");
 
 // The viewer shows `output` (any node's any output); the graph's own output is unchanged.
 Status select_output(EditorState& state, const PortRef& output);
+// The viewer compares the viewed output (A) with `output` (B) in a wipe; nullopt stops.
+// Refused when the node or its output does not exist.
+Status compare_with(EditorState& state, const std::optional<PortRef>& output);
 // Steps the viewer through every output of the graph in node order (+1 or -1).
 void cycle_output(EditorState& state, int step);
 // Changes what the graph renders (`output` in the file).

@@ -126,6 +126,7 @@ EditorApp::EditorApp(const Registry& registry, EditorOptions options)
 EditorApp::~EditorApp() {
   viewer_.reset();  // joins the evaluation thread; GL objects go while the contexts exist
   if (worker_window_ != nullptr) glfwDestroyWindow(worker_window_);
+  if (compare_window_ != nullptr) glfwDestroyWindow(compare_window_);
   if (window_ != nullptr) {
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
@@ -181,6 +182,21 @@ Status EditorApp::create_window() {
       },
       [] { glfwMakeContextCurrent(nullptr); }, &gl_proc);
   viewer_ = std::make_unique<Viewer>(std::move(worker));
+  // B of the A/B compare evaluates on a second worker, with a context of its own.
+  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  compare_window_ = glfwCreateWindow(16, 16, "aquarelle compare", nullptr, window_);
+  glfwDefaultWindowHints();
+  glfwMakeContextCurrent(window_);
+  if (compare_window_ != nullptr) {
+    GLFWwindow* compare_shared = compare_window_;
+    viewer_->set_compare_viewer(std::make_unique<Viewer>(std::make_unique<EvalWorker>(
+        registry_,
+        [compare_shared] {
+          glfwMakeContextCurrent(compare_shared);
+          return glfwGetCurrentContext() == compare_shared;
+        },
+        [] { glfwMakeContextCurrent(nullptr); }, &gl_proc)));
+  }
   return Ok{};
 }
 
@@ -251,6 +267,10 @@ int EditorApp::run() {
   };
   hooks.view = [this](const nlohmann::json& action) -> Status {
     if (action.contains("backdrop")) canvas_backdrop_ = action.value("backdrop", false);
+    if (action.contains("wipe")) {
+      if (!action["wipe"].is_number()) throw std::invalid_argument("\"wipe\" is a fraction 0..1");
+      viewer_->set_wipe(action["wipe"].get<float>());
+    }
     if (action.value("hold_a", false)) {
       if (!viewer_->has_image()) return make_error("nothing to hold: the viewer shows no image");
       viewer_->hold_for_wipe();
@@ -476,6 +496,11 @@ void EditorApp::handle_shortcuts() {
       case GLFW_KEY_Y:
         actions::redo(state_);
         break;
+      case GLFW_KEY_G:  // acts on the selection wherever the mouse is, like the Edit menu
+        if (typing) break;
+        chord.alt ? (void)actions::ungroup_selection(state_)
+                  : (void)actions::group_selection(state_);
+        break;
       case GLFW_KEY_S:
         if (chord.shift) {
           file_dialog_.open("Save graph as", document_.path());
@@ -541,6 +566,12 @@ void EditorApp::draw_menu_bar() {
       (void)actions::paste(state_, text != nullptr ? text : "", std::nullopt);
     }
     if (ImGui::MenuItem("Bypass / enable", "D", false, any)) (void)actions::toggle_bypass(state_);
+    if (ImGui::MenuItem("Group / collapse", "Ctrl+G", false, any)) {
+      (void)actions::group_selection(state_);
+    }
+    if (ImGui::MenuItem("Ungroup", "Ctrl+Alt+G", false, any)) {
+      (void)actions::ungroup_selection(state_);
+    }
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {

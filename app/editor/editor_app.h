@@ -75,7 +75,8 @@ class EditorApp {
   Document document_;
   EditorState state_;
   GLFWwindow* window_ = nullptr;
-  GLFWwindow* worker_window_ = nullptr;  // invisible; its context is the evaluation thread's
+  GLFWwindow* worker_window_ = nullptr;   // invisible; its context is the evaluation thread's
+  GLFWwindow* compare_window_ = nullptr;  // invisible; the A/B compare's evaluation thread's
   FrameStats frame_stats_;
   std::vector<KeyChord> chords_;  // this frame's key presses
   bool canvas_backdrop_ = false;  // View > Viewer image behind nodes

@@ -21,6 +21,9 @@ struct EditorState {
   std::set<std::string> selection;
   // The output shown in the viewer; nullopt shows the graph's output.
   std::optional<PortRef> viewed;
+  // B of the viewer's A/B wipe: another output evaluated beside the viewed one (A); nullopt:
+  // no compare of two outputs.
+  std::optional<PortRef> compare;
   CanvasView canvas;
   int frame = 1;
   bool playing = false;

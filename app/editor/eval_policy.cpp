@@ -29,6 +29,7 @@ uint64_t evaluation_key(const Graph& graph, const std::optional<PortRef>& output
     const Node& node = graph.nodes.at(id);
     nlohmann::json& entry = key["nodes"][id];
     entry["type"] = node.type;
+    if (node.bypass) entry["bypass"] = true;
     for (const auto& [name, value] : node.params) entry["params"][name] = value;
     for (const auto& [port, source] : node.inputs) entry["inputs"][port] = source.str();
   }

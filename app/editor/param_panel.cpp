@@ -35,7 +35,12 @@ void end_gesture_after_edit(EditorState& state) {
 }  // namespace
 
 void ParamPanel::draw(EditorState& state, const NodeFeedback& feedback) {
-  if (state.selection.size() == 1 && state.doc.graph().nodes.count(*state.selection.begin())) {
+  const auto group =
+      state.selection.size() == 1 ? group_name_of_item(*state.selection.begin()) : std::nullopt;
+  if (group) {
+    draw_group(state, *group, feedback);
+  } else if (state.selection.size() == 1 &&
+             state.doc.graph().nodes.count(*state.selection.begin())) {
     draw_node(state, *state.selection.begin(), feedback);
   } else {
     if (state.selection.size() > 1) {
@@ -51,6 +56,31 @@ void ParamPanel::draw(EditorState& state, const NodeFeedback& feedback) {
     std::string param = file_target_.substr(split + 1);
     (void)actions::set_param(state, node, param, relative_to_graph(state.doc.path(), chosen));
   }
+}
+
+void ParamPanel::draw_group(EditorState& state, const std::string& name,
+                            const NodeFeedback& feedback) {
+  std::vector<std::string> members;
+  for (const auto& group : read_groups(state.doc.graph())) {
+    if (group.name == name) members = group.nodes;
+  }
+  if (members.empty()) return;
+  // The group's nodes to pick from; the picked one's parameters below.
+  if (std::find(members.begin(), members.end(), group_member_) == members.end()) {
+    group_member_ = members.front();
+  }
+  ImGui::Text("group %s: %zu nodes", name.c_str(), members.size());
+  if (ImGui::BeginListBox("##members",
+                          ImVec2(-1, ImGui::GetTextLineHeightWithSpacing() *
+                                         std::min<float>(members.size() + 0.5f, 6.5f)))) {
+    for (const auto& id : members) {
+      const std::string label = id + "  (" + state.doc.graph().nodes.at(id).type + ")";
+      if (ImGui::Selectable(label.c_str(), id == group_member_)) group_member_ = id;
+    }
+    ImGui::EndListBox();
+  }
+  ImGui::Separator();
+  draw_node(state, group_member_, feedback);
 }
 
 void ParamPanel::draw_node(EditorState& state, const std::string& id,

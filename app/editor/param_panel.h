@@ -21,7 +21,10 @@ class ParamPanel {
  private:
   void draw_node(EditorState& state, const std::string& id, const NodeFeedback& feedback);
   void draw_settings(EditorState& state);
+  // A collapsed group: its nodes as a list; the parameters of the one picked.
+  void draw_group(EditorState& state, const std::string& name, const NodeFeedback& feedback);
 
+  std::string group_member_;  // the group's node whose parameters are shown
   FileDialog file_dialog_;
   std::string file_target_;
   std::optional<Settings> pending_settings_;  // "node\nparam" the open file dialog writes to

@@ -166,6 +166,23 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
     auto inserted = actions::add_node_at_cursor(state, type, at);
     return inserted ? Status(Ok{}) : Status(inserted.error());
   }
+  if (kind == "compare") {
+    if (!action.contains("output") || action["output"].is_null()) {
+      return actions::compare_with(state, std::nullopt);
+    }
+    return actions::compare_with(state, port_field(action, "output"));
+  }
+  if (kind == "group") {
+    if (action.contains("nodes")) actions::select(state, nodes_field(action));
+    return actions::group_selection(state);
+  }
+  if (kind == "ungroup") {
+    if (action.contains("nodes")) actions::select(state, nodes_field(action));
+    return actions::ungroup_selection(state);
+  }
+  if (kind == "collapse" || kind == "expand") {
+    return actions::set_group_collapsed(state, text_field(action, "group"), kind == "collapse");
+  }
   if (kind == "fit") {
     if (hooks.fit) hooks.fit(action.value("whole", false));
     return Ok{};
@@ -174,7 +191,8 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
       "unknown action '" + kind +
       "' (add_node, link, unlink, set_param, move, select_output, "
       "set_output, delete, duplicate, select, undo, redo, save, frame, fit, add_menu, play, key, "
-      "copy, paste, rename, bypass, auto_layout, insert, backdrop, wait, view, dot)");
+      "copy, paste, rename, bypass, auto_layout, insert, backdrop, wait, view, dot, group, "
+      "ungroup, collapse, expand, compare)");
 }
 
 }  // namespace

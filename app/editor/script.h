@@ -25,9 +25,11 @@
 // before the next frame: the canvas keys act with the mouse over the canvas), "copy", "paste"
 // {"at"}, "rename" {"node", "to"}, "bypass" {"nodes"}, "auto_layout", "backdrop" {"nodes",
 // "label"}, "insert" {"type", "after": "node.port" | "on": "node.input", "at"}, "dot" {"to":
-// "node.input", "at"}, "wait" {"frames": N} (lets N UI frames pass), "play" {"frames": N} (plays
-// until N frames later is on screen, at the editor's own pace). An action whose outcome differs
-// from "expect" ("ok" by default, or "refused") stops the script with a message naming the action.
+// "node.input", "at"}, "group" {"nodes" (or the selection)}, "ungroup" {"nodes"}, "collapse" /
+// "expand" {"group": name}, "compare" {"output": "node.port" | null} (B of the A/B wipe), "wait"
+// {"frames": N} (lets N UI frames pass), "play" {"frames": N} (plays until N frames later is on
+// screen, at the editor's own pace). An action whose outcome differs from "expect" ("ok" by
+// default, or "refused") stops the script with a message naming the action.
 #pragma once
 
 #include "editor_state.h"

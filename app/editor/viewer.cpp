@@ -173,10 +173,16 @@ void Viewer::take_finished() {
 }
 
 void Viewer::update(const EditorState& state, bool force) {
+  comparing_ = compare_ && state.compare.has_value();
+  if (comparing_) {
+    compare_->fixed_output_ = state.compare;
+    compare_->preview_divisor_ = preview_divisor_;
+    compare_->update(state, force);
+  }
   take_finished();
-  // Bypassed nodes are wired around before evaluation (they pass their input through).
-  const Graph graph = with_bypass(state.doc.graph(), state.doc.registry());
-  std::optional<PortRef> output = state.shown_output();
+  // Bypassed nodes are wired around by the evaluator itself (core/bypass.h).
+  const Graph& graph = state.doc.graph();
+  std::optional<PortRef> output = fixed_output_ ? fixed_output_ : state.shown_output();
   if (!output) {
     shown_texture_.reset();
     has_image_ = false;
@@ -378,6 +384,21 @@ void Viewer::hold_for_wipe() {
   wipe_ = true;
 }
 
+unsigned Viewer::compare_display_texture() {
+  if (!comparing_ || !compare_->has_image_) return 0;
+  Viewer& b = *compare_;
+  if (b.srgb_ != srgb_ || b.channel_ != channel_ || b.exposure_ != exposure_ ||
+      b.mapping_choice_ != mapping_choice_) {
+    b.srgb_ = srgb_;
+    b.channel_ = channel_;
+    b.exposure_ = exposure_;
+    b.mapping_choice_ = mapping_choice_;
+    b.display_stale_ = true;
+  }
+  if (b.display_stale_) b.render_display_texture();
+  return b.display_ ? b.display_.get() : 0;
+}
+
 void Viewer::draw(EditorState& state) {
   // Toolbar.
   auto shown = state.shown_output();
@@ -409,9 +430,36 @@ void Viewer::draw(EditorState& state) {
   if (ImGui::IsItemHovered()) {
     ImGui::SetTooltip("keep the picture shown now as A, to compare with what follows (wipe)");
   }
-  if (held_) {
+  if (held_ && !comparing_) {
     ImGui::SameLine();
     ImGui::Checkbox("wipe A|B", &wipe_);
+  }
+  if (compare_) {
+    // B of the A/B compare: any output of the graph, evaluated beside A.
+    ImGui::SameLine();
+    const std::string current = state.compare ? "B: " + state.compare->str() : "compare with...";
+    ImGui::SetNextItemWidth(150);
+    if (ImGui::BeginCombo("##compare", current.c_str())) {
+      if (ImGui::Selectable("(no compare)", !state.compare)) {
+        (void)actions::compare_with(state, std::nullopt);
+      }
+      for (const auto& [id, node] : state.doc.graph().nodes) {
+        const NodeType* type = state.doc.registry().find(node.type);
+        if (type == nullptr) continue;
+        for (const auto& port : type->outputs) {
+          const PortRef ref{id, port.name};
+          if (ImGui::Selectable(ref.str().c_str(), state.compare == ref)) {
+            (void)actions::compare_with(state, ref);
+          }
+        }
+      }
+      ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "A/B wipe: the viewed output (A) left of the line, this one (B) right; "
+          "shift+click an output port to pick it");
+    }
   }
   if (has_image_) {
     const aq_image& image = image_;
@@ -497,12 +545,18 @@ void Viewer::draw(EditorState& state) {
     return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture.get()));
   };
   // The display texture has row 0 at the bottom: flip v.
-  if (wipe_ && held_) {
+  const unsigned compared = compare_display_texture();
+  if ((wipe_ && held_) || compared != 0) {
     const float split = top_left.x + (bottom_right.x - top_left.x) * wipe_at_;
-    draw->AddImage(texture_id(held_), top_left, ImVec2(split, bottom_right.y), ImVec2(0, 1),
+    // Two outputs: A (viewed) left, B right. Held picture: the held A left, the live image right.
+    const ImTextureID left = compared != 0 ? texture_id(display_) : texture_id(held_);
+    const ImTextureID right = compared != 0
+                                  ? reinterpret_cast<ImTextureID>(static_cast<intptr_t>(compared))
+                                  : texture_id(display_);
+    draw->AddImage(left, top_left, ImVec2(split, bottom_right.y), ImVec2(0, 1),
                    ImVec2(wipe_at_, 0));
-    draw->AddImage(texture_id(display_), ImVec2(split, top_left.y), bottom_right,
-                   ImVec2(wipe_at_, 1), ImVec2(1, 0));
+    draw->AddImage(right, ImVec2(split, top_left.y), bottom_right, ImVec2(wipe_at_, 1),
+                   ImVec2(1, 0));
     draw->AddLine(ImVec2(split, area_at.y), ImVec2(split, area_at.y + area.y),
                   IM_COL32(255, 255, 255, 220), 2.0f);
     draw->AddText(ImVec2(split - 16, area_at.y + 4), IM_COL32(255, 255, 255, 255), "A");
@@ -527,14 +581,18 @@ void Viewer::draw(EditorState& state) {
     // running one: the picture never goes blank while the graph is broken or busy.
     const ImVec2 origin = ImGui::GetWindowPos();
     const float width = ImGui::GetWindowWidth();
-    if (!error_.empty()) {
+    std::string shown_error = error_;
+    if (comparing_ && !compare_->error_.empty()) {
+      shown_error += (shown_error.empty() ? "B: " : "\nB: ") + compare_->error_;
+    }
+    if (!shown_error.empty()) {
       ImDrawList* draw = ImGui::GetWindowDrawList();
       const float wrap = width - 16.0f;
-      ImVec2 text = ImGui::CalcTextSize(error_.c_str(), nullptr, false, wrap);
+      ImVec2 text = ImGui::CalcTextSize(shown_error.c_str(), nullptr, false, wrap);
       draw->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + text.y + 12.0f),
                           IM_COL32(60, 10, 10, 220));
       draw->AddText(nullptr, 0.0f, ImVec2(origin.x + 8.0f, origin.y + 6.0f),
-                    IM_COL32(255, 140, 130, 255), error_.c_str(), nullptr, wrap);
+                    IM_COL32(255, 140, 130, 255), shown_error.c_str(), nullptr, wrap);
     }
     draw_progress(ImVec2(origin.x, origin.y + ImGui::GetWindowHeight() - 6.0f), width);
   }

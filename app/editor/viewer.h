@@ -46,12 +46,32 @@ class Viewer {
   void draw(EditorState& state);
 
   // Drop the evaluator's caches (shader reload) / read shaders from their sources.
-  void clear_caches() { worker_->clear_caches(); }
-  void set_shader_hot_reload(bool enabled) { worker_->set_shader_hot_reload(enabled); }
-  // An evaluation waits or runs.
-  bool busy() const { return worker_->busy(); }
-  // Nothing runs, nothing waits to be shown and nothing needs asking: the image is current.
-  bool settled() const { return settled_; }
+  void clear_caches() {
+    worker_->clear_caches();
+    if (compare_) compare_->clear_caches();
+  }
+  void set_shader_hot_reload(bool enabled) {
+    worker_->set_shader_hot_reload(enabled);
+    if (compare_) compare_->set_shader_hot_reload(enabled);
+  }
+  // An evaluation waits or runs (for A, or for B while comparing).
+  bool busy() const { return worker_->busy() || (comparing_ && compare_->busy()); }
+  // Nothing runs, nothing waits to be shown and nothing needs asking: the image is current
+  // (and B's too while comparing).
+  bool settled() const { return settled_ && (!comparing_ || compare_->settled()); }
+
+  // A/B compare of two outputs: B (EditorState::compare) is evaluated by this second viewer, on
+  // its own worker, kept up to date with every edit like A; the wipe shows A left of the line
+  // and B right of it. Without one, only the held-picture compare is offered.
+  void set_compare_viewer(std::unique_ptr<Viewer> compare) { compare_ = std::move(compare); }
+  // B's viewer while comparing (nullptr otherwise), e.g. for its image and error.
+  const Viewer* compare_viewer() const { return comparing_ ? compare_.get() : nullptr; }
+  // B's picture (RGBA8, row 0 at the bottom), mapped with A's display settings; 0 when B has no
+  // image or no compare is on.
+  unsigned compare_display_texture();
+  // Where the wipe line is, as a fraction of the image width (0 = all B, 1 = all A).
+  void set_wipe(float at) { wipe_at_ = at < 0 ? 0 : at > 1 ? 1 : at; }
+  float wipe() const { return wipe_at_; }
   // The frame of the image shown (-1: none yet).
   int shown_frame() const { return shown_frame_; }
   // Evaluations finished since the start (errors included).
@@ -99,6 +119,9 @@ class Viewer {
   };
 
   std::unique_ptr<EvalWorker> worker_;
+  std::unique_ptr<Viewer> compare_;       // evaluates B of the A/B compare
+  bool comparing_ = false;                // EditorState::compare was set at the last update
+  std::optional<PortRef> fixed_output_;   // B's viewer: the output it shows
   std::optional<Wanted> requested_;       // the last request sent
   std::map<uint64_t, Wanted> in_flight_;  // by tag
   uint64_t next_tag_ = 1;
@@ -131,7 +154,8 @@ class Viewer {
   int preview_divisor_ = 1;
   ImageView view_;  // pan and zoom of the image in the viewer
   // Wipe compare: a held copy of the displayed picture (A) left of the wipe line, the live
-  // image (B) right of it.
+  // image (B) right of it; or, while comparing two outputs, the viewed output (A) left and the
+  // compared one (B) right.
   bool wipe_ = false;
   float wipe_at_ = 0.5f;  // fraction of the image width
   bool wipe_drag_ = false;

@@ -4,6 +4,7 @@
 // pointwise_fusion.cpp.
 #include <aquarelle/core/evaluator.h>
 
+#include <aquarelle/core/bypass.h>
 #include <aquarelle/core/graph_io.h>
 #include <aquarelle/core/plan.h>
 #include <aquarelle/core/quality.h>
@@ -320,17 +321,25 @@ Result<ImageF> Evaluator::read_back(const TextureRef& texture) {
   return read_texture(image.texture, image.width, image.height, image.format);
 }
 
-Result<Plan> Evaluator::plan(const Graph& graph, const EvalOptions& options,
-                             const std::optional<PortRef>& output) const {
+Result<Plan> Evaluator::plan(const Graph& given_graph, const EvalOptions& options,
+                             const std::optional<PortRef>& given_output) const {
+  auto bypassed = bypassed_graph(given_graph, registry_, given_output);  // bypass.h
+  if (!bypassed.ok()) return bypassed.error();
+  const Graph& graph = bypassed->first;
+  const std::optional<PortRef>& output = bypassed->second;
   PlanOptions plan_options;
   plan_options.fuse_pointwise = options.fuse_pointwise;
   plan_options.retain_static_outputs = options.retain_outputs || options.retain_static_outputs;
   return compile_plan(graph, registry_, plan_options, output);
 }
 
-Result<TextureRef> Evaluator::evaluate(const Graph& graph, const EvalOptions& options,
-                                       const std::optional<PortRef>& requested) {
+Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptions& options,
+                                       const std::optional<PortRef>& given_requested) {
   timings_.clear();
+  auto bypassed = bypassed_graph(given_graph, registry_, given_requested);  // bypass.h
+  if (!bypassed.ok()) return bypassed.error();
+  const Graph& graph = bypassed->first;
+  const std::optional<PortRef>& requested = bypassed->second;
   if (!context_.activate()) return make_error("the OpenGL context cannot be made current");
   impl_->host.make_current();
   // Drop state of nodes that left the graph or changed type.

@@ -150,6 +150,7 @@ class GraphReader {
     if (root_.contains("editor")) {
       if (root_["editor"].is_object()) {
         result_.graph.editor = root_["editor"];
+        migrate_editor_bypass();
       } else {
         add("/editor",
             "\"editor\" must be an object, not " + graph_checks::json_kind(root_["editor"]));
@@ -158,6 +159,24 @@ class GraphReader {
     auto checks = graph_checks::check_graph(result_.graph, registry_, already_);
     result_.problems.insert(result_.problems.end(), std::make_move_iterator(checks.begin()),
                             std::make_move_iterator(checks.end()));
+  }
+
+  // Graphs saved by editors before bypass moved onto the node kept it in
+  // editor.bypassed[id] = true; such a node is bypassed, and the mark moves onto it (the next
+  // save writes "bypass": true on the node).
+  void migrate_editor_bypass() {
+    nlohmann::json& editor = result_.graph.editor;
+    auto marks = editor.find("bypassed");
+    if (marks == editor.end()) return;
+    if (marks->is_object()) {
+      for (const auto& [id, mark] : marks->items()) {
+        auto node = result_.graph.nodes.find(id);
+        if (node != result_.graph.nodes.end() && mark.is_boolean() && mark.get<bool>()) {
+          node->second.bypass = true;
+        }
+      }
+    }
+    editor.erase(marks);
   }
 
   bool read_version() {
@@ -256,9 +275,10 @@ class GraphReader {
       return;
     }
     for (const auto& [key, member] : value.items()) {
-      if (key != "type" && key != "params" && key != "inputs") {
+      if (key != "type" && key != "params" && key != "inputs" && key != "bypass") {
         add(pointer + "/" + json_text::escape_pointer_segment(key),
-            "unknown key " + quoted(key) + " in a node; a node holds type, params and inputs");
+            "unknown key " + quoted(key) +
+                " in a node; a node holds type, params, inputs and bypass");
       }
     }
     if (!value.contains("type")) {
@@ -281,6 +301,14 @@ class GraphReader {
       }
     }
     if (value.contains("inputs")) read_inputs(id, value["inputs"], &node);
+    if (value.contains("bypass")) {
+      if (value["bypass"].is_boolean()) {
+        node.bypass = value["bypass"].get<bool>();
+      } else {
+        add(pointer + "/bypass",
+            "\"bypass\" must be true or false, not " + graph_checks::json_kind(value["bypass"]));
+      }
+    }
   }
 
   void read_inputs(const std::string& id, const nlohmann::json& inputs, Node* node) {

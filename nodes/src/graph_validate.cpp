@@ -3,6 +3,7 @@
 // existing output of the same port type, required inputs connected, no cycles, a usable
 // output. Every problem is collected (nothing stops at the first), each named by JSON pointer;
 // reading adds line and column.
+#include <aquarelle/core/bypass.h>
 #include <aquarelle/core/graph_io.h>
 
 #include <algorithm>
@@ -438,6 +439,24 @@ bool is_valid_node_id(const std::string& id) {
   });
 }
 
+// A bypassed node that something reads must have an input to pass through (bypass.h).
+void check_bypass(const Graph& graph, const Registry& registry, std::vector<Problem>* problems) {
+  if (!has_bypassed_nodes(graph)) return;
+  std::set<std::string> reported;
+  auto check = [&](const PortRef& read) {
+    auto node = graph.nodes.find(read.node);
+    if (node == graph.nodes.end() || !node->second.bypass || reported.count(read.node)) return;
+    auto source = bypass_source(graph, registry, read);
+    if (source.ok()) return;
+    reported.insert(read.node);
+    problems->push_back(problem_at(node_pointer(read.node) + "/bypass", source.message()));
+  };
+  for (const auto& [id, node] : graph.nodes) {
+    for (const auto& [port, source] : node.inputs) check(source);
+  }
+  if (graph.output) check(*graph.output);
+}
+
 std::vector<Problem> check_graph(const Graph& graph, const Registry& registry,
                                  const AlreadyReported& already_reported) {
   std::vector<Problem> problems;
@@ -455,6 +474,7 @@ std::vector<Problem> check_graph(const Graph& graph, const Registry& registry,
   }
   check_cycles(graph, &problems);
   check_output(graph, registry, already_reported, &problems);
+  check_bypass(graph, registry, &problems);
   return problems;
 }
 

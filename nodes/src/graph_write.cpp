@@ -2,9 +2,9 @@
 // a full disk never leaves half a graph where the old one was).
 //
 // Canonical layout: "aquarelle" first, then "settings" (keys sorted), "nodes" (sorted by id;
-// each node's keys in the order type, params, inputs; params and inputs sorted), "output",
-// "editor" (kept as the editor wrote it, keys sorted). Two-space indent; arrays of plain
-// values on one line; a trailing newline. Parameter values are written exactly as stored.
+// each node's keys in the order type, bypass (only when true), params, inputs; params and inputs
+// sorted), "output", "editor" (kept as the editor wrote it, keys sorted). Two-space indent; arrays
+// of plain values on one line; a trailing newline. Parameter values are written exactly as stored.
 //
 // Saving over the text a graph was read from patches that text instead (json_text_patch.h):
 // an unedited graph saves to the same bytes, an edit changes only the lines it concerns.
@@ -129,6 +129,7 @@ Json inputs_json(const Node& node) {
 void write_node(const Node& node, std::string* out) {
   const std::string pad(6, ' ');
   *out += "{\n" + pad + "\"type\": " + string_literal(node.type);
+  if (node.bypass) *out += ",\n" + pad + "\"bypass\": true";
   if (!node.params.empty()) {
     nlohmann::json params = nlohmann::json::object();
     for (const auto& [name, value] : node.params) params[name] = value;
@@ -260,6 +261,7 @@ nlohmann::ordered_json graph_document(const Graph& graph, const nlohmann::ordere
         had(old_nodes, id.c_str()) ? old_nodes[id] : nlohmann::ordered_json::object();
     nlohmann::ordered_json written = nlohmann::ordered_json::object();
     written["type"] = node.type;
+    if (node.bypass || had(old_node, "bypass")) written["bypass"] = node.bypass;
     if (!node.params.empty() || had(old_node, "params")) {
       nlohmann::ordered_json params = nlohmann::ordered_json::object();
       for (const auto& [name, value] : node.params) params[name] = ordered(value);

@@ -12,6 +12,8 @@
 #include "editor/frame_stats.h"
 #include "editor/image_view.h"
 
+#include <aquarelle/core/bypass.h>
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -179,19 +181,22 @@ TEST_F(EditingTest, BypassWiresEvaluationAroundTheNodeAndIsSaved) {
   actions::select(state, {"a"});
   ASSERT_TRUE(actions::toggle_bypass(state));
   EXPECT_TRUE(doc.bypassed("a"));
-  Graph evaluated = with_bypass(doc.graph(), registry());
-  EXPECT_EQ(evaluated.nodes.at("b").inputs.at("image"), (PortRef{"src", "image"}));
+  auto evaluated = apply_bypass(doc.graph(), registry());
+  ASSERT_TRUE(evaluated.ok()) << evaluated.message();
+  EXPECT_EQ(evaluated->nodes.at("b").inputs.at("image"), (PortRef{"src", "image"}));
   EXPECT_EQ(doc.graph().nodes.at("b").inputs.at("image"), (PortRef{"a", "image"}))
       << "the document keeps the link";
-  EXPECT_EQ(doc.graph().editor["bypassed"]["a"], true);
+  EXPECT_TRUE(doc.graph().nodes.at("a").bypass) << "saved on the node, read by the render";
+  EXPECT_EQ(nlohmann::json::parse(doc.text_to_save())["nodes"]["a"]["bypass"], true);
   // A bypassed output node shows its input; a chain of bypassed nodes is followed.
   actions::select(state, {"b"});
   ASSERT_TRUE(actions::toggle_bypass(state));
-  EXPECT_EQ(with_bypass(doc.graph(), registry()).output, (PortRef{"src", "image"}));
+  EXPECT_EQ(apply_bypass(doc.graph(), registry())->output, (PortRef{"src", "image"}));
   ASSERT_TRUE(doc.undo());
   ASSERT_TRUE(doc.undo());
   EXPECT_FALSE(doc.bypassed("a"));
   EXPECT_FALSE(doc.graph().editor.contains("bypassed"));
+  EXPECT_FALSE(nlohmann::json::parse(doc.text_to_save())["nodes"]["a"].contains("bypass"));
 }
 
 TEST_F(EditingTest, BackdropsFrameNodesMoveWithThemAndAreSaved) {

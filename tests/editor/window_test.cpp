@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -264,10 +265,92 @@ TEST_F(EditorWindowTest, ChordsSaveSafelyAndNukeStyleEdits) {
   nlohmann::json edited = read_json(dir_ / "edited.json");
   EXPECT_EQ(edited["nodes"]["soft"]["inputs"]["image"], "tint.image") << edited.dump(2);
   EXPECT_EQ(edited["output"], "soft.image");
-  EXPECT_EQ(edited["editor"]["bypassed"]["soft"], true);
+  EXPECT_EQ(edited["nodes"]["soft"]["bypass"], true) << "on the node: the render honours it";
   ASSERT_TRUE(edited["nodes"].contains("blur2")) << "the pasted copy: " << edited.dump(2);
   EXPECT_EQ(edited["nodes"]["blur2"]["inputs"]["image"], "tint.image");
   EXPECT_EQ(edited["editor"]["positions"]["blur2"], nlohmann::json::array({900, 300}));
+}
+
+TEST_F(EditorWindowTest, GroupCollapsesNodesLinksAtItsPortsAndUngroups) {
+  fs::copy_file(aq::test::source_path("graphs/tint.json"), dir_ / "graph.json");
+  nlohmann::json script = {
+      {{"do", "select"}, {"nodes", {"gbuf", "light"}}},
+      {{"do", "key"}, {"chord", "ctrl+g"}},
+      {{"do", "add_node"}, {"type", "blur"}, {"at", {700, 420}}},
+      {{"do", "fit"}},
+      // A link dragged from the collapsed group's port reaches the inner node.
+      {{"do", "drag_link"}, {"from", "light.image"}, {"to", "blur.image"}},
+      {{"do", "drag_node"}, {"node", "group.Group"}, {"by", {0, 60}}},
+      {{"do", "save"}, {"path", "grouped.json"}},
+      {{"do", "select"}, {"nodes", {"group.Group"}}},
+      {{"do", "key"}, {"chord", "ctrl+alt+g"}},
+      {{"do", "save"}, {"path", "ungrouped.json"}},
+      {{"do", "undo"}},
+      {{"do", "select"}, {"nodes", {"tint"}}},
+  };
+  std::ofstream(dir_ / "script.json") << script.dump(2);
+  std::string log;
+  ASSERT_EQ(run_editor("graph.json --script script.json --screenshot shot.png --quit --size "
+                       "1280x720",
+                       &log),
+            0)
+      << log;
+  const nlohmann::json grouped = read_json(dir_ / "grouped.json");
+  const nlohmann::json groups = grouped["editor"]["groups"];
+  ASSERT_EQ(groups.size(), 1u) << grouped.dump(2);
+  EXPECT_EQ(groups[0]["name"], "Group");
+  EXPECT_EQ(groups[0]["nodes"], nlohmann::json::array({"gbuf", "light"}));
+  EXPECT_EQ(groups[0]["collapsed"], true);
+  EXPECT_EQ(grouped["nodes"]["blur"]["inputs"]["image"], "light.image") << grouped.dump(2);
+  // The group sits at its nodes' top-left, before and after the drag: they moved with it.
+  const auto& positions = grouped["editor"]["positions"];
+  for (int axis : {0, 1}) {
+    EXPECT_DOUBLE_EQ(
+        groups[0]["position"][axis].get<double>(),
+        std::min(positions["gbuf"][axis].get<double>(), positions["light"][axis].get<double>()))
+        << grouped.dump(2);
+  }
+  EXPECT_GT(groups[0]["position"][1].get<double>(), 0.0) << "dragged down";
+  const nlohmann::json ungrouped = read_json(dir_ / "ungrouped.json");
+  EXPECT_FALSE(ungrouped["editor"].contains("groups")) << ungrouped.dump(2);
+  EXPECT_EQ(ungrouped["editor"]["positions"]["light"], positions["light"]);
+  // The screenshot shows the group again (the ungroup was undone) beside the new blur.
+  auto config = aq::ColorConfig::load();
+  ASSERT_TRUE(config.ok());
+  auto shot = aq::read_image((dir_ / "shot.png").string(), *config);
+  ASSERT_TRUE(shot.ok()) << shot.message();
+  EXPECT_EQ(shot->width, 1280);
+}
+
+// A/B wipe of two outputs: A (the viewed tint.image, the lit underwater picture) left of the
+// line, B (gbuf.albedo, black where nothing was drawn: the water above the sea floor) right.
+TEST_F(EditorWindowTest, WipeComparesTwoOutputs) {
+  fs::copy_file(aq::test::source_path("graphs/tint.json"), dir_ / "graph.json");
+  nlohmann::json script = {
+      {{"do", "compare"}, {"output", "gbuf.albedo"}},
+      {{"do", "view"}, {"wipe", 0.3}},
+      {{"do", "compare"}, {"output", "nosuch.image"}, {"expect", "refused"}},
+  };
+  std::ofstream(dir_ / "script.json") << script.dump(2);
+  std::string log;
+  ASSERT_EQ(run_editor("graph.json --script script.json --screenshot shot.png --quit --size "
+                       "1280x720",
+                       &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("compare A tint.image | B gbuf.albedo"), std::string::npos) << log;
+  auto config = aq::ColorConfig::load();
+  ASSERT_TRUE(config.ok());
+  auto shot = aq::read_image((dir_ / "shot.png").string(), *config);
+  ASSERT_TRUE(shot.ok()) << shot.message();
+  ASSERT_EQ(shot->width, 1280);
+  // The viewer's picture spans x 741..1253 at this window size, the water at its top (y 100
+  // from the top, PNG rows read bottom-up). Left of the line (30 %): A's water, blue-green.
+  const int row = shot->height - 1 - 100;
+  EXPECT_GT(shot->at(780, row, 2), 0.1f) << "A: the tinted water";
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_LT(shot->at(1200, row, c), 0.02f) << "B: albedo is black where nothing was drawn";
+  }
 }
 
 }  // namespace

@@ -66,6 +66,9 @@ struct Node {
   // Parameter values as written (JSON); missing parameters take their defaults.
   std::map<std::string, nlohmann::json> params;
   InputLinks inputs;  // input port -> source output(s)
+  // "bypass": true in the file: the node passes its input through (Nuke's disable), for the
+  // render as for the editor; see bypass.h.
+  bool bypass = false;
 };
 
 struct Graph {
