@@ -262,8 +262,8 @@ Result<std::vector<Sweep>> run_graph_sweeps(GlContext& context, const Registry& 
     sweeps.push_back(*sweep);
   }
   if (types.count("hand_tremor") > 0 && !first_node_of_type(graph, "hand_tremor").empty()) {
-    auto sweep = hand_tremor_sweep(context, registry, graph, plan,
-                                   first_node_of_type(graph, "hand_tremor"));
+    auto sweep =
+        hand_tremor_sweep(context, registry, graph, plan, first_node_of_type(graph, "hand_tremor"));
     if (!sweep.ok()) return sweep.error();
     sweeps.push_back(*sweep);
   }

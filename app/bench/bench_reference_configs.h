@@ -50,7 +50,7 @@ Status run_configs(GlContext& context, const Registry& registry, const SweepPlan
                    const std::string& type, const nlohmann::json& base_params,
                    const std::map<std::string, std::string>& inputs,
                    const std::map<std::string, ImageF>& images,
-                   const std::vector<ReferenceConfig>& configs, int width, int height,
-                   Sweep* sweep, const std::function<void(Graph&)>& add_sources = {});
+                   const std::vector<ReferenceConfig>& configs, int width, int height, Sweep* sweep,
+                   const std::function<void(Graph&)>& add_sources = {});
 
 }  // namespace aq::app

@@ -503,8 +503,8 @@ Result<Sweep> dilution_sweep(GlContext& context, const Registry& registry, const
       return reference::dilution(images.at("albedo"), normal, &object, p).image;
     });
     for (const char* precision : kPrecisions) {
-      configs.push_back({"octaves=" + std::to_string(octaves), {{"octaves", octaves}}, precision,
-                         exact});
+      configs.push_back(
+          {"octaves=" + std::to_string(octaves), {{"octaves", octaves}}, precision, exact});
     }
   }
   auto add_light = [&](Graph& g) {
