@@ -103,7 +103,7 @@ aq::Result<ImageF> render(const std::string& graph, int frame) {
 }
 
 TEST(HandTremor, ZeroAmplitudeLeavesTheGBufferBitExact) {
-  for (const char* port : {"depth", "normal", "position"}) {
+  for (const char* port : {"depth", "normal", "position", "albedo", "id"}) {
     auto plain = render(tremor_scene(0.0, false, port), 5);
     auto zero = render(tremor_scene(0.0, true, port), 5);
     ASSERT_TRUE(plain.ok() && zero.ok()) << plain.message() << zero.message();
