@@ -2,6 +2,8 @@
 // without a CPU reference (against the node at the sweep's highest quality in float), and the
 // quality presets of the whole pipeline (against the pipeline reference render). See
 // bench_sweep.h.
+#include <algorithm>
+#include <cstdio>
 #include <string>
 
 #include "bench_graph_build.h"
@@ -35,6 +37,7 @@ const QualityParam kQualityParams[] = {
     {"shadowmap", "size", {256, 512, 1024, 2048}, 4096, "auto_size", "depth", false},
     {"caustics", "resolution", {32, 64, 128, 256}, 512, "auto_resolution", "image", true},
     {"clouds", "steps", {4, 8, 16, 32}, 256, nullptr, "image", false},
+    {"control_map", "octaves", {1, 2, 3, 4}, 8, nullptr, "control", false},
 };
 
 // The pipeline reference: float precision, final quality, and each approximating node at its
@@ -143,6 +146,56 @@ Result<Sweep> quality_param_sweep(GlContext& context, const Registry& registry, 
   return sweep;
 }
 
+// Geometry hand tremor: no approximation to trade, so its sweep shows what the effect costs
+// against how far it moves the picture: amplitude at 1/4, 1/2, 1 and 2 times the graph's, each
+// against the graph's output with amplitude 0 (the node hands the scene on untouched).
+Result<Sweep> hand_tremor_sweep(GlContext& context, const Registry& registry, const Graph& graph,
+                                const SweepPlan& plan, const std::string& node_id) {
+  const json graph_amplitude = graph_param(graph, registry, "hand_tremor", "amplitude");
+  const double amplitude = graph_amplitude.is_number() ? graph_amplitude.get<double>() : 1.0;
+  Sweep sweep;
+  sweep.series = "hand_tremor amplitude";
+  sweep.node_type = "hand_tremor";
+  sweep.kind = "identity_reference";
+  sweep.reference = "the graph's output with '" + node_id +
+                    ".amplitude' = 0 (no tremor) in the same precision: the error is how far the "
+                    "tremor moves the picture";
+  sweep.time_measure = "node wall";
+  sweep.note =
+      "the node's time is its CPU work on the vertices; the meshes it moves are uploaded again "
+      "by each scene reader (gbuffer, control_map), which their own times and the frame time "
+      "include";
+  Evaluator evaluator(context, registry);
+  auto configure = [&](double value) {
+    Graph g = graph;
+    g.settings.width = plan.width;
+    g.settings.height = plan.height;
+    g.nodes[node_id].params["amplitude"] = value;
+    return g;
+  };
+  auto still = measure_node(evaluator, configure(0.0), node_id, nullptr, 0, plan.warmup);
+  if (!still.ok()) return make_error("sweep of '" + node_id + "': " + still.message());
+  for (double scale : {0.25, 0.5, 1.0, 2.0}) {
+    const double value = std::min(amplitude * scale, 10.0);
+    auto measured =
+        measure_node(evaluator, configure(value), node_id, nullptr, plan.frames, plan.warmup);
+    if (!measured.ok()) return make_error("sweep of '" + node_id + "': " + measured.message());
+    auto error = compare_images(measured->output, still->output);
+    if (!error.ok()) return make_error("sweep of '" + node_id + "': " + error.message());
+    SweepPoint point;
+    char setting[64];
+    std::snprintf(setting, sizeof(setting), "amplitude=%g", value);
+    point.setting = setting;
+    point.params = {{"amplitude", value}};
+    point.precision = graph.settings.precision;
+    point.time_ms = measured->wall_ms;
+    point.gpu_ms = measured->gpu_ms;
+    point.error = *error;
+    sweep.points.push_back(point);
+  }
+  return sweep;
+}
+
 Result<Sweep> preset_sweep(GlContext& context, const Registry& registry, const Graph& graph,
                            const SweepPlan& plan) {
   Sweep sweep;
@@ -205,6 +258,12 @@ Result<std::vector<Sweep>> run_graph_sweeps(GlContext& context, const Registry& 
     const std::string node_id = first_node_of_type(graph, quality.type);
     if (node_id.empty()) continue;  // measured at the graph's output: needs the node in it
     auto sweep = quality_param_sweep(context, registry, graph, plan, quality, node_id);
+    if (!sweep.ok()) return sweep.error();
+    sweeps.push_back(*sweep);
+  }
+  if (types.count("hand_tremor") > 0 && !first_node_of_type(graph, "hand_tremor").empty()) {
+    auto sweep =
+        hand_tremor_sweep(context, registry, graph, plan, first_node_of_type(graph, "hand_tremor"));
     if (!sweep.ok()) return sweep.error();
     sweeps.push_back(*sweep);
   }

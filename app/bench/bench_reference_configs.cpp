@@ -10,14 +10,15 @@ Status run_configs(GlContext& context, const Registry& registry, const SweepPlan
                    const std::string& type, const nlohmann::json& base_params,
                    const std::map<std::string, std::string>& inputs,
                    const std::map<std::string, ImageF>& images,
-                   const std::vector<ReferenceConfig>& configs, int width, int height,
-                   Sweep* sweep) {
+                   const std::vector<ReferenceConfig>& configs, int width, int height, Sweep* sweep,
+                   const std::function<void(Graph&)>& add_sources) {
   Evaluator evaluator(context, registry);
   for (const auto& config : configs) {
     nlohmann::json params = base_params;
     for (const auto& [name, value] : config.params.items()) params[name] = value;
     Graph graph =
         single_node_graph(registry, type, params, inputs, width, height, config.precision);
+    if (add_sources) add_sources(graph);
     auto measured =
         measure_node(evaluator, graph, kNodeUnderTest, &images, plan.frames, plan.warmup);
     if (!measured.ok()) {

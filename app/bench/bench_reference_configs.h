@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -43,12 +44,13 @@ std::shared_ptr<const ImageF> timed_reference(double* total_ms, F&& compute) {
 }
 
 // Runs every configuration of one node type (fed `images` through `inputs`) and adds a point
-// with its time and its error against the configuration's reference to `sweep`.
+// with its time and its error against the configuration's reference to `sweep`. `add_sources`,
+// when given, completes each graph before it runs (a node's non-image inputs, e.g. a scene).
 Status run_configs(GlContext& context, const Registry& registry, const SweepPlan& plan,
                    const std::string& type, const nlohmann::json& base_params,
                    const std::map<std::string, std::string>& inputs,
                    const std::map<std::string, ImageF>& images,
-                   const std::vector<ReferenceConfig>& configs, int width, int height,
-                   Sweep* sweep);
+                   const std::vector<ReferenceConfig>& configs, int width, int height, Sweep* sweep,
+                   const std::function<void(Graph&)>& add_sources = {});
 
 }  // namespace aq::app

@@ -15,6 +15,7 @@
 #include "aquarelle/reference/blur.h"
 #include "aquarelle/reference/caustics_flux_reference.h"
 #include "aquarelle/reference/caustics_reference.h"
+#include "aquarelle/reference/dilution.h"
 #include "aquarelle/reference/edge.h"
 #include "aquarelle/reference/edge_darkening.h"
 #include "aquarelle/reference/morphology.h"
@@ -458,6 +459,70 @@ Result<Sweep> paper_relief_sweep(GlContext& context, const Registry& registry,
   return sweep;
 }
 
+// Dilution (MNPR's reflectance): the turbulence FBM's octaves, each against the double
+// reference at the same octaves, on unit normals turning across the image, the test image as
+// albedo and object positions spanning a few FBM cells; the light comes from a scene_join.
+Result<Sweep> dilution_sweep(GlContext& context, const Registry& registry, const Graph& graph,
+                             const SweepPlan& plan) {
+  const int w = plan.width, h = plan.height;
+  ImageF normal(w, h, 4, 1.0f), object(w, h, 4, 1.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double u = 3.0 * (x + 0.5) / w - 1.5, v = 2.0 * (y + 0.5) / h - 1.0;
+      const double n[3] = {std::sin(u), std::cos(u) * std::cos(v), std::cos(u) * std::sin(v)};
+      for (int c = 0; c < 3; ++c) normal.at(x, y, c) = static_cast<float>(n[c]);
+      object.at(x, y, 0) = static_cast<float>(u);
+      object.at(x, y, 1) = static_cast<float>(v);
+      object.at(x, y, 2) = static_cast<float>(0.3 * u * v);
+    }
+  const std::map<std::string, ImageF> images{
+      {"albedo", sweep_test_image(w, h)}, {"normal", normal}, {"object", object}};
+  reference::DilutionParams p;
+  const char* names[] = {"dilution", "diffuse_area", "shade", "turbulence", "scale", "cangiante"};
+  double* values[] = {&p.dilution,   &p.diffuse_area, &p.shade,
+                      &p.turbulence, &p.scale,        &p.cangiante};
+  json params = json::object();
+  for (size_t i = 0; i < 6; ++i) {
+    *values[i] = number(graph_param(graph, registry, "dilution", names[i]), *values[i]);
+    params[names[i]] = *values[i];
+  }
+  const json paper =
+      vec3_or(graph_param(graph, registry, "dilution", "paper_color"), {0.96, 0.93, 0.85});
+  for (int c = 0; c < 3; ++c) p.paper[c] = paper[c].get<double>();
+  params["paper_color"] = paper;
+  // The scene_join's default light, as the node sees it (towards the light, unit).
+  const double light[3] = {0.7, -1.0, -0.15};
+  const double length = std::sqrt(light[0] * light[0] + light[1] * light[1] + light[2] * light[2]);
+  for (int c = 0; c < 3; ++c) p.to_light[c] = -light[c] / length;
+  Sweep sweep = cpu_sweep("dilution turbulence", "dilution",
+                          "reference::dilution in double precision (the same octaves)");
+  std::vector<Config> configs;
+  for (int octaves : {1, 2, 4, 8}) {
+    p.octaves = octaves;
+    auto exact = timed_reference(&sweep.reference_ms, [&] {
+      return reference::dilution(images.at("albedo"), normal, &object, p).image;
+    });
+    for (const char* precision : kPrecisions) {
+      configs.push_back(
+          {"octaves=" + std::to_string(octaves), {{"octaves", octaves}}, precision, exact});
+    }
+  }
+  auto add_light = [&](Graph& g) {
+    Node join;
+    join.type = "scene_join";
+    join.params["light_direction"] = json::array({light[0], light[1], light[2]});
+    g.nodes["input_scene"] = join;
+    g.nodes[kNodeUnderTest].inputs["scene"] = PortRef{"input_scene", "scene"};
+  };
+  if (auto s = run_configs(context, registry, plan, "dilution", params,
+                           {{"albedo", "albedo"}, {"normal", "normal"}, {"object", "object"}},
+                           images, configs, w, h, &sweep, add_light);
+      !s.ok()) {
+    return s.error();
+  }
+  return sweep;
+}
+
 }  // namespace
 
 Result<std::vector<Sweep>> run_reference_sweeps(GlContext& context, const Registry& registry,
@@ -539,6 +604,11 @@ Result<std::vector<Sweep>> run_reference_sweeps(GlContext& context, const Regist
   }
   if (wanted("paper_relief")) {
     auto sweep = paper_relief_sweep(context, registry, plan);
+    if (!sweep.ok()) return sweep.error();
+    sweeps.push_back(*sweep);
+  }
+  if (wanted("dilution")) {
+    auto sweep = dilution_sweep(context, registry, graph, plan);
     if (!sweep.ok()) return sweep.error();
     sweeps.push_back(*sweep);
   }

@@ -4,8 +4,9 @@
 // object); the shade is darkened only as much as `shade` asks:
 //
 //   albedo, normal, scene light ──► lit = clamp((N·L + a − 1)/a, 0, 1)
+//   ──► cangiante C_c = albedo + clamp(cangiante · lit, 0, 1)   (the lit side turns lighter)
 //   object position (control_map.object) ──► τ = turbulence · fbm3(p · scale)
-//   ──► image = mix(albedo, paper, dil) · (1 − shade (1 − lit)),  dil = clamp(dilution · lit · (1 +
+//   ──► image = mix(C_c, paper, dil) · (1 − shade (1 − lit)),  dil = clamp(dilution · lit · (1 +
 //   τ)) ──► dilution = dil (where paper_relief shows the paper)
 #include <aquarelle/plugin.hpp>
 
@@ -28,7 +29,16 @@ enum Output : uint32_t { kImage, kDilution, kOutputCount };
 constexpr aq_port_desc kOutputs[] = {
     aq::image_port("image", "the painted colour"),
     aq::image_port("dilution", "how diluted each pixel is, [0, 1] in rgb (paper_relief's mask)")};
-enum Param : uint32_t { kDilutionAmount, kArea, kShade, kTurbulence, kScale, kOctaves, kPaper };
+enum Param : uint32_t {
+  kDilutionAmount,
+  kArea,
+  kShade,
+  kTurbulence,
+  kScale,
+  kOctaves,
+  kPaper,
+  kCangiante
+};
 constexpr aq_param_desc kParams[] = {
     aq::float_param("dilution", 0.8, 0.0, 1.0,
                     "how far full light dilutes the colour towards the paper"),
@@ -39,7 +49,10 @@ constexpr aq_param_desc kParams[] = {
     aq::float_param("turbulence", 0.5, 0.0, 4.0, "pigment turbulence: FBM gain on the dilution"),
     aq::float_param("scale", 3.0, 0.01, 100.0, "turbulence FBM cells per object-space unit"),
     aq::int_param("octaves", 4, 1, 8, "turbulence FBM octaves"),
-    aq::color_param("paper_color", 0.96, 0.93, 0.85, "the paper's colour (linear)")};
+    aq::color_param("paper_color", 0.96, 0.93, 0.85, "the paper's colour (linear)"),
+    aq::float_param("cangiante", 0.2, 0.0, 1.0,
+                    "MNPR's cangiante: how much lighter the colour turns in the light "
+                    "(C + cangiante * lit, before the dilution; 0: off)")};
 
 struct Dilution {
   int process(aq::Context& ctx) {
@@ -70,6 +83,7 @@ struct Dilution {
     aq::set_vec3(program, "u_paper", ctx.param_vec3(kPaper));
     aq::set_float(program, "u_dilution", ctx.param_float(kDilutionAmount));
     aq::set_float(program, "u_area", ctx.param_float(kArea));
+    aq::set_float(program, "u_cangiante", ctx.param_float(kCangiante));
     aq::set_float(program, "u_shade", ctx.param_float(kShade));
     aq::set_float(program, "u_turbulence", anchored ? ctx.param_float(kTurbulence) : 0.0);
     aq::set_float(program, "u_scale", ctx.param_float(kScale));
@@ -85,6 +99,7 @@ struct Dilution {
 
 AQ_NODE(kDilutionNode, Dilution, "dilution", "Light",
         "MNPR watercolor reflectance: light dilutes the colour towards the paper (with "
-        "object-space FBM turbulence) instead of brightening it; `shade` darkens the unlit side.",
+        "object-space FBM turbulence) and lightens it (cangiante) instead of brightening it; "
+        "`shade` darkens the unlit side.",
         0, kInputs, kOutputs, kParams);
 AQ_PLUGIN("dilution", "1.0", &kDilutionNode)

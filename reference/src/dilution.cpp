@@ -27,8 +27,9 @@ DilutionResult dilution(const ImageF& albedo, const ImageF& normal, const ImageF
         if (!std::isfinite(turbulence)) turbulence = 0.0;
       }
       const double dil = std::clamp(p.dilution * lit * (1.0 + turbulence), 0.0, 1.0);
+      const double lighter = std::clamp(p.cangiante * lit, 0.0, 1.0);
       for (int c = 0; c < 3; ++c) {
-        const double a = albedo.at(x, y, c);
+        const double a = albedo.at(x, y, c) + lighter;
         r.image.at(x, y, c) =
             static_cast<float>((a + (p.paper[c] - a) * dil) * (1.0 - p.shade * (1.0 - lit)));
         r.dilution.at(x, y, c) = static_cast<float>(dil);

@@ -1,6 +1,7 @@
 // Headless tests of the `dilution` node against reference/dilution.h: random normals and
 // albedo without and with object-space turbulence; full light dilutes to the paper colour, the
-// shade darkens only as asked, the background passes unchanged; NaN stays put.
+// cangiante lightens the lit side only, the shade darkens only as asked, the background passes
+// unchanged; 1x1 up; NaN in any input stays on its pixel.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -37,6 +38,7 @@ aq::Result<ImageF> run(const ImageF& albedo, const ImageF& normal, const ImageF*
                    {{"dilution", p.dilution},
                     {"diffuse_area", p.diffuse_area},
                     {"shade", p.shade},
+                    {"cangiante", p.cangiante},
                     {"turbulence", p.turbulence},
                     {"scale", p.scale},
                     {"octaves", p.octaves},
@@ -97,6 +99,63 @@ TEST(Dilution, LightDilutesShadeDarkensOnlyAsAsked) {
   auto unlit = run(albedo, down, nullptr, p);
   ASSERT_TRUE(unlit.ok()) << unlit.message();
   EXPECT_EQ(aq::test::max_abs_diff(*unlit, albedo, 3), 0.0);  // shade 0: the colour itself
+}
+
+TEST(Dilution, CangianteLightensTheLitSideOnly) {
+  const ImageF albedo = aq::test::constant_image(4, 4, 0.2f, 0.4f, 0.6f);
+  const ImageF up = aq::test::constant_image(4, 4, 0.0f, 1.0f, 0.0f);
+  const ImageF down = aq::test::constant_image(4, 4, 0.0f, -1.0f, 0.0f);
+  DilutionParams p;
+  p.dilution = 0.0;
+  p.turbulence = 0.0;
+  p.shade = 0.0;
+  p.cangiante = 0.3;
+  auto lit = run(albedo, up, nullptr, p);
+  auto unlit = run(albedo, down, nullptr, p);
+  ASSERT_TRUE(lit.ok() && unlit.ok()) << lit.message() << unlit.message();
+  // Full light: every channel 0.3 lighter (C + c · lit); unlit: the colour itself.
+  EXPECT_NEAR(lit->at(2, 2, 0), 0.5f, 1e-6);
+  EXPECT_NEAR(lit->at(2, 2, 1), 0.7f, 1e-6);
+  EXPECT_NEAR(lit->at(2, 2, 2), 0.9f, 1e-6);
+  EXPECT_EQ(aq::test::max_abs_diff(*unlit, albedo, 3), 0.0);
+  // Half dilution in full light: halfway from the lighter colour to the paper.
+  p.dilution = 0.5;
+  auto both = run(albedo, up, nullptr, p);
+  ASSERT_TRUE(both.ok()) << both.message();
+  EXPECT_NEAR(both->at(1, 1, 0), 0.5f * (0.5f + 0.96f), 1e-6);
+}
+
+TEST(Dilution, FromOnePixelUp) {
+  for (auto [w, h] : {std::pair{1, 1}, std::pair{1, 7}, std::pair{9, 1}, std::pair{3, 2}}) {
+    const ImageF albedo = aq::test::random_image(w, h, 60 + w);
+    const ImageF normal = random_normals(w, h, 61 + h);
+    const ImageF object = aq::test::random_image(w, h, 62, -2.0f, 2.0f);
+    DilutionParams p;
+    const auto expected = aq::reference::dilution(albedo, normal, &object, p);
+    auto got = run(albedo, normal, &object, p);
+    ASSERT_TRUE(got.ok()) << w << "x" << h << ": " << got.message();
+    ASSERT_EQ(got->width, w);
+    ASSERT_EQ(got->height, h);
+    EXPECT_LE(aq::test::max_abs_diff(*got, expected.image), 1e-4) << w << "x" << h;
+  }
+}
+
+TEST(Dilution, NaNInTheObjectPositionsStaysOnItsPixel) {
+  const ImageF albedo = aq::test::random_image(16, 16, 56);
+  const ImageF normal = random_normals(16, 16, 57);
+  const ImageF clean = aq::test::random_image(16, 16, 58, -2.0f, 2.0f);
+  ImageF dirty = clean;
+  dirty.at(5, 6, 0) = std::numeric_limits<float>::quiet_NaN();
+  dirty.at(11, 2, 2) = std::numeric_limits<float>::infinity();
+  auto a = run(albedo, normal, &clean, {});
+  auto b = run(albedo, normal, &dirty, {});
+  ASSERT_TRUE(a.ok() && b.ok()) << a.message() << b.message();
+  EXPECT_TRUE(aq::test::all_finite(*b));  // a bad anchor means no turbulence there
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      if ((x == 5 && y == 6) || (x == 11 && y == 2)) continue;
+      for (int c = 0; c < 4; ++c) ASSERT_EQ(a->at(x, y, c), b->at(x, y, c)) << x << "," << y;
+    }
 }
 
 TEST(Dilution, NaNStaysPut) {

@@ -1,8 +1,13 @@
 // Headless tests of hand tremor: the screen-space `tremor` node against reference/tremor.h
 // (identity at amplitude 0 and where the control is 0, smooth in time), and the geometry
 // `hand_tremor` node (amplitude 0: the g-buffer bit-exact; a tremor moves silhouettes, not the
-// middle of faces seen head-on, and changes smoothly with time).
+// middle of faces seen head-on, and changes smoothly with time; 1x1; vertices whose normals are
+// NaN (a flattened object's normal matrix) stay where they are and nothing else is disturbed).
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include "aquarelle/reference/tremor.h"
 #include "support/harness.h"
@@ -98,7 +103,7 @@ aq::Result<ImageF> render(const std::string& graph, int frame) {
 }
 
 TEST(HandTremor, ZeroAmplitudeLeavesTheGBufferBitExact) {
-  for (const char* port : {"depth", "normal", "position"}) {
+  for (const char* port : {"depth", "normal", "position", "albedo", "id"}) {
     auto plain = render(tremor_scene(0.0, false, port), 5);
     auto zero = render(tremor_scene(0.0, true, port), 5);
     ASSERT_TRUE(plain.ok() && zero.ok()) << plain.message() << zero.message();
@@ -129,6 +134,68 @@ TEST(HandTremor, MovesSilhouettesSmoothlyInTime) {
     return n;
   };
   EXPECT_LE(changed(*shaken, *next), changed(*shaken, *later));
+}
+
+TEST(HandTremor, OnePixelAndNaNInTheMesh) {
+  for (const char* port : {"depth", "normal"}) {
+    aq::test::RenderOptions options;
+    options.width = 1;
+    options.height = 1;
+    auto tiny = aq::test::render_graph(tremor_scene(1.0, true, port), options);
+    ASSERT_TRUE(tiny.ok()) << tiny.message();
+    EXPECT_EQ(tiny->width, 1);
+    EXPECT_TRUE(aq::test::all_finite(*tiny)) << port;
+  }
+  // A sphere on the left and, on the right, a quad flattened by scale 0 along z (its own
+  // plane): its normal matrix (the inverse transpose) is NaN/Inf, so every vertex of it has a
+  // NaN normal. Those vertices are skipped (they stay where they are); the sphere trembles.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("aq_tremor_test_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const fs::path obj = dir / "quad.obj";
+  std::ofstream(obj) << "v 0.1 0 0\nv 1 0 0\nv 1 1 0\nv 0.1 1 0\nvn 0 0 1\n"
+                        "f 1//1 2//1 3//1\nf 1//1 3//1 4//1\n";
+  auto graph = [&](double amplitude) {
+    nlohmann::json nodes;
+    nodes["ball"] = {{"type", "object"},
+                     {"params",
+                      {{"source", "sphere"},
+                       {"position", {-0.6, 0.5, 0.0}},
+                       {"scale", {0.8, 0.8, 0.8}},
+                       {"tremor", 0.08},
+                       {"tremor_frequency", 3.0}}}};
+    nodes["flat"] = {{"type", "object"},
+                     {"params",
+                      {{"source", "file"},
+                       {"path", obj.string()},
+                       {"id", 2},
+                       {"scale", {1.0, 1.0, 0.0}},
+                       {"tremor", 0.3},
+                       {"tremor_frequency", 0.7}}}};
+    nodes["join"] = {
+        {"type", "scene_join"},
+        {"inputs", {{"objects", nlohmann::json::array({"ball.object", "flat.object"})}}},
+        {"params", {{"camera_position", {0.0, 0.5, 3.0}}, {"camera_target", {0, 0.5, 0}}}}};
+    nodes["tremor"] = {{"type", "hand_tremor"},
+                       {"inputs", {{"scene", "join.scene"}}},
+                       {"params", {{"amplitude", amplitude}}}};
+    nodes["gbuf"] = {{"type", "gbuffer"}, {"inputs", {{"scene", "tremor.scene"}}}};
+    return nlohmann::json({{"aquarelle", 1}, {"nodes", nodes}, {"output", "gbuf.depth"}}).dump();
+  };
+  auto still = render(graph(0.0), 5);
+  auto shaken = render(graph(1.0), 5);
+  ASSERT_TRUE(still.ok() && shaken.ok()) << still.message() << shaken.message();
+  EXPECT_TRUE(aq::test::all_finite(*shaken));
+  // The right half (NaN normals) is where it was; the sphere on the left moved.
+  double right = 0.0, left = 0.0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const double d = std::abs(double(still->at(x, y, 0)) - shaken->at(x, y, 0));
+      (x >= 32 ? right : left) += d;
+    }
+  EXPECT_EQ(right, 0.0);
+  EXPECT_GT(left, 0.0);
+  fs::remove_all(dir);
 }
 
 }  // namespace

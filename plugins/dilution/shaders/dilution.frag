@@ -1,8 +1,9 @@
 // Watercolor reflectance (plugins/dilution/README.md), after Montesdeoca et al.:
 //   D = N·L,  lit = clamp((D + a − 1) / a, 0, 1)              a = diffuse_area
+//   C_c = albedo + clamp(cangiante · lit, 0, 1)                (cangiante: lighter in the light)
 //   τ = turbulence · fbm3(object position · scale)
 //   dil = clamp(dilution · lit · (1 + τ), 0, 1)
-//   out = mix(albedo, paper, dil) · (1 − shade · (1 − lit))
+//   out = mix(C_c, paper, dil) · (1 − shade · (1 − lit))
 // The background (albedo alpha 0) passes unchanged with dil = 0. Alpha is 1: the painting is opaque.
 #include "aquarelle/noise.glsl"
 
@@ -17,6 +18,7 @@ uniform vec3 u_to_light;
 uniform vec3 u_paper;
 uniform float u_dilution;
 uniform float u_area;
+uniform float u_cangiante;
 uniform float u_shade;
 uniform float u_turbulence;
 uniform float u_scale;
@@ -41,7 +43,8 @@ void main() {
     if (isnan(turbulence) || isinf(turbulence)) turbulence = 0.0;
   }
   float dil = clamp(u_dilution * lit * (1.0 + turbulence), 0.0, 1.0);
-  vec3 c = mix(albedo.rgb, u_paper, dil) * (1.0 - u_shade * (1.0 - lit));
+  vec3 cangiante = albedo.rgb + clamp(u_cangiante * lit, 0.0, 1.0);
+  vec3 c = mix(cangiante, u_paper, dil) * (1.0 - u_shade * (1.0 - lit));
   o_color = vec4(c, 1.0);
   o_dilution = vec4(dil, dil, dil, 1.0);
 }

@@ -1,7 +1,7 @@
 // CPU reference of the `dilution` node in double precision (plugins/dilution/README.md):
-// lit = clamp((N·L + a − 1)/a, 0, 1), τ = turbulence · fbm3(anchor · scale),
-// dil = clamp(dilution · lit · (1 + τ), 0, 1), out = mix(albedo, paper, dil) · (1 − shade (1 −
-// lit)).
+// lit = clamp((N·L + a − 1)/a, 0, 1), C_c = albedo + clamp(cangiante · lit, 0, 1) (Montesdeoca
+// et al. 2017, eq. "cangiante"), τ = turbulence · fbm3(anchor · scale),
+// dil = clamp(dilution · lit · (1 + τ), 0, 1), out = mix(C_c, paper, dil) · (1 − shade (1 − lit)).
 #pragma once
 
 #include <aquarelle/core/image.h>
@@ -14,6 +14,7 @@ struct DilutionParams {
   double dilution = 0.8;
   double diffuse_area = 1.0;
   double shade = 0.25;
+  double cangiante = 0.2;
   double turbulence = 0.5;  // used only with an anchor image
   double scale = 3.0;
   int octaves = 4;
