@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Fuzzes the graph reader and validator with libFuzzer for N seconds (default 60), then the
-# mesh header checks (PLY, glTF, GLB) and image reading (PNG, EXR, TIFF, JPEG, HDR, BMP) for
+# mesh header checks (PLY, glTF, GLB, FBX) and image reading (PNG, EXR, TIFF, JPEG, HDR, BMP) for
 # AQUARELLE_FUZZ_HEADER_SECONDS each (default 30), all under a memory limit:
 #   scripts/fuzz.sh [SECONDS] [extra libFuzzer flags...]
 # Builds tests/fuzz (a separate clang project) in build-fuzz, seeds a working corpus from

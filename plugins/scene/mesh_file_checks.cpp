@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <optional>
@@ -13,6 +14,9 @@
 namespace scene {
 
 namespace {
+
+// zlib's deflate reaches at most 1032:1; a little slack covers headers and rounding.
+constexpr uint64_t kDeflateMaxRatio = 1100;
 
 // Assimp keeps well under this per declared vertex or face of a PLY element.
 constexpr uint64_t kBytesPerElementInMemory = 64;
@@ -424,11 +428,168 @@ std::string check_glb(std::string_view bytes, const std::string& folder, uint64_
   return check_gltf_json(json, folder, bin, budget);
 }
 
+namespace {
+
+// Bytes per element of an FBX array property, 0 for a type that is not an array.
+uint64_t fbx_array_element_bytes(char type) {
+  switch (type) {
+    case 'b':
+      return 1;
+    case 'i':
+    case 'f':
+      return 4;
+    case 'l':
+    case 'd':
+      return 8;
+    default:
+      return 0;
+  }
+}
+
+// Binary FBX: node records (end offset, property count, property bytes, name) holding typed
+// properties and nested records up to a null record. Assimp allocates an array property's
+// element count times its size before inflating it, and follows end offsets as given.
+std::string check_fbx_binary(std::string_view bytes, uint64_t budget) {
+  constexpr size_t kHeader = 27;  // "Kaydara FBX Binary  \0", 0x1a 0x00, u32 version
+  if (bytes.size() < kHeader) return "its header is cut short";
+  uint32_t version = 0;
+  std::memcpy(&version, bytes.data() + 23, 4);
+  const bool wide = version >= 7500;  // 64-bit record fields from FBX 7.5 on
+  const size_t field = wide ? 8 : 4;
+  const uint64_t size = bytes.size();
+  auto read_uint = [&](uint64_t at, size_t width) {
+    uint64_t value = 0;
+    std::memcpy(&value, bytes.data() + at, width);  // little-endian, as every machine here
+    return value;
+  };
+  // Ends of the records whose children are being read; at the top level, the file's end.
+  std::vector<uint64_t> ends;
+  uint64_t at = kHeader;
+  while (true) {
+    const uint64_t limit = ends.empty() ? size : ends.back();
+    if (at + 3 * field + 1 > limit) {  // no room for another record: this list ends
+      if (ends.empty()) break;
+      at = ends.back();
+      ends.pop_back();
+      continue;
+    }
+    const uint64_t end = read_uint(at, field);
+    const uint64_t properties = read_uint(at + field, field);
+    const uint64_t property_bytes = read_uint(at + 2 * field, field);
+    const uint64_t name_length = static_cast<uint8_t>(bytes[at + 3 * field]);
+    if (end == 0 && properties == 0 && property_bytes == 0 && name_length == 0) {
+      if (ends.empty()) break;  // the null record ending the top level
+      at = ends.back();         // the null record ending a record's children
+      ends.pop_back();
+      continue;
+    }
+    const uint64_t body = at + 3 * field + 1 + name_length;
+    if (end > limit || end < body || property_bytes > end - body) {
+      return "a record at byte " + std::to_string(at) + " declares its end at byte " +
+             std::to_string(end) + " with " + std::to_string(property_bytes) +
+             " bytes of properties, outside the " + std::to_string(limit) +
+             " bytes it may use (truncated or forged)";
+    }
+    if (properties > property_bytes) {
+      return "a record at byte " + std::to_string(at) + " declares " + std::to_string(properties) +
+             " properties in " + std::to_string(property_bytes) + " bytes (truncated or forged)";
+    }
+    uint64_t p = body;
+    const uint64_t properties_end = body + property_bytes;
+    for (uint64_t i = 0; i < properties; ++i) {
+      if (p >= properties_end) return "a record's properties run past their declared size";
+      const char type = bytes[p++];
+      const uint64_t element = fbx_array_element_bytes(type);
+      uint64_t payload = 0;
+      if (element != 0) {
+        if (p + 12 > properties_end) return "an array property is cut short";
+        const uint64_t count = read_uint(p, 4);
+        const uint64_t encoding = read_uint(p + 4, 4);
+        const uint64_t stored = read_uint(p + 8, 4);
+        p += 12;
+        const uint64_t decoded = times(count, element);
+        if (encoding == 0 ? decoded != stored
+                          : decoded > plus(times(stored, kDeflateMaxRatio), 65536)) {
+          return "an array property at byte " + std::to_string(p - 13) + " declares " +
+                 std::to_string(count) + " elements in " + std::to_string(stored) +
+                 " stored bytes (truncated or forged)";
+        }
+        if (decoded > budget) {
+          return "an array property declares " + mib(decoded) +
+                 ", more than the memory budget of " + mib(budget) +
+                 " (raise AQUARELLE_MEMORY_BUDGET_MB or simplify the model)";
+        }
+        payload = stored;
+      } else if (type == 'S' || type == 'R') {
+        if (p + 4 > properties_end) return "a string property is cut short";
+        payload = read_uint(p, 4);
+        p += 4;
+      } else if (type == 'Y') {
+        payload = 2;
+      } else if (type == 'C') {
+        payload = 1;
+      } else if (type == 'I' || type == 'F') {
+        payload = 4;
+      } else if (type == 'D' || type == 'L') {
+        payload = 8;
+      } else {
+        return "a property at byte " + std::to_string(p - 1) + " has an unknown type";
+      }
+      if (payload > properties_end - p) {
+        return "a property at byte " + std::to_string(p) + " declares " + std::to_string(payload) +
+               " bytes past its record (truncated or forged)";
+      }
+      p += payload;
+    }
+    if (properties_end < end) {  // children follow the properties
+      if (ends.size() >= static_cast<size_t>(kMaxMeshHierarchyDepth)) {
+        return "its records nest deeper than " + std::to_string(kMaxMeshHierarchyDepth);
+      }
+      ends.push_back(end);
+      at = properties_end;
+    } else {
+      at = end;
+    }
+  }
+  return "";
+}
+
+// ASCII FBX: Assimp reserves an array's declared count ("*N {") before reading its values;
+// each value takes at least two characters (a digit and a comma).
+std::string check_fbx_ascii(std::string_view bytes, uint64_t file_size) {
+  for (size_t at = bytes.find('*'); at != std::string_view::npos; at = bytes.find('*', at + 1)) {
+    size_t digits = at + 1;
+    while (digits < bytes.size() && std::isdigit(static_cast<unsigned char>(bytes[digits]))) {
+      ++digits;
+    }
+    if (digits == at + 1) continue;
+    const auto count = parse_count(bytes.substr(at + 1, digits - at - 1));
+    if (!count || times(*count, 2) > file_size + 2) {
+      return "an array declares " +
+             std::string(bytes.substr(at + 1, std::min<size_t>(digits - at - 1, 20))) +
+             " values but the file has " + std::to_string(file_size) +
+             " bytes (truncated or forged)";
+    }
+  }
+  return "";
+}
+
+std::string check_fbx(std::string_view bytes, uint64_t file_size, uint64_t budget) {
+  static constexpr std::string_view kBinaryMagic("Kaydara FBX Binary  \0", 21);
+  if (bytes.substr(0, kBinaryMagic.size()) == kBinaryMagic) {
+    return check_fbx_binary(bytes, budget);
+  }
+  return check_fbx_ascii(bytes, file_size);
+}
+
+}  // namespace
+
 std::string check_mesh_file_bytes(const std::string& ext, std::string_view bytes,
                                   uint64_t file_size, const std::string& folder, uint64_t budget) {
   if (ext == "ply") return check_ply_header(bytes, file_size, budget);
   if (ext == "gltf") return check_gltf_json(bytes, folder, -1, budget);
   if (ext == "glb") return check_glb(bytes, folder, budget);
+  if (ext == "fbx") return check_fbx(bytes, file_size, budget);
   return "";
 }
 

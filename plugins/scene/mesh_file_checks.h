@@ -2,7 +2,7 @@
 // declaring 2e9 vertices makes it reserve 23 GB, a GLB chunk length of 2 GB is allocated as
 // given, a glTF node hierarchy 20,000 deep overflows its recursive reader, and files a mesh
 // refers to (glTF buffers and images, OBJ's mtllib) are opened wherever they point. These
-// checks read only the header (PLY) or the JSON (glTF, GLB) and refuse, by name, what cannot
+// checks read only the header (PLY), the JSON (glTF, GLB) or the record structure (FBX) and refuse, by name, what cannot
 // be right: declared sizes larger than the file holds or than the memory budget allows,
 // hierarchies deeper than kMaxMeshHierarchyDepth or with cycles, and references outside the
 // mesh's folder. No message quotes a file's content. Pure (no Assimp): the fuzzer calls them.

@@ -299,7 +299,7 @@ std::string triangulate_large_polygons(aiScene& scene) {
 
 std::string header_problem(const std::string& path, const std::string& folder) {
   const std::string ext = lowercase_extension(path);
-  if (ext != "ply" && ext != "gltf" && ext != "glb") return "";
+  if (ext != "ply" && ext != "gltf" && ext != "glb" && ext != "fbx") return "";
   const uint64_t budget = aq::files::memory_budget_bytes();
   const uint64_t size = aq::files::regular_file_size(path);
   std::string bytes, why;

@@ -4,6 +4,7 @@
 // 200,000 vertices (quadratic ear clipping: over a minute).
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "bad_input/bad_input_support.h"
 
@@ -111,6 +112,87 @@ TEST(MeshDeclaredSizes, HonestGlbLoads) {
   auto image = load_mesh(dir / "tri.glb");
   ASSERT_TRUE(image.ok()) << image.message();
   EXPECT_GT(covered(*image), 0.05);
+}
+
+// FBX: Assimp allocates an array property's declared element count before inflating it, and
+// reserves an ASCII array's "*N" before reading it.
+std::string u32_le(uint32_t v) {
+  return {static_cast<char>(v), static_cast<char>(v >> 8), static_cast<char>(v >> 16),
+          static_cast<char>(v >> 24)};
+}
+
+struct FbxRecord {
+  std::string name;
+  std::string properties;  // encoded
+  uint32_t property_count = 0;
+  std::vector<FbxRecord> children;
+};
+
+// A binary FBX 7.4 record starting at byte `at`, with its children and their null record.
+std::string fbx_bytes(const FbxRecord& record, uint64_t at) {
+  std::string body = record.properties;
+  if (!record.children.empty()) {
+    uint64_t child_at = at + 13 + record.name.size() + body.size();
+    for (const FbxRecord& child : record.children) {
+      const std::string bytes = fbx_bytes(child, child_at);
+      body += bytes;
+      child_at += bytes.size();
+    }
+    body += std::string(13, '\0');
+  }
+  const uint64_t end = at + 13 + record.name.size() + body.size();
+  return u32_le(static_cast<uint32_t>(end)) + u32_le(record.property_count) +
+         u32_le(static_cast<uint32_t>(record.properties.size())) +
+         static_cast<char>(record.name.size()) + record.name + body;
+}
+
+std::string fbx_file(uint32_t vertex_count, uint32_t encoding, const std::string& stored) {
+  const std::string vertices = "d" + u32_le(vertex_count) + u32_le(encoding) +
+                               u32_le(static_cast<uint32_t>(stored.size())) + stored;
+  const FbxRecord header{"FBXHeaderExtension", "", 0, {{"FBXVersion", "I" + u32_le(7400), 1, {}}}};
+  const FbxRecord objects{
+      "Objects",
+      "",
+      0,
+      {{"Geometry", "S" + u32_le(4) + "Mesh", 1, {{"Vertices", vertices, 1, {}}}}}};
+  std::string file = std::string("Kaydara FBX Binary  \0\x1a\0", 23) + u32_le(7400);
+  file += fbx_bytes(header, file.size());
+  file += fbx_bytes(objects, file.size());
+  return file + std::string(13, '\0') + std::string(16, '\0');
+}
+
+TEST(MeshDeclaredSizes, FbxArrayDeclaringHalfABillionDoublesIsRefused) {
+  const fs::path dir = scratch_dir("bad_input_fbx_array");
+  write_bytes(dir / "forged.fbx", fbx_file(500000000u, 1, std::string(16, 'x')));
+  ASSERT_LT(fs::file_size(dir / "forged.fbx"), 512u);
+  auto image = load_mesh(dir / "forged.fbx");
+  ASSERT_FALSE(image.ok());
+  EXPECT_TRUE(mentions(image.message(), "forged.fbx")) << image.message();
+  EXPECT_TRUE(mentions(image.message(), "500000000 elements in 16 stored bytes"))
+      << image.message();
+}
+
+// The same structure with an honest array passes the check: Assimp itself then finds no
+// mesh in it, and says so in its own words.
+TEST(MeshDeclaredSizes, HonestFbxStructurePassesTheCheck) {
+  const fs::path dir = scratch_dir("bad_input_fbx_honest");
+  write_bytes(dir / "honest.fbx", fbx_file(9, 0, std::string(72, '\0')));
+  auto image = load_mesh(dir / "honest.fbx");
+  if (!image.ok()) {
+    EXPECT_FALSE(mentions(image.message(), "truncated or forged")) << image.message();
+    EXPECT_FALSE(mentions(image.message(), "stored bytes")) << image.message();
+  }
+}
+
+TEST(MeshDeclaredSizes, AsciiFbxArrayLargerThanTheFileIsRefused) {
+  const fs::path dir = scratch_dir("bad_input_fbx_ascii");
+  write_bytes(dir / "forged.fbx",
+              "; FBX 7.4.0 project file\nObjects:  {\n  Geometry: 1, \"Geometry::\", \"Mesh\" {\n"
+              "    Vertices: *4000000000 {\n      a: 0,0,0\n    }\n  }\n}\n");
+  auto image = load_mesh(dir / "forged.fbx");
+  ASSERT_FALSE(image.ok());
+  EXPECT_TRUE(mentions(image.message(), "forged.fbx")) << image.message();
+  EXPECT_TRUE(mentions(image.message(), "4000000000 values")) << image.message();
 }
 
 // Item 4.

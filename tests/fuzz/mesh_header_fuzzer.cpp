@@ -28,8 +28,8 @@ const std::string& scratch_folder() {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
-  static const char* kFormats[] = {"ply", "gltf", "glb"};
-  const std::string ext = kFormats[data[0] % 3];
+  static const char* kFormats[] = {"ply", "gltf", "glb", "fbx"};
+  const std::string ext = kFormats[data[0] % 4];
   const std::string_view bytes(reinterpret_cast<const char*>(data + 1), size - 1);
   const uint64_t budget = uint64_t{256} << 20;
   (void)scene::check_mesh_file_bytes(ext, bytes, bytes.size(), scratch_folder(), budget);
