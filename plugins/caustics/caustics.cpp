@@ -74,8 +74,8 @@ constexpr aq_param_desc kParams[] = {
     aq::int_param("window", 3, 2, 3,
                   "estimator coverage: texels per side of the window whose overlaps are shared "
                   "in closed form (larger triangles go texel by texel, a loop every SIMD lane "
-                  "runs); 3 costs about half of 2 on llvmpipe, equal within the rounding of a "
-                  "count (README)")};
+                  "runs); 3 costs a quarter to a third less than 2 on llvmpipe, with the same "
+                  "light per tile (a few texels split differently in float, see README)")};
 
 // Texture pixels per tile side for about one texel per screen pixel where the tile is seen
 // largest: at the nearest point, under the water, of the meshes' boxes in view, where a tile is
