@@ -36,6 +36,7 @@ levers=(
   "pigment: canvas densities kept while the view stays|pigment|pigment.cache_canvas=false|off"
   "wobble: the paper's precomputed gradient|wobble|-wobble.gradient|off"
   "caustics: grid from the footprint (off by default)|caustics|caustics.auto_grid=true|on"
+  "caustics: coverage in closed form over 3 x 3 texels|caustics|caustics.window=2|off"
   "the default levers off|-|blur.direct_kernel=full pigment.cache_canvas=false -wobble.gradient|off"
 )
 for i in "${!levers[@]}"; do

@@ -278,6 +278,47 @@ TEST(Caustics, CoverageMatchesTheCpuOnTheSameGrid) {
   }
 }
 
+TEST(Caustics, CoverageWindowOfThreeKeepsTheLightOfTheWindowOfTwo) {
+  // The closed form over 3 x 3 texels (the default) against 2 x 2 plus the texel-by-texel loop
+  // for larger triangles: the same exact areas in real arithmetic, the same light in every
+  // tile; in float they differ where a thin folded triangle's area is split between texels
+  // (measured: 4 of 16384 texels by 2e-3 at grid 128, 3 of 9216 by 0.054 of a peak of 9 at
+  // grid 64, steep waves), as the window of two differs from the CPU's double box filter
+  // there (2e-3 and 0.02). Cells as large as texels and steep waves, as at final quality in
+  // the flagship: many refracted triangles span three texels.
+  for (auto [resolution, grid] : {std::pair{128, 128}, std::pair{96, 64}}) {
+    CausticsParams p = small(resolution, grid);
+    p.amplitude = 0.04;
+    nlohmann::json narrow = to_json(p, false);
+    narrow["window"] = 2;
+    nlohmann::json wide = to_json(p, false);
+    wide["window"] = 3;
+    aq::test::RenderOptions options;
+    options.precision = "float";
+    auto two = aq::test::run_node("caustics", {}, narrow, options);
+    auto three = aq::test::run_node("caustics", {}, wide, options);
+    ASSERT_TRUE(two.ok()) << two.message();
+    ASSERT_TRUE(three.ok()) << three.message();
+    const ImageF expected = aq::reference::caustics_by_coverage(p, grid);
+    const double between = aq::test::max_abs_diff(*two, *three, 1);
+    const double between_mean = mean_abs_red(*two, *three);
+    std::printf(
+        "caustics coverage window 3 vs 2, grid %d at %d: max abs %.2e, L1 %.2e; vs CPU max "
+        "%.2e, L1 %.2e (window 2: %.2e, %.2e)\n",
+        grid, resolution, between, between_mean, aq::test::max_abs_diff(*three, expected, 1),
+        mean_abs_red(*three, expected), aq::test::max_abs_diff(*two, expected, 1),
+        mean_abs_red(*two, expected));
+    EXPECT_GT(between, 0.0) << "the two windows must take different paths, or this proves nothing";
+    EXPECT_LE(between, 0.1) << "grid " << grid;
+    EXPECT_LE(between_mean, 2e-5) << "grid " << grid;
+    EXPECT_LE(aq::test::max_abs_diff(*three, expected, 1), 0.1) << "grid " << grid;
+    EXPECT_LE(mean_abs_red(*three, expected), 1e-4) << "grid " << grid;
+    EXPECT_NEAR(stats_of(*three).mean, stats_of(*two).mean, 1e-6) << "the same light";
+    EXPECT_NEAR(stats_of(*three).mean, 1.0, 1e-5) << "the light is conserved";
+    EXPECT_GT(stats_of(*three).max, 2.0) << "the waves must focus, or nothing spans 3 texels";
+  }
+}
+
 TEST(Caustics, PointMatchesTheCpuGridRefractionOnTheSameGrid) {
   // Same algorithm, same grid, float on the GPU against double on the CPU: only pixel centres
   // lying within rounding of a triangle edge may differ.

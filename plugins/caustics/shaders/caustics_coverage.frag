@@ -78,15 +78,24 @@ float slope(vec2 p, vec2 q) {
   return dx != 0.0 ? (q.y - p.y) / dx : 0.0;
 }
 
+// Texels per side of the window whose overlaps come in closed form (caustics.cpp defines it:
+// 3 by default, 2 with `window` 2); a triangle spanning more texels goes texel by texel.
+#ifndef AQ_WINDOW
+#define AQ_WINDOW 3
+#endif
+const int kWindow = AQ_WINDOW;
+const int kWindowTexels = AQ_WINDOW * AQ_WINDOW;
+
 // Shares u_flux counts of the triangle abc (texel units, relative to texel `base`) among the
-// texels it overlaps. A triangle within 2 x 2 texels returns true with its counts for the
-// texels origin + (0,0), (1,0), (0,1), (1,1), for the caller to add (the cell's two triangles
-// mostly share the window: one set of atomics for both); a larger one adds its own.
-bool deposit(ivec2 base, vec2 a, vec2 b, vec2 c, out ivec2 origin, out uvec4 counts) {
+// texels it overlaps. A triangle within kWindow x kWindow texels returns true with its counts
+// for the texels origin + (i, j), at index i + kWindow j, for the caller to add (the cell's
+// two triangles mostly share the window: one set of atomics for both); a larger one adds its
+// own.
+bool deposit(ivec2 base, vec2 a, vec2 b, vec2 c, out ivec2 origin, out uint counts[kWindowTexels]) {
   vec2 lo_corner = floor(min(a, min(b, c)));
   ivec2 extent = ivec2(floor(max(a, max(b, c))) - lo_corner);
   origin = base + ivec2(lo_corner);
-  counts = uvec4(0u);
+  for (int k = 0; k < kWindowTexels; ++k) counts[k] = 0u;
   a -= lo_corner;
   b -= lo_corner;
   c -= lo_corner;
@@ -94,36 +103,61 @@ bool deposit(ivec2 base, vec2 a, vec2 b, vec2 c, out ivec2 origin, out uvec4 cou
   float area = 0.5 * abs(ab.x * ac.y - ab.y * ac.x);
   if (extent == ivec2(0) || !(area > 0.0)) {
     origin += ivec2(floor((a + b + c) / 3.0));
-    counts.x = u_flux;
+    counts[0] = u_flux;
     return true;
   }
   // Running total of the covered area: texel k gets round(Q · covered_k / area) minus what
   // the texels before it got, so the counts never go negative and add up to Q.
   float share = float(u_flux) / area;
   float ab_slope = slope(a, b), bc_slope = slope(b, c), ca_slope = slope(c, a);
-  if (extent.x <= 1 && extent.y <= 1) {
-    // Within 2 x 2 texels (most triangles when the grid is about as fine as the texture): the
-    // areas left of x = 1 (L), below y = 1 (B, the same with x and y swapped) and in the
-    // quadrant left of and below both (Q) give the four overlaps by inclusion-exclusion.
-    float left = abs(half_plane_integral(a, b, ab_slope) + half_plane_integral(b, c, bc_slope) +
-                     half_plane_integral(c, a, ca_slope));
-    float below = abs(half_plane_integral(a.yx, b.yx, slope(a.yx, b.yx)) +
-                      half_plane_integral(b.yx, c.yx, slope(b.yx, c.yx)) +
-                      half_plane_integral(c.yx, a.yx, slope(c.yx, a.yx)));
-    float quadrant = abs(quadrant_integral(a, b, ab_slope) + quadrant_integral(b, c, bc_slope) +
-                         quadrant_integral(c, a, ca_slope));
-    vec4 overlap = max(vec4(quadrant, below - quadrant, left - quadrant,
-                            area - left - below + quadrant),
-                       0.0);
-    vec4 running = vec4(overlap.x, overlap.x + overlap.y, overlap.x + overlap.y + overlap.z,
-                        overlap.x + overlap.y + overlap.z + overlap.w);
-    uvec4 upto = min(uvec4(round(running * share)), uvec4(u_flux));
-    counts = upto - uvec4(0u, upto.xyz);
+  if (extent.x < kWindow && extent.y < kWindow) {
+    // Within the window (nearly every triangle when the grid is about as fine as the texture;
+    // a window of 2 leaves the stretched ones of the focal lines to the texel-by-texel loop,
+    // which every SIMD lane then runs). C(X, Y), the area left of x = X and below y = Y, comes
+    // from the areas left of x = X (L, a half plane), below y = Y (B, the same with x and y
+    // swapped) and in the quadrant left of and below both (Q), each shifted to the unit lines;
+    // the overlap of texel (i, j) is C's inclusion-exclusion over its four corners.
+    float cumulative[(kWindow + 1) * (kWindow + 1)];  // C(X, Y) at X + (kWindow + 1) Y
+    for (int k = 0; k < (kWindow + 1) * (kWindow + 1); ++k) cumulative[k] = 0.0;
+    cumulative[kWindow + (kWindow + 1) * kWindow] = area;
+    for (int line = 1; line < kWindow; ++line) {
+      vec2 shift = vec2(float(line - 1));
+      vec2 sa = a - shift, sb = b - shift, sc = c - shift;
+      cumulative[line + (kWindow + 1) * kWindow] =
+          abs(half_plane_integral(sa, sb, ab_slope) + half_plane_integral(sb, sc, bc_slope) +
+              half_plane_integral(sc, sa, ca_slope));
+      cumulative[kWindow + (kWindow + 1) * line] =
+          abs(half_plane_integral(sa.yx, sb.yx, slope(a.yx, b.yx)) +
+              half_plane_integral(sb.yx, sc.yx, slope(b.yx, c.yx)) +
+              half_plane_integral(sc.yx, sa.yx, slope(c.yx, a.yx)));
+      for (int other = 1; other < kWindow; ++other) {
+        // Q at (X, Y) = (line, other).
+        vec2 q = vec2(float(line - 1), float(other - 1));
+        vec2 qa = a - q, qb = b - q, qc = c - q;
+        cumulative[line + (kWindow + 1) * other] =
+            abs(quadrant_integral(qa, qb, ab_slope) + quadrant_integral(qb, qc, bc_slope) +
+                quadrant_integral(qc, qa, ca_slope));
+      }
+    }
+    float covered = 0.0;
+    uint given = 0u;
+    for (int j = 0; j < kWindow; ++j) {
+      for (int i = 0; i < kWindow; ++i) {
+        float overlap = cumulative[(i + 1) + (kWindow + 1) * (j + 1)] -
+                        cumulative[i + (kWindow + 1) * (j + 1)] -
+                        cumulative[(i + 1) + (kWindow + 1) * j] + cumulative[i + (kWindow + 1) * j];
+        covered += max(overlap, 0.0);
+        uint upto = min(uint(round(covered * share)), u_flux);
+        counts[i + kWindow * j] = upto - given;
+        given = upto;
+      }
+    }
     // The rounding's remainder to the texel holding the centroid (inside the triangle, so
     // overlapped), selected without indexing by a variable (slow on SIMD lanes).
     ivec2 middle = ivec2(floor((a + b + c) / 3.0));
-    uvec4 holds = uvec4(equal(ivec4(0, 1, 2, 3), ivec4(middle.x + 2 * middle.y)));
-    counts += holds * (u_flux - upto.w);
+    for (int k = 0; k < kWindowTexels; ++k) {
+      counts[k] += k == middle.x + kWindow * middle.y ? u_flux - given : 0u;
+    }
     return true;
   }
   float covered = 0.0;
@@ -149,18 +183,17 @@ bool deposit(ivec2 base, vec2 a, vec2 b, vec2 c, out ivec2 origin, out uvec4 cou
   }
   if (!any) {
     origin += ivec2(floor((a + b + c) / 3.0));
-    counts.x = u_flux;
+    counts[0] = u_flux;
     return true;
   }
   add_light(pending_texel, pending + (u_flux - given));  // rounding's remainder
   return false;
 }
 
-void add_window(ivec2 origin, uvec4 counts) {
-  add_light(origin, counts.x);
-  add_light(origin + ivec2(1, 0), counts.y);
-  add_light(origin + ivec2(0, 1), counts.z);
-  add_light(origin + ivec2(1, 1), counts.w);
+void add_window(ivec2 origin, uint counts[kWindowTexels]) {
+  for (int k = 0; k < kWindowTexels; ++k) {
+    add_light(origin + ivec2(k % kWindow, k / kWindow), counts[k]);
+  }
 }
 
 void main() {
@@ -182,11 +215,12 @@ void main() {
     return;
   }
   ivec2 first_origin, second_origin;
-  uvec4 first, second;
+  uint first[kWindowTexels], second[kWindowTexels];
   bool first_windowed = deposit(base, p00, p10, p11, first_origin, first);
   bool second_windowed = deposit(base, p00, p11, p01, second_origin, second);
   if (first_windowed && second_windowed && first_origin == second_origin) {
-    add_window(first_origin, first + second);
+    for (int k = 0; k < kWindowTexels; ++k) first[k] += second[k];
+    add_window(first_origin, first);
   } else {
     if (first_windowed) add_window(first_origin, first);
     if (second_windowed) add_window(second_origin, second);
