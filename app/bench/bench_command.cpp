@@ -29,7 +29,7 @@ cached, and reports the frame cost as copy passes per frame. Then sweeps the qua
 of the graph's nodes (blur method and taps, caustic grid, erode/dilate size and footprint,
 shadow map size and its auto size, caustic texture size and its footprint size, normal
 smoothing iterations, half or float precision) measuring time and error (max abs, mean abs,
-PSNR) against a reference: the double-precision CPU references of tests/reference where they
+PSNR) against a reference: the double-precision CPU references of reference/ where they
 exist, exact values where they are known (smoothing: the sphere a bumpy mesh stands for), else
 the node at its highest quality in float; and the graph's quality presets against a float
 reference render.
