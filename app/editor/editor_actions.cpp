@@ -410,6 +410,7 @@ Status open(EditorState& state, const std::string& path) {
   if (opened) {
     state.selection.clear();
     state.viewed.reset();
+    state.compare.reset();
     state.frame = state.doc.graph().settings.first_frame;
   }
   report(state, opened, "opened " + path);
@@ -420,6 +421,7 @@ void new_graph(EditorState& state) {
   state.doc.new_graph();
   state.selection.clear();
   state.viewed.reset();
+  state.compare.reset();
   report(state, Ok{}, "new graph");
 }
 
