@@ -254,6 +254,15 @@ TEST_F(GroupTest, ACollapsedGroupSitsWhereItsNodesAreAndCanBeRenamed) {
   EXPECT_EQ(read_groups(doc.graph())[0].name, "Group");
 }
 
+TEST_F(GroupTest, TabWithACollapsedGroupSelectedInsertsAfterItsOutput) {
+  actions::select(state, {"a", "b"});
+  ASSERT_TRUE(actions::group_selection(state));
+  auto inserted = actions::add_node_at_cursor(state, "filter", {600, 300});
+  ASSERT_TRUE(inserted.ok());
+  EXPECT_EQ(doc.graph().nodes.at(*inserted).inputs.at("image"), (PortRef{"b", "image"}));
+  EXPECT_EQ(doc.graph().nodes.at("c").inputs.at("image"), (PortRef{*inserted, "image"}));
+}
+
 TEST(GroupFile, AHandWrittenGroupKeepsItsBytesWhenAnotherEditIsSaved) {
   const std::string text = R"({
   "aquarelle": 1,
