@@ -861,6 +861,19 @@ void Canvas::draw_group_node(EditorState& state, ImDrawList* draw, const NodeLay
     text(draw, {spot.at.x - 9 * z - size.x, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
          label);
   }
+  // Why it is marked, on hover: its nodes' reasons, each named.
+  if (failed && ImGui::IsWindowHovered() && layout.rect.contains(vec(ImGui::GetMousePos()))) {
+    std::string why;
+    for (const auto& id : layout.members) {
+      std::vector<std::string> messages;
+      for (const auto& problem : state.doc.problems_of(id)) messages.push_back(problem.message);
+      for (const auto& reason :
+           node_reasons(messages, feedback.error_node == id ? feedback.error : "")) {
+        why += (why.empty() ? "" : "\n") + id + ": " + reason;
+      }
+    }
+    if (!why.empty()) ImGui::SetTooltip("%s", why.c_str());
+  }
   char footer[64];
   std::snprintf(footer, sizeof footer, "group  gpu %.2f ms", gpu_ms);
   text(draw, {layout.rect.min.x + 6 * z, layout.rect.max.y - NodeMetrics::kFooter * z}, z,

@@ -307,9 +307,9 @@ std::string group_item_id(const std::string& name);
 std::optional<std::string> group_name_of_item(const std::string& item);
 
 // The ports a collapsed group shows: each is an inner node's port. Inputs: every input of a
-// member not fed from inside the group (linked from outside, or unlinked, so a new link can be
-// made to it); outputs: every member output read outside the group or giving the graph's
-// output, and every output of a member no other member reads (the group's result).
+// member linked from outside the group, and every required input left unlinked (so it can be
+// linked); outputs: every member output read outside the group or giving the graph's output
+// (when there is none: the outputs of the members no other member reads, the group's result).
 struct GroupPort {
   PortRef inner;  // member node and its port
   aq_port_type type = AQ_PORT_IMAGE;

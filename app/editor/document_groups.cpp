@@ -141,6 +141,8 @@ GroupPorts group_ports(const Graph& graph, const Registry& registry, const Group
   if (graph.output && members.count(graph.output->node)) {
     read_outside.insert({graph.output->node, graph.output->port});
   }
+  // A group whose outputs nothing outside reads shows its last nodes' outputs as its result.
+  const bool dangling = read_outside.empty();
   for (const auto& id : group.nodes) {
     const Node& node = graph.nodes.at(id);
     const NodeType* type = registry.find(node.type);
@@ -150,11 +152,15 @@ GroupPorts group_ports(const Graph& graph, const Registry& registry, const Group
       const bool fed_inside = std::any_of(links.begin(), links.end(), [&](const PortRef& from) {
         return members.count(from.node) > 0;
       });
-      if (!fed_inside) ports.inputs.push_back({{id, input.name}, input.type});
+      const bool fed_outside = !links.empty() && !fed_inside;
+      // Optional inputs left unlinked stay hidden (expand the group to link them).
+      if (fed_outside || (links.empty() && !input.optional)) {
+        ports.inputs.push_back({{id, input.name}, input.type});
+      }
     }
     for (const auto& output : type->outputs) {
       const bool outside = read_outside.count({id, output.name}) > 0;
-      const bool result = !member_read_inside.count(id);
+      const bool result = dangling && !member_read_inside.count(id);
       if (outside || result) ports.outputs.push_back({{id, output.name}, output.type});
     }
   }

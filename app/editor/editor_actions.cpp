@@ -163,14 +163,23 @@ Result<std::string> add_node_at_cursor(EditorState& state, const std::string& ty
   const Graph& graph = state.doc.graph();
   at = free_spot(graph, state.doc.registry(), type, at);
   if (state.selection.size() == 1) {
+    std::optional<PortRef> from;
     const std::string after = *state.selection.begin();
-    const NodeType* after_type = nullptr;
-    if (auto node = graph.nodes.find(after); node != graph.nodes.end()) {
-      after_type = state.doc.registry().find(node->second.type);
+    if (auto name = group_name_of_item(after)) {
+      // After a collapsed group: after its first output.
+      for (const auto& group : read_groups(graph)) {
+        if (group.name != *name) continue;
+        const GroupPorts ports = group_ports(graph, state.doc.registry(), group);
+        if (!ports.outputs.empty()) from = ports.outputs.front().inner;
+      }
+    } else if (auto node = graph.nodes.find(after); node != graph.nodes.end()) {
+      const NodeType* after_type = state.doc.registry().find(node->second.type);
+      if (after_type != nullptr && !after_type->outputs.empty()) {
+        from = PortRef{after, after_type->outputs.front().name};
+      }
     }
-    if (after_type != nullptr && !after_type->outputs.empty()) {
-      auto inserted =
-          state.doc.insert_node_after(type, at, {after, after_type->outputs.front().name});
+    if (from) {
+      auto inserted = state.doc.insert_node_after(type, at, *from);
       if (inserted) {
         state.selection = {*inserted};
         report(state, Ok{}, "inserted " + *inserted + " after " + after);
@@ -410,6 +419,7 @@ Status open(EditorState& state, const std::string& path) {
   if (opened) {
     state.selection.clear();
     state.viewed.reset();
+    state.compare.reset();
     state.frame = state.doc.graph().settings.first_frame;
   }
   report(state, opened, "opened " + path);
@@ -420,6 +430,7 @@ void new_graph(EditorState& state) {
   state.doc.new_graph();
   state.selection.clear();
   state.viewed.reset();
+  state.compare.reset();
   report(state, Ok{}, "new graph");
 }
 

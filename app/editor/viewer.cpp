@@ -546,8 +546,10 @@ void Viewer::draw(EditorState& state) {
   };
   // The display texture has row 0 at the bottom: flip v.
   const unsigned compared = compare_display_texture();
+  float split_x = 1e30f;  // where the wipe line is on screen, when there is one
   if ((wipe_ && held_) || compared != 0) {
     const float split = top_left.x + (bottom_right.x - top_left.x) * wipe_at_;
+    split_x = split;
     // Two outputs: A (viewed) left, B right. Held picture: the held A left, the live image right.
     const ImTextureID left = compared != 0 ? texture_id(display_) : texture_id(held_);
     const ImTextureID right = compared != 0
@@ -603,23 +605,32 @@ void Viewer::draw(EditorState& state) {
     float px = 0;
     float py = 0;
     view_.pixel_at(mouse.x - area_at.x, mouse.y - area_at.y, &px, &py);
+    // Right of the A/B wipe line the probe reads B (scaled if its size differs from A's).
+    const bool probe_b = compared != 0 && mouse.x > split_x;
+    const aq_image& probed = probe_b ? compare_->image_ : image_;
+    if (probe_b) {
+      px *= static_cast<float>(probed.width) / std::max(image_.width, 1);
+      py *= static_cast<float>(probed.height) / std::max(image_.height, 1);
+    }
     int x = static_cast<int>(px);
-    int y = image.height - 1 - static_cast<int>(py);
-    if (x >= 0 && y >= 0 && x < image.width && y < image.height) {
+    int y = probed.height - 1 - static_cast<int>(py);
+    if (x >= 0 && y >= 0 && x < probed.width && y < probed.height) {
       char line[160];
-      if (image.format == AQ_FORMAT_R32UI) {
+      if (compared != 0) ImGui::TextUnformatted(probe_b ? "B" : "A");
+      if (compared != 0) ImGui::SameLine();
+      if (probed.format == AQ_FORMAT_R32UI) {
         GLuint id = 0;
-        glGetTextureSubImage(image.texture, 0, x, y, 0, 1, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT,
+        glGetTextureSubImage(probed.texture, 0, x, y, 0, 1, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT,
                              sizeof id, &id);
         std::snprintf(line, sizeof line, "(%d, %d)  id %u", x, y, id);
-      } else if (is_single_channel_float(image.format)) {
+      } else if (is_single_channel_float(probed.format)) {
         float v = 0;
-        GLenum format = image.format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : GL_RED;
-        glGetTextureSubImage(image.texture, 0, x, y, 0, 1, 1, 1, format, GL_FLOAT, sizeof v, &v);
+        GLenum format = probed.format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : GL_RED;
+        glGetTextureSubImage(probed.texture, 0, x, y, 0, 1, 1, 1, format, GL_FLOAT, sizeof v, &v);
         std::snprintf(line, sizeof line, "(%d, %d)  %.6g", x, y, v);
       } else {
         float v[4] = {0, 0, 0, 0};
-        glGetTextureSubImage(image.texture, 0, x, y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof v, v);
+        glGetTextureSubImage(probed.texture, 0, x, y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof v, v);
         std::snprintf(line, sizeof line, "(%d, %d)  r %.4f  g %.4f  b %.4f  a %.4f", x, y, v[0],
                       v[1], v[2], v[3]);
       }

@@ -86,7 +86,7 @@ class Viewer {
   double last_evaluation_ms() const { return last_ms_; }
   // The image shown is a draft of an interactive edit, to be refined once edits pause: the
   // UI loop keeps polling instead of sleeping until then.
-  bool refine_pending() const { return showing_draft_ || !settled_; }
+  bool refine_pending() const { return showing_draft_ || !settled(); }
   bool showing_draft() const { return showing_draft_; }
   // A drag of a graph whose full evaluation takes longer than this (ms) shows drafts.
   void set_gesture_budget_ms(double ms) { gesture_budget_ms_ = ms; }

@@ -321,6 +321,35 @@ TEST_F(EditingTest, LayoutIsNotPartOfTheEvaluationKey) {
             (std::set<std::string>{"src", "a"}));
 }
 
+// A graph saved by an older editor kept bypass in editor.bypassed: it opens bypassed, and
+// saving moves the mark onto the node (only those lines change).
+TEST(BypassMigration, OldEditorMarksOpenBypassedAndSaveOnTheNode) {
+  const std::string text = R"({
+  "aquarelle": 1,
+  "nodes": {
+    "src": { "type": "source" },
+    "a": { "type": "filter", "inputs": { "image": "src.image" } }
+  },
+  "output": "a.image",
+  "editor": { "bypassed": { "a": true }, "positions": { "src": [0, 0], "a": [250, 0] } }
+}
+)";
+  const fs::path path = fs::temp_directory_path() / "aq_bypass_migration_test.json";
+  std::ofstream(path, std::ios::binary) << text;
+  Document doc(registry());
+  ASSERT_TRUE(doc.open(path.string()));
+  EXPECT_TRUE(doc.bypassed("a"));
+  const std::string saved = doc.text_to_save();
+  EXPECT_NE(saved.find(
+                R"("a": { "type": "filter", "inputs": { "image": "src.image" }, "bypass": true })"),
+            std::string::npos)
+      << saved;
+  EXPECT_NE(saved.find(R"("editor": { "positions": { "src": [0, 0], "a": [250, 0] } })"),
+            std::string::npos)
+      << saved;
+  fs::remove(path);
+}
+
 TEST(NodeTooltip, SaysEachReasonOnceInTheEditorsTerms) {
   const auto reasons = node_reasons(
       {"required input \"image\" (image) is not connected: add \"inputs\": {\"image\": "

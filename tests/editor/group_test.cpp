@@ -92,11 +92,11 @@ TEST_F(GroupTest, CollapsedGroupIsOneNodeWithTheBoundaryLinksAsPorts) {
   EXPECT_EQ(find(layouts, "b"), nullptr);
   const NodeLayout* group = find(layouts, item);
   ASSERT_NE(group, nullptr);
-  // Inputs: a.image (from src, outside), and the members' free inputs; b.image is fed inside.
+  // Inputs: a.image (from src, outside); b.image is fed inside; the optional masks are unlinked.
   std::vector<std::string> inputs, outputs;
   for (const auto& spot : group->inputs) inputs.push_back(spot.node + "." + spot.port);
   for (const auto& spot : group->outputs) outputs.push_back(spot.node + "." + spot.port);
-  EXPECT_EQ(inputs, (std::vector<std::string>{"a.image", "a.mask", "b.mask"}));
+  EXPECT_EQ(inputs, (std::vector<std::string>{"a.image"}));
   // Outputs: b.image is read outside (by c); a.image only inside.
   EXPECT_EQ(outputs, (std::vector<std::string>{"b.image"}));
 
@@ -105,14 +105,29 @@ TEST_F(GroupTest, CollapsedGroupIsOneNodeWithTheBoundaryLinksAsPorts) {
   EXPECT_EQ(find_port_spot(layouts, "b", "image", false), &group->outputs[0]);
   EXPECT_EQ(find_port_spot(layouts, "b", "image", true), nullptr) << "an inner link is hidden";
   EXPECT_EQ(find_node_layout(layouts, "b"), group);
+  // A required input left unlinked is shown, to be linked; a group nobody reads shows its
+  // last node's output as its result.
+  ASSERT_TRUE(doc.group_nodes({"c"}, "tail").ok());
+  ASSERT_TRUE(doc.unlink("c", "image"));
+  const Group tail = read_groups(doc.graph())[1];
+  ASSERT_TRUE(doc.set_output(std::nullopt));
+  const GroupPorts ports = group_ports(doc.graph(), registry(), tail);
+  ASSERT_EQ(ports.inputs.size(), 1u);
+  EXPECT_EQ(ports.inputs[0].inner, (PortRef{"c", "image"}));
+  ASSERT_EQ(ports.outputs.size(), 1u);
+  EXPECT_EQ(ports.outputs[0].inner, (PortRef{"c", "image"}));
+  ASSERT_TRUE(doc.undo());
+  ASSERT_TRUE(doc.undo());
+  ASSERT_TRUE(doc.undo());
 
   // A port of the group is the inner node's: a link made there reaches it.
-  auto hit = port_at(layouts, group->inputs[1].at, 4.0f);
+  auto hit = port_at(layouts, group->inputs[0].at, 4.0f);
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->node, "a");
-  EXPECT_EQ(hit->spot.port, "mask");
-  ASSERT_TRUE(actions::link(state, {"src", "image"}, hit->node, hit->spot.port));
-  EXPECT_EQ(doc.graph().nodes.at("a").inputs.at("mask"), (PortRef{"src", "image"}));
+  EXPECT_EQ(hit->spot.port, "image");
+  ASSERT_TRUE(doc.add_node("source", {0, 300}, "src2").ok());
+  ASSERT_TRUE(actions::link(state, {"src2", "image"}, hit->node, hit->spot.port));
+  EXPECT_EQ(doc.graph().nodes.at("a").inputs.at("image"), (PortRef{"src2", "image"}));
   auto out = port_at(layouts, group->outputs[0].at, 4.0f);
   ASSERT_TRUE(out);
   EXPECT_EQ(out->node, "b");
@@ -237,6 +252,15 @@ TEST_F(GroupTest, ACollapsedGroupSitsWhereItsNodesAreAndCanBeRenamed) {
   ASSERT_TRUE(doc.undo());
   ASSERT_TRUE(doc.undo());
   EXPECT_EQ(read_groups(doc.graph())[0].name, "Group");
+}
+
+TEST_F(GroupTest, TabWithACollapsedGroupSelectedInsertsAfterItsOutput) {
+  actions::select(state, {"a", "b"});
+  ASSERT_TRUE(actions::group_selection(state));
+  auto inserted = actions::add_node_at_cursor(state, "filter", {600, 300});
+  ASSERT_TRUE(inserted.ok());
+  EXPECT_EQ(doc.graph().nodes.at(*inserted).inputs.at("image"), (PortRef{"b", "image"}));
+  EXPECT_EQ(doc.graph().nodes.at("c").inputs.at("image"), (PortRef{*inserted, "image"}));
 }
 
 TEST(GroupFile, AHandWrittenGroupKeepsItsBytesWhenAnotherEditIsSaved) {
