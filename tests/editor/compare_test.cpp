@@ -4,6 +4,7 @@
 // output that does not exist, and deleting B's node ends the compare.
 #include "editor/editor_actions.h"
 #include "editor/viewer.h"
+#include "editor/viewer_fixture.h"
 
 #include <aquarelle/core/gl_context.h>
 #include <gtest/gtest.h>
@@ -15,25 +16,9 @@
 namespace aq::editor {
 namespace {
 
-struct Fixture {
-  std::unique_ptr<GlContext> context;
-  Document document{test::registry()};
-  EditorState state{document};
-  std::unique_ptr<Viewer> viewer;
-
+struct Fixture : test::ViewerFixture {
   bool open(const std::string& graph, int width, int height) {
-    auto made = create_headless_context(GlBackend::kAuto);
-    if (!made.ok()) return false;
-    context = std::move(*made);
-    if (!document.open(test::source_path(graph)).ok()) return false;
-    Settings settings = document.graph().settings;
-    settings.width = width;
-    settings.height = height;
-    if (!document.set_settings(settings).ok()) return false;
-    viewer = std::make_unique<Viewer>(std::make_unique<EvalWorker>(test::registry(), *context));
-    viewer->set_compare_viewer(
-        std::make_unique<Viewer>(std::make_unique<EvalWorker>(test::registry(), *context)));
-    return true;
+    return ViewerFixture::open(graph, width, height, /*with_compare=*/true);
   }
 };
 

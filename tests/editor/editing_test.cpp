@@ -8,6 +8,7 @@
 #include "editor/document.h"
 #include "editor/editor_actions.h"
 #include "editor/eval_policy.h"
+#include "editor/fake_node_types.h"
 #include "editor/file_dialog.h"
 #include "editor/frame_stats.h"
 #include "editor/image_view.h"
@@ -24,37 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-PortInfo image_port(const std::string& name) {
-  PortInfo info;
-  info.name = name;
-  info.type = AQ_PORT_IMAGE;
-  info.optional = name != "image";
-  return info;
-}
-
 const Registry& registry() {
-  static const Registry r = [] {
-    Registry out;
-    std::string why;
-    NodeType source;
-    source.name = "source";
-    source.outputs = {image_port("image")};
-    EXPECT_TRUE(out.add(source, &why)) << why;
-    NodeType filter;
-    filter.name = "filter";
-    filter.inputs = {image_port("image"), image_port("mask")};
-    filter.outputs = {image_port("image")};
-    ParamInfo amount;
-    amount.name = "amount";
-    amount.type = AQ_PARAM_FLOAT;
-    amount.default_value[0] = 1.0;
-    amount.min_value = 0.0;
-    amount.max_value = 10.0;
-    filter.params = {amount};
-    EXPECT_TRUE(out.add(filter, &why)) << why;
-    return out;
-  }();
-  return r;
+  return test::fake_registry();
 }
 
 // src → a → b (output b.image)

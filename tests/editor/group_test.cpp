@@ -6,6 +6,7 @@
 #include "editor/canvas_view.h"
 #include "editor/document.h"
 #include "editor/editor_actions.h"
+#include "editor/fake_node_types.h"
 
 #include <gtest/gtest.h>
 
@@ -18,30 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-PortInfo image_port(const std::string& name) {
-  PortInfo info;
-  info.name = name;
-  info.type = AQ_PORT_IMAGE;
-  info.optional = name != "image";
-  return info;
-}
-
 const Registry& registry() {
-  static const Registry r = [] {
-    Registry out;
-    std::string why;
-    NodeType source;
-    source.name = "source";
-    source.outputs = {image_port("image")};
-    EXPECT_TRUE(out.add(source, &why)) << why;
-    NodeType filter;
-    filter.name = "filter";
-    filter.inputs = {image_port("image"), image_port("mask")};
-    filter.outputs = {image_port("image")};
-    EXPECT_TRUE(out.add(filter, &why)) << why;
-    return out;
-  }();
-  return r;
+  return test::fake_registry();
 }
 
 std::string read_text(const fs::path& path) {

@@ -3,6 +3,7 @@
 // than the drag needs, the full image as soon as the drag ends, a typed value in full at once;
 // moving a node or adding an unconnected one evaluates nothing; an error keeps the last image.
 #include "editor/viewer.h"
+#include "editor/viewer_fixture.h"
 
 #include <aquarelle/core/gl_context.h>
 #include <gtest/gtest.h>
@@ -12,25 +13,7 @@
 namespace aq::editor {
 namespace {
 
-struct Fixture {
-  std::unique_ptr<GlContext> context;
-  Document document{test::registry()};
-  EditorState state{document};
-  std::unique_ptr<Viewer> viewer;
-
-  bool open(const std::string& graph, int width, int height) {
-    auto made = create_headless_context(GlBackend::kAuto);
-    if (!made.ok()) return false;
-    context = std::move(*made);
-    if (!document.open(test::source_path(graph)).ok()) return false;
-    Settings settings = document.graph().settings;
-    settings.width = width;
-    settings.height = height;
-    if (!document.set_settings(settings).ok()) return false;
-    viewer = std::make_unique<Viewer>(std::make_unique<EvalWorker>(test::registry(), *context));
-    return true;
-  }
-};
+using Fixture = test::ViewerFixture;
 
 // The budget is set rather than measured so the test does not depend on the machine's speed.
 TEST(Viewer, DraftsOnlyWhileDraggingASlowGraphAndRefineWhenTheDragEnds) {
