@@ -9,7 +9,13 @@
 #include <aquarelle/core/color.h>
 #include <aquarelle/core/image_io.h>
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
 #include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
 
 #include "app/cli_support.h"
 #include "support/harness.h"
@@ -84,10 +90,34 @@ TEST_P(ChunkInvariance, FrameIsTheSameAloneInAChunkAndInTheWholeRange) {
   EXPECT_GT(max_abs_diff(*early, *late), 0.0) << graph << " does not animate";
 }
 
-// The animated graphs of graphs/ (settings.frames longer than one frame).
-INSTANTIATE_TEST_SUITE_P(AnimatedGraphs, ChunkInvariance,
-                         ::testing::Values("underwater.json", "watercolor.json", "scene_light.json",
-                                           "caustics.json"),
+// Every animated graph of graphs/ (settings.frames longer than one frame), found when the test
+// starts so a new graph is covered without an edit here.
+std::vector<std::string> animated_graphs() {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(source_path("graphs"))) {
+    if (entry.path().extension() != ".json") continue;
+    std::ifstream in(entry.path());
+    const auto graph = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+    const auto frames = graph.is_object() ? graph.value("settings", nlohmann::json::object())
+                                                .value("frames", nlohmann::json::array())
+                                          : nlohmann::json::array();
+    if (frames.is_array() && frames.size() == 2 && frames[1].is_number() && frames[0].is_number() &&
+        frames[1].get<int>() > frames[0].get<int>()) {
+      names.push_back(entry.path().filename().string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(ChunkInvarianceCoverage, FindsTheFlagshipAndTheOtherAnimatedGraphs) {
+  const auto names = animated_graphs();
+  for (const char* graph : {"underwater.json", "art_directed.json", "windmill.json"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), graph), names.end()) << graph;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AnimatedGraphs, ChunkInvariance, ::testing::ValuesIn(animated_graphs()),
                          [](const auto& info) {
                            return info.param.substr(0, info.param.find('.'));
                          });
