@@ -155,6 +155,9 @@ PYBIND11_MODULE(aquarelle, m) {
       .def("unlink", &PyGraph::unlink, py::arg("target"), "Disconnects 'node.input'")
       .def("add_node", &PyGraph::add_node, py::arg("id"), py::arg("type"))
       .def("remove_node", &PyGraph::remove_node, py::arg("id"))
+      .def("bypass", &PyGraph::bypass, py::arg("node"), "Whether the node is bypassed")
+      .def("set_bypass", &PyGraph::set_bypass, py::arg("node"), py::arg("bypass") = true,
+           "Bypass (Nuke's disable) or enable a node: it passes its first input through")
       .def_property("output", &PyGraph::output, &PyGraph::set_output)
       .def_property("width", &PyGraph::width, &PyGraph::set_width)
       .def_property("height", &PyGraph::height, &PyGraph::set_height)

@@ -315,6 +315,15 @@ void PyGraph::remove_node(const std::string& id) {
   graph_.nodes.erase(id);
 }
 
+bool PyGraph::bypass(const std::string& id) const {
+  return node(id).bypass;
+}
+
+void PyGraph::set_bypass(const std::string& id, bool bypass) {
+  node(id);
+  graph_.nodes.at(id).bypass = bypass;
+}
+
 void PyGraph::set_output(const std::string& port) {
   auto ref = PortRef::parse(port);
   if (!ref) throw Failure("output '" + port + "': expected 'node.port', e.g. 'tint.image'");

@@ -57,6 +57,9 @@ class PyGraph {
   void unlink(const std::string& target);
   void add_node(const std::string& id, const std::string& type);
   void remove_node(const std::string& id);
+  // Nuke's disable: the node passes its first input through, in the render as in the editor.
+  bool bypass(const std::string& id) const;
+  void set_bypass(const std::string& id, bool bypass);
 
   std::string output() const { return graph_.output ? graph_.output->str() : ""; }
   void set_output(const std::string& port);

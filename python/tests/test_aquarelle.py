@@ -135,6 +135,19 @@ def test_a_parameter_change_changes_the_output(renderer):
     assert np.abs(before - after).max() > 0.01
 
 
+def test_a_bypassed_node_passes_its_input_through(renderer, tmp_path):
+    graph = small()
+    before_tint = renderer.evaluate(graph, frame=2, output="vignette.image")
+    graph.set_bypass("tint")
+    assert graph.bypass("tint") and not graph.bypass("vignette")
+    bypassed = renderer.evaluate(graph, frame=2)
+    assert np.array_equal(bypassed, before_tint)
+    graph.save(str(tmp_path / "bypassed.json"))
+    assert aquarelle.Graph.load(str(tmp_path / "bypassed.json")).bypass("tint")
+    graph.set_bypass("tint", False)
+    assert np.abs(renderer.evaluate(graph, frame=2) - before_tint).max() > 0.01
+
+
 def test_render_a_range_with_progress_and_resume(renderer, tmp_path):
     graph = small(width=48, height=27)
     calls = []
