@@ -121,6 +121,20 @@ std::string Document::copy_nodes(const std::vector<std::string>& ids) const {
   }
   nlohmann::json text = {{"aquarelle", graph_.version}, {"nodes", nodes}};
   if (!positions.empty()) text["editor"]["positions"] = positions;
+  // A group travels with its nodes when all of them are copied.
+  nlohmann::json groups = nlohmann::json::array();
+  for (const Group& group : read_groups(graph_)) {
+    const bool whole = std::all_of(group.nodes.begin(), group.nodes.end(), [&](const auto& id) {
+      return std::find(ids.begin(), ids.end(), id) != ids.end();
+    });
+    if (!whole) continue;
+    groups.push_back(
+        {{"name", group.name},
+         {"nodes", group.nodes},
+         {"collapsed", group.collapsed},
+         {"position", {std::llround(group.position.x), std::llround(group.position.y)}}});
+  }
+  if (!groups.empty()) text["editor"]["groups"] = groups;
   return text.dump(2) + "\n";
 }
 
@@ -195,6 +209,24 @@ Result<std::vector<std::string>> Document::paste_nodes(const std::string& text,
     write_position(edited, fresh, Position{where.x + shift.x, where.y + shift.y});
     created.push_back(fresh);
   }
+  // Groups copied whole come back around the pasted nodes, under a name not yet taken.
+  Graph copied;
+  copied.editor = pasted.value("editor", nlohmann::json::object());
+  for (const auto& [id, node] : pasted["nodes"].items()) copied.nodes[id] = Node{};
+  auto groups = read_groups(edited);
+  const size_t before = groups.size();
+  for (Group group : read_groups(copied)) {
+    for (auto& id : group.nodes) id = new_id_of[id];
+    const std::string base = group.name;
+    for (int n = 2; std::any_of(groups.begin(), groups.end(),
+                                [&](const Group& g) { return g.name == group.name; });
+         ++n) {
+      group.name = base + std::to_string(n);
+    }
+    group.position = {group.position.x + shift.x, group.position.y + shift.y};
+    groups.push_back(std::move(group));
+  }
+  if (groups.size() > before) write_groups(edited, groups);
   commit_edit(created.size() == 1 ? "paste " + created.front()
                                   : "paste " + std::to_string(created.size()) + " nodes",
               edited);

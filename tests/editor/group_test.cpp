@@ -274,5 +274,38 @@ TEST(GroupFile, AHandWrittenGroupKeepsItsBytesWhenAnotherEditIsSaved) {
   fs::remove_all(dir);
 }
 
+// A group copied whole comes back with the pasted nodes (in the same or another file), under a
+// name not yet taken; a group copied in part does not.
+TEST_F(GroupTest, CopyAndPasteCarryAGroupCopiedWhole) {
+  actions::select(state, {"a", "b"});
+  ASSERT_TRUE(actions::group_selection(state));
+  actions::select(state, {item});
+  const std::string clipboard = actions::copy_selection(state);
+  ASSERT_TRUE(actions::paste(state, clipboard, Position{100, 400}).ok());
+  auto groups = read_groups(doc.graph());
+  ASSERT_EQ(groups.size(), 2u);
+  EXPECT_EQ(groups[1].name, "Group2");
+  ASSERT_EQ(groups[1].nodes.size(), 2u);
+  for (const auto& id : groups[1].nodes) {
+    EXPECT_TRUE(id != "a" && id != "b") << id << " is a copy, not the original";
+    EXPECT_TRUE(doc.graph().nodes.count(id)) << id;
+  }
+  EXPECT_TRUE(groups[1].collapsed);
+  EXPECT_EQ(groups[1].position, (Position{100, 400}));
+
+  Document other{registry()};
+  EditorState elsewhere{other};
+  ASSERT_TRUE(actions::paste(elsewhere, clipboard, std::nullopt).ok());
+  groups = read_groups(other.graph());
+  ASSERT_EQ(groups.size(), 1u);
+  EXPECT_EQ(groups[0].name, "Group");
+  EXPECT_EQ(groups[0].nodes, (std::vector<std::string>{"a", "b"}));
+
+  Document part{registry()};
+  EditorState partly{part};
+  ASSERT_TRUE(actions::paste(partly, doc.copy_nodes({"a"}), std::nullopt).ok());
+  EXPECT_TRUE(read_groups(part.graph()).empty());
+}
+
 }  // namespace
 }  // namespace aq::editor
