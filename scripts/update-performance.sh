@@ -38,13 +38,17 @@ levers=(
   "caustics: grid from the footprint (off by default)|caustics|caustics.auto_grid=true|on"
   "caustics: coverage in closed form over 3 x 3 texels|caustics|caustics.window=2|off"
   "the default levers off|-|blur.direct_kernel=full pigment.cache_canvas=false -wobble.gradient|off"
+  "formats by need: 8-bit edge source and paper|edge|env:AQUARELLE_FORMATS_BY_NEED=0|off"
 )
 for i in "${!levers[@]}"; do
   IFS='|' read -r name node settings sense <<< "${levers[$i]}"
   sets=()
+  envs=()
   run_graph=$graph
   for s in $settings; do
-    if [ "${s#-}" != "$s" ]; then
+    if [ "${s#env:}" != "$s" ]; then
+      envs+=("${s#env:}")  # env:NAME=VALUE: a host switch the bench has no --set for
+    elif [ "${s#-}" != "$s" ]; then
       # -NODE.INPUT: the graph without that link (a copy beside the original, so that paths
       # relative to the graph's folder still resolve).
       copy=$(dirname "$graph")/.levers-$i.json
@@ -61,7 +65,7 @@ PYTHON
     fi
   done
   echo "update-performance: lever run $((i + 1))/${#levers[@]}: $name" >&2
-  "$build/app/aquarelle" bench "$run_graph" --size 1280x720 --frames 3 --warmup 1 \
+  env "${envs[@]}" "$build/app/aquarelle" bench "$run_graph" --size 1280x720 --frames 3 --warmup 1 \
     --quality final --pipeline-only --json -q "${sets[@]}" > "$out/$i.json"
   [ "$run_graph" = "$graph" ] || rm -f "$run_graph"
 done

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
@@ -321,6 +322,13 @@ Result<ImageF> Evaluator::read_back(const TextureRef& texture) {
   return read_texture(image.texture, image.width, image.height, image.format);
 }
 
+// AQUARELLE_FORMATS_BY_NEED=0 keeps every output in the format its plugin asks for, so a bench
+// run can measure the lever off without a rebuild (the bench sets no EvalOptions for it).
+static bool formats_by_need_from_environment() {
+  const char* value = std::getenv("AQUARELLE_FORMATS_BY_NEED");
+  return value == nullptr || std::string(value) != "0";
+}
+
 Result<Plan> Evaluator::plan(const Graph& given_graph, const EvalOptions& options,
                              const std::optional<PortRef>& given_output) const {
   auto bypassed = bypassed_graph(given_graph, registry_, given_output);  // bypass.h
@@ -330,6 +338,7 @@ Result<Plan> Evaluator::plan(const Graph& given_graph, const EvalOptions& option
   PlanOptions plan_options;
   plan_options.fuse_pointwise = options.fuse_pointwise;
   plan_options.retain_static_outputs = options.retain_outputs || options.retain_static_outputs;
+  plan_options.formats_by_need = options.formats_by_need && formats_by_need_from_environment();
   return compile_plan(graph, registry_, plan_options, output);
 }
 
@@ -410,6 +419,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
     key = hash_value(key, format);
     key = hash_value(key, quality_index(settings.quality));
     if (type->time_dependent()) key = hash_value(key, options.frame);
+    for (bool narrowed : planned.eight_bit_outputs) key = hash_value(key, narrowed ? 8 : 0);
     key = builtin_key(*type, params, options, key);
 
     // Fusion: a deferred node only records its stage; the node reading it runs the chain.
@@ -513,6 +523,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       call.state = &state;
       call.node_id = id;
       call.input_refs = &input_refs;
+      call.eight_bit_outputs = &planned.eight_bit_outputs;
       aq_process_ctx ctx{};
       fill_process_ctx(ctx, host, context_.generation(), call, inputs, params, settings, format,
                        time, options.frame, working);
@@ -600,7 +611,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
   if (result && result->image.width == working.width && result->image.height == working.height) {
     const uint32_t out_format = result->image.format;
     const bool filterable = out_format == AQ_FORMAT_RGBA16F || out_format == AQ_FORMAT_RGBA32F ||
-                            out_format == AQ_FORMAT_R32F;
+                            out_format == AQ_FORMAT_R32F || out_format == AQ_FORMAT_RGBA8;
     if (!filterable || (working.width == settings.width && working.height == settings.height)) {
       return result;  // ids and depth stay at the working size: they cannot be filtered
     }

@@ -47,6 +47,8 @@ struct CallState {
   std::string error;
   std::vector<TextureRef> scratch;
   const std::vector<TextureRef>* input_refs = nullptr;
+  // Per output: the plan stores it as RGBA8 (bandwidth by need); null or empty: none.
+  const std::vector<bool>* eight_bit_outputs = nullptr;
 };
 
 class HostServices {

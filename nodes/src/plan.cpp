@@ -83,9 +83,40 @@ const char* format_name(uint32_t format) {
       return "DEPTH32F";
     case AQ_FORMAT_R32UI:
       return "R32UI";
+    case AQ_FORMAT_RGBA8:
+      return "RGBA8";
     default:
       return "?";
   }
+}
+
+// Which image outputs of `id` every reader reads through an AQ_PORT_8BIT_ENOUGH input; an
+// output nobody reads, the requested output and a deferred node's output keep their format.
+std::vector<bool> eight_bit_outputs(const Graph& graph, const Registry& registry,
+                                    const std::vector<std::string>& order, const std::string& id,
+                                    const NodeType& type, const PortRef& target) {
+  std::vector<bool> narrowed(type.outputs.size(), false);
+  bool any = false;
+  for (size_t o = 0; o < type.outputs.size(); ++o) {
+    if (type.outputs[o].type != AQ_PORT_IMAGE) continue;
+    const std::string& port = type.outputs[o].name;
+    if (target.node == id && target.port == port) continue;
+    int readers = 0;
+    bool all_content = true;
+    for (const auto& reader_id : order) {
+      const Node& reader = graph.nodes.at(reader_id);
+      const NodeType* reader_type = registry.find(reader.type);
+      for (const auto& [input, source] : reader.inputs) {
+        if (source.node != id || source.port != port) continue;
+        ++readers;
+        const int index = reader_type->input_index(input);
+        all_content = all_content && index >= 0 && reader_type->inputs[index].eight_bit_enough;
+      }
+    }
+    narrowed[o] = readers > 0 && all_content;
+    any = any || narrowed[o];
+  }
+  return any ? narrowed : std::vector<bool>{};
 }
 
 }  // namespace
@@ -155,6 +186,8 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
       planned.varies = planned.varies || varies[source.node];
     varies[id] = planned.varies;
     planned.deferred = deferred.count(id) != 0;
+    if (options.formats_by_need && !planned.deferred)
+      planned.eight_bit_outputs = eight_bit_outputs(graph, registry, order, id, *type, *target);
     plan.nodes.push_back(planned);
 
     // The chain of deferred nodes feeding this one through its first input.
@@ -210,6 +243,11 @@ std::string format_plan(const Plan& plan) {
     for (const auto& id : pass.chain) chain += (chain.empty() ? "" : " -> ") + id;
     if (pass.fused) chain = "fused: " + chain;
     if (pass.resamples) chain += " (inside the upscale)";
+    std::string narrow;
+    for (size_t o = 0; o < node->eight_bit_outputs.size(); ++o)
+      if (node->eight_bit_outputs[o])
+        narrow += (narrow.empty() ? "" : ", ") + node->type->outputs[o].name;
+    if (!narrow.empty()) chain += " [RGBA8: " + narrow + "]";
     char size[32];
     std::snprintf(size, sizeof(size), "%dx%d", pass.size.width, pass.size.height);
     const std::string reads =
@@ -227,7 +265,9 @@ std::string format_plan(const Plan& plan) {
   }
   text +=
       "reads: image reads per output pixel of a host-fused pass; 'node': the node's own "
-      "process() decides (sizes of shadow maps and caustic textures too)\n";
+      "process() decides (sizes of shadow maps and caustic textures too)\n"
+      "[RGBA8: port]: outputs stored in 8 bits because every reader reads them through an "
+      "input content with 8 bits (bandwidth by need)\n";
   return text;
 }
 

@@ -5,40 +5,66 @@ namespace aq {
 
 size_t bytes_per_pixel(uint32_t format) {
   switch (format) {
-    case AQ_FORMAT_RGBA16F: return 8;
-    case AQ_FORMAT_RGBA32F: return 16;
-    case AQ_FORMAT_R32F: return 4;
-    case AQ_FORMAT_DEPTH32F: return 4;
-    case AQ_FORMAT_R32UI: return 4;
-    default: return 16;
+    case AQ_FORMAT_RGBA16F:
+      return 8;
+    case AQ_FORMAT_RGBA32F:
+      return 16;
+    case AQ_FORMAT_R32F:
+      return 4;
+    case AQ_FORMAT_DEPTH32F:
+      return 4;
+    case AQ_FORMAT_R32UI:
+      return 4;
+    case AQ_FORMAT_RGBA8:
+      return 4;
+    default:
+      return 16;
   }
 }
 
 const char* format_name(uint32_t format) {
   switch (format) {
-    case AQ_FORMAT_RGBA16F: return "RGBA16F";
-    case AQ_FORMAT_RGBA32F: return "RGBA32F";
-    case AQ_FORMAT_R32F: return "R32F";
-    case AQ_FORMAT_DEPTH32F: return "DEPTH32F";
-    case AQ_FORMAT_R32UI: return "R32UI";
-    default: return "unknown";
+    case AQ_FORMAT_RGBA16F:
+      return "RGBA16F";
+    case AQ_FORMAT_RGBA32F:
+      return "RGBA32F";
+    case AQ_FORMAT_R32F:
+      return "R32F";
+    case AQ_FORMAT_DEPTH32F:
+      return "DEPTH32F";
+    case AQ_FORMAT_R32UI:
+      return "R32UI";
+    case AQ_FORMAT_RGBA8:
+      return "RGBA8";
+    default:
+      return "unknown";
   }
 }
 
 namespace {
 GLenum internal_format(uint32_t format) {
   switch (format) {
-    case AQ_FORMAT_RGBA16F: return GL_RGBA16F;
-    case AQ_FORMAT_RGBA32F: return GL_RGBA32F;
-    case AQ_FORMAT_R32F: return GL_R32F;
-    case AQ_FORMAT_DEPTH32F: return GL_DEPTH_COMPONENT32F;
-    case AQ_FORMAT_R32UI: return GL_R32UI;
-    default: return GL_RGBA32F;
+    case AQ_FORMAT_RGBA16F:
+      return GL_RGBA16F;
+    case AQ_FORMAT_RGBA32F:
+      return GL_RGBA32F;
+    case AQ_FORMAT_R32F:
+      return GL_R32F;
+    case AQ_FORMAT_DEPTH32F:
+      return GL_DEPTH_COMPONENT32F;
+    case AQ_FORMAT_R32UI:
+      return GL_R32UI;
+    case AQ_FORMAT_RGBA8:
+      return GL_RGBA8;
+    default:
+      return GL_RGBA32F;
   }
 }
 }  // namespace
 
-TexturePool::~TexturePool() { *alive_ = false; }
+TexturePool::~TexturePool() {
+  *alive_ = false;
+}
 
 TextureRef TexturePool::acquire(int width, int height, uint32_t format) {
   Key key{width, height, format};
@@ -92,8 +118,8 @@ size_t TexturePool::free_count() const {
 void TexturePool::trim() {
   for (auto& [key, list] : free_) {
     for (auto& texture : list) {
-      bytes_ -= bytes_per_pixel(texture->image.format) *
-                static_cast<size_t>(texture->image.width) * texture->image.height;
+      bytes_ -= bytes_per_pixel(texture->image.format) * static_cast<size_t>(texture->image.width) *
+                texture->image.height;
     }
     list.clear();
   }

@@ -43,6 +43,15 @@ struct Paper {
     }
     aq_image out;
     if (!ctx.output(0, width, height, ctx.working_format(), &out)) return AQ_ERROR;
+    // The host may store `image` in 8 bits when its readers say that is enough; the height is
+    // then rendered at the working precision into a scratch image, and the gradient pass
+    // differences that and copies it into `image` (a second target), so the gradient keeps
+    // its precision and the costly height shader still runs once.
+    aq_image height_for_gradient = out;
+    if (out.format != ctx.working_format() &&
+        !ctx.scratch(width, height, ctx.working_format(), &height_for_gradient)) {
+      return AQ_ERROR;
+    }
     GLuint program = ctx.program(shaders::paper_height_frag);
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
@@ -53,17 +62,23 @@ struct Paper {
     aq::set_float(program, "u_fiber_weight", ctx.param_float(kFiberWeight));
     aq::set_float(program, "u_roughness", ctx.param_float(kRoughness));
     aq::set_int(program, "u_seed", int(ctx.param_int(kSeed)));
-    if (!ctx.draw(out)) return AQ_ERROR;
+    if (!ctx.draw(height_for_gradient)) return AQ_ERROR;
+    const bool copy_height = height_for_gradient.texture != out.texture;
 
     // The gradient once here (the paper is static, so cached) rather than four reads per pixel
     // in every frame's wobble.
     aq_image gradient;
     if (!ctx.output(1, width, height, AQ_FORMAT_RGBA32F, &gradient)) return AQ_ERROR;
-    GLuint differences = ctx.program(shaders::paper_gradient_frag);
+    const std::string text = std::string("#define AQ_PAPER_COPY_HEIGHT ") +
+                             (copy_height ? "1" : "0") + "\n" + shaders::paper_gradient_frag.text;
+    GLuint differences =
+        ctx.program(aq_shader_source{shaders::paper_gradient_frag.name, text.c_str(), nullptr});
     if (differences == 0) return AQ_ERROR;
     glUseProgram(differences);
-    aq::bind_texture(differences, "u_height", 0, out);
-    const bool drawn = ctx.draw(gradient);
+    aq::bind_texture(differences, "u_height", 0, height_for_gradient);
+    const aq_image targets[2] = {gradient, out};
+    const bool drawn = ctx.bind_targets(targets, copy_height ? 2 : 1);
+    if (drawn) ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
     aq::unbind_textures(1);
     glUseProgram(0);
     return drawn ? AQ_OK : AQ_ERROR;

@@ -17,9 +17,11 @@ namespace {
 
 constexpr aq_port_desc kInputs[] = {
     aq::image_port("image", "colour to displace"),
-    aq::optional_image_port("paper",
-                            "paper height in the red channel, stretched over the image; "
-                            "unconnected: a procedural paper"),
+    // Heights in [0, 1] differenced over two paper pixels: 8 bits move the displacement by at
+    // most strength/510 paper pixels (README), so the host may store the paper as RGBA8.
+    aq_port_desc{"paper", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
+                 "paper height in the red channel, stretched over the image; "
+                 "unconnected: a procedural paper"},
     aq::optional_image_port("gradient",
                             "the paper's `gradient` output (with `paper` connected): read once "
                             "per pixel instead of differencing the height with four reads")};

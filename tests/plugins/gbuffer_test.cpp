@@ -4,7 +4,9 @@
 // half precision keeps positions exact enough for shadow lookups, any output size works.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <string>
 
@@ -149,6 +151,51 @@ TEST(GBuffer, AnySizeFromOnePixel) {
     ImageF normal = render("cube", "normal", w, h);
     EXPECT_TRUE(aq::test::all_finite(normal));
   }
+}
+
+// With an environment (scene_join's default gradient; here with no objects, so every pixel is
+// background) one pass writes the whole background instead of five clears and a masked pass:
+// it must hold exactly what the clears wrote.
+TEST(GBuffer, TheEnvironmentPassWritesTheClearValuesBehindTheScene) {
+  aq::test::RenderOptions options;
+  options.width = 96;
+  options.height = 54;
+  nlohmann::json g = {
+      {"aquarelle", 1},
+      {"nodes",
+       {{"scene", {{"type", "scene_join"}, {"params", {{"environment", "gradient"}}}}},
+        {"gbuf", {{"type", "gbuffer"}, {"inputs", {{"scene", "scene.scene"}}}}}}},
+      {"output", "gbuf.albedo"}};
+  std::map<std::string, ImageF> out;
+  for (const char* port : {"id", "position", "normal", "albedo", "depth"}) {
+    options.output = std::string("gbuf.") + port;
+    auto image = aq::test::render_graph(g.dump(), options);
+    ASSERT_TRUE(image.ok()) << image.message();
+    out[port] = *image;
+  }
+  int background = 0;
+  float far_depth = -1.0f, nearest_far = 0.0f;
+  for (int y = 0; y < 54; ++y) {
+    for (int x = 0; x < 96; ++x) {
+      if (out["id"].at(x, y, 0) != 0.0f) {
+        nearest_far = std::max(nearest_far, out["depth"].at(x, y, 0));
+        continue;
+      }
+      ++background;
+      for (int c = 0; c < 4; ++c) {
+        EXPECT_EQ(out["position"].at(x, y, c), 0.0f) << x << "," << y;
+        EXPECT_EQ(out["normal"].at(x, y, c), 0.0f) << x << "," << y;
+      }
+      EXPECT_EQ(out["albedo"].at(x, y, 3), 0.0f);
+      EXPECT_GT(out["albedo"].at(x, y, 0) + out["albedo"].at(x, y, 1) + out["albedo"].at(x, y, 2),
+                0.0f)
+          << "the environment's colour";
+      if (far_depth < 0.0f) far_depth = out["depth"].at(x, y, 0);
+      EXPECT_EQ(out["depth"].at(x, y, 0), far_depth) << "one far plane behind everything";
+    }
+  }
+  EXPECT_EQ(background, 96 * 54);
+  EXPECT_GT(far_depth, nearest_far) << "the far plane, behind the camera's near plane";
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 // holding NaN leaves the image finite.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "aquarelle/reference/wobble.h"
 #include "support/harness.h"
 
@@ -240,8 +242,11 @@ std::string paper_wobble_graph(bool gradient, int paper_width) {
 // The paper's precomputed gradient gives the image wobble gets by differencing the height
 // itself (shifting by one texel commutes with bilinear filtering), except within a texel of the
 // border, where the clamp comes before instead of after the difference.
+// Both sides with the paper at full precision: with formats by need on, the paper that only
+// wobble.paper reads is stored in 8 bits (see the next test).
 TEST(Wobble, PrecomputedPaperGradientEqualsTheDifferences) {
   const ImageF input = aq::test::random_image(96, 64, 41);
+  setenv("AQUARELLE_FORMATS_BY_NEED", "0", 1);
   for (int paper_width : {0, 61}) {  // the image's size, and another size (filtered reads)
     aq::test::RenderOptions options;
     options.width = 96;
@@ -261,5 +266,38 @@ TEST(Wobble, PrecomputedPaperGradientEqualsTheDifferences) {
     std::printf("[wobble gradient] paper width %d: max difference inside %.3g\n", paper_width,
                 inside);
     EXPECT_GT(aq::test::max_abs_diff(*without, input), 0.05) << "the wobble moved nothing";
+  }
+  unsetenv("AQUARELLE_FORMATS_BY_NEED");
+}
+
+// Formats by need: wobble.paper is content with 8 bits, so without the precomputed gradient
+// wobble differences 8-bit heights. The slope then moves by at most 1/510 per paper pixel (plus
+// llvmpipe's 8-bit filter weights between texels, allowed for by the factor 1.25), the lookup
+// by strength/510 paper pixels, and an image whose values change by at most 1 per pixel (this
+// random one) by that many image pixels. Measured at strength 24: 0.044 (paper of the image's
+// size), 0.083 (61 paper pixels across 96).
+TEST(Wobble, DifferencesOfAn8BitPaperStayWithinTheQuantisationBound) {
+  const ImageF input = aq::test::random_image(96, 64, 41);
+  const double strength = 24.0;
+  for (int paper_width : {0, 61}) {
+    aq::test::RenderOptions options;
+    options.width = 96;
+    options.height = 64;
+    auto precomputed =
+        aq::test::render_graph(paper_wobble_graph(true, paper_width), options, {{"image", input}});
+    auto differenced =
+        aq::test::render_graph(paper_wobble_graph(false, paper_width), options, {{"image", input}});
+    ASSERT_TRUE(precomputed.ok()) << precomputed.message();
+    ASSERT_TRUE(differenced.ok()) << differenced.message();
+    const double image_pixels_per_paper_pixel = paper_width == 0 ? 1.0 : 96.0 / paper_width;
+    const double bound = 1.25 * strength / 510.0 * image_pixels_per_paper_pixel;
+    double inside = 0.0;
+    for (int y = 2; y < 62; ++y)
+      for (int x = 2; x < 94; ++x)
+        for (int c = 0; c < 4; ++c)
+          inside = std::max<double>(inside,
+                                    std::abs(precomputed->at(x, y, c) - differenced->at(x, y, c)));
+    EXPECT_LE(inside, bound) << "paper width " << paper_width;
+    EXPECT_GT(inside, 1e-5) << "paper width " << paper_width << ": the paper was not 8-bit";
   }
 }

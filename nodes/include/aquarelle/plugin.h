@@ -58,7 +58,14 @@ enum {
   /* Appended in ABI 1: an input that takes any number of links (scene ports only), delivered
    * in order through aq_process_ctx::input_lists. A host that predates it refuses the plugin
    * (unknown flag), so a plugin using it never runs where the links would be lost. */
-  AQ_PORT_MULTI = 1u << 1
+  AQ_PORT_MULTI = 1u << 1,
+  /* Appended in ABI 1: an image input that reads values in [0, 1] only and for which 8 bits a
+   * channel are enough (edge detection on a colour, a mask). When every reader of an output
+   * says so, the host may store that output as AQ_FORMAT_RGBA8 ("bandwidth by need": llvmpipe
+   * reads 8-bit texels about twice as fast as float ones); the plugin writing it asks for its
+   * usual format and gets the narrower texture. Values outside [0, 1] clamp. An older host
+   * refuses the plugin (unknown flag). */
+  AQ_PORT_8BIT_ENOUGH = 1u << 2
 };
 
 typedef enum aq_format {
@@ -66,7 +73,9 @@ typedef enum aq_format {
   AQ_FORMAT_RGBA32F = 2,
   AQ_FORMAT_R32F = 3,
   AQ_FORMAT_DEPTH32F = 4, /* depth attachment (shadow maps, z-buffers) */
-  AQ_FORMAT_R32UI = 5     /* integer ids */
+  AQ_FORMAT_R32UI = 5,    /* integer ids */
+  /* Appended in ABI 1: 8-bit unsigned normalised RGBA ([0, 1], steps of 1/255), filterable */
+  AQ_FORMAT_RGBA8 = 6
 } aq_format;
 
 typedef enum aq_precision { AQ_PRECISION_HALF = 0, AQ_PRECISION_FLOAT = 1 } aq_precision;

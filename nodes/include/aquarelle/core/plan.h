@@ -29,6 +29,10 @@ struct PlannedNode {
   int readers = 0;        // links that read this node's outputs (+1 for the requested output)
   bool varies = false;    // it or something upstream is time-dependent; else cached across frames
   bool deferred = false;  // runs inside its reader's pass (pointwise fusion), not a pass of its own
+  // Per output port (type order): stored as AQ_FORMAT_RGBA8 because every reader reads it
+  // through an AQ_PORT_8BIT_ENOUGH input and it is not the requested output (bandwidth by
+  // need). Empty when no output is narrowed.
+  std::vector<bool> eight_bit_outputs;
 };
 
 // One pass of the frame: a node's process(), or one fused shader that computes a chain of
@@ -66,6 +70,9 @@ struct Plan {
 struct PlanOptions {
   bool fuse_pointwise = true;
   bool retain_static_outputs = true;  // static nodes' results kept across frames
+  // Store outputs that every reader is content to read in 8 bits as RGBA8 (PlannedNode::
+  // eight_bit_outputs).
+  bool formats_by_need = true;
 };
 
 // Compiles the plan; errors name the node (cycle, missing node, unknown type, bad output).

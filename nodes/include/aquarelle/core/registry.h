@@ -17,6 +17,8 @@ struct PortInfo {
   bool optional = false;
   std::string description;
   bool multi = false;  // takes any number of links (AQ_PORT_MULTI)
+  // An image input content with 8 bits a channel (AQ_PORT_8BIT_ENOUGH).
+  bool eight_bit_enough = false;
 };
 
 struct ParamInfo {
