@@ -1,5 +1,6 @@
 // Compiling the evaluation plan (see plan.h).
 #include <aquarelle/core/plan.h>
+#include <aquarelle/core/texture_pool.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -69,25 +70,6 @@ std::set<std::string> deferred_nodes(const Graph& graph, const Registry& registr
     if (*source != target && readers.at(*source) == 1 && fusable(*source)) deferred.insert(*source);
   }
   return deferred;
-}
-
-const char* format_name(uint32_t format) {
-  switch (format) {
-    case AQ_FORMAT_RGBA16F:
-      return "RGBA16F";
-    case AQ_FORMAT_RGBA32F:
-      return "RGBA32F";
-    case AQ_FORMAT_R32F:
-      return "R32F";
-    case AQ_FORMAT_DEPTH32F:
-      return "DEPTH32F";
-    case AQ_FORMAT_R32UI:
-      return "R32UI";
-    case AQ_FORMAT_RGBA8:
-      return "RGBA8";
-    default:
-      return "?";
-  }
 }
 
 // Which image outputs of `id` every reader reads through an AQ_PORT_8BIT_ENOUGH input; an
