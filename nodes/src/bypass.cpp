@@ -82,17 +82,20 @@ Result<Graph> apply_bypass(const Graph& graph, const Registry& registry) {
   return out;
 }
 
-Result<std::pair<Graph, std::optional<PortRef>>> bypassed_graph(
-    const Graph& graph, const Registry& registry, const std::optional<PortRef>& requested) {
+Result<BypassedGraph> bypassed_graph(const Graph& graph, const Registry& registry,
+                                     const std::optional<PortRef>& requested) {
+  BypassedGraph out;
+  out.output = requested;
+  if (!has_bypassed_nodes(graph)) return out;
   auto rewritten = apply_bypass(graph, registry);
   if (!rewritten.ok()) return rewritten.error();
-  std::optional<PortRef> output = requested;
-  if (output) {
-    auto source = bypass_source(graph, registry, *output);
+  out.rewritten = std::move(*rewritten);
+  if (requested) {
+    auto source = bypass_source(graph, registry, *requested);
     if (!source.ok()) return source.error();
-    output = *source;
+    out.output = *source;
   }
-  return std::make_pair(std::move(*rewritten), output);
+  return out;
 }
 
 }  // namespace aq

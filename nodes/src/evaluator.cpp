@@ -329,17 +329,24 @@ static bool formats_by_need_from_environment() {
   return value == nullptr || std::string(value) != "0";
 }
 
-Result<Plan> Evaluator::plan(const Graph& given_graph, const EvalOptions& options,
-                             const std::optional<PortRef>& given_output) const {
-  auto bypassed = bypassed_graph(given_graph, registry_, given_output);  // bypass.h
-  if (!bypassed.ok()) return bypassed.error();
-  const Graph& graph = bypassed->first;
-  const std::optional<PortRef>& output = bypassed->second;
+namespace {
+
+Result<Plan> compile(const Graph& graph, const Registry& registry, const EvalOptions& options,
+                     const std::optional<PortRef>& output) {
   PlanOptions plan_options;
   plan_options.fuse_pointwise = options.fuse_pointwise;
   plan_options.retain_static_outputs = options.retain_outputs || options.retain_static_outputs;
   plan_options.formats_by_need = options.formats_by_need && formats_by_need_from_environment();
-  return compile_plan(graph, registry_, plan_options, output);
+  return compile_plan(graph, registry, plan_options, output);
+}
+
+}  // namespace
+
+Result<Plan> Evaluator::plan(const Graph& given_graph, const EvalOptions& options,
+                             const std::optional<PortRef>& given_output) const {
+  auto bypassed = bypassed_graph(given_graph, registry_, given_output);  // bypass.h
+  if (!bypassed.ok()) return bypassed.error();
+  return compile(bypassed->graph(given_graph), registry_, options, bypassed->output);
 }
 
 Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptions& options,
@@ -347,8 +354,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
   timings_.clear();
   auto bypassed = bypassed_graph(given_graph, registry_, given_requested);  // bypass.h
   if (!bypassed.ok()) return bypassed.error();
-  const Graph& graph = bypassed->first;
-  const std::optional<PortRef>& requested = bypassed->second;
+  const Graph& graph = bypassed->graph(given_graph);
+  const std::optional<PortRef>& requested = bypassed->output;
   if (!context_.activate()) return make_error("the OpenGL context cannot be made current");
   impl_->host.make_current();
   // Drop state of nodes that left the graph or changed type.
@@ -363,7 +370,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
     }
   }
 
-  auto compiled = plan(graph, options, requested);
+  auto compiled = compile(graph, registry_, options, requested);  // bypass already applied
   if (!compiled.ok()) return compiled.error();
   const Plan& plan = *compiled;
   const PortRef& target = plan.output;

@@ -102,12 +102,19 @@ TEST(Bypass, ReadersOfABypassedNodeReadItsInputFollowingChains) {
   // The requested output of a bypassed node (the editor viewing it) is its input's.
   auto viewed = aq::bypassed_graph(read.graph, registry(), aq::PortRef{"b", "image"});
   ASSERT_TRUE(viewed.ok());
-  EXPECT_EQ(viewed->second, (aq::PortRef{"src", "image"}));
+  EXPECT_EQ(viewed->output, (aq::PortRef{"src", "image"}));
+  ASSERT_TRUE(viewed->rewritten.has_value());
   // A graph without bypassed nodes is unchanged.
   aq::Graph plain = read.graph;
   for (auto& [id, node] : plain.nodes) node.bypass = false;
   EXPECT_EQ(aq::apply_bypass(plain, registry())->nodes.at("c").inputs.at("image"),
             (aq::PortRef{"b", "image"}));
+  // ... and the evaluator reads it as it is, without a copy.
+  auto unchanged = aq::bypassed_graph(plain, registry(), aq::PortRef{"b", "image"});
+  ASSERT_TRUE(unchanged.ok());
+  EXPECT_FALSE(unchanged->rewritten.has_value());
+  EXPECT_EQ(&unchanged->graph(plain), &plain);
+  EXPECT_EQ(unchanged->output, (aq::PortRef{"b", "image"}));
 }
 
 TEST(Bypass, NothingToPassThroughIsAnErrorNamingTheNode) {

@@ -33,9 +33,15 @@ Result<PortRef> bypass_source(const Graph& graph, const Registry& registry, cons
 // has nothing to pass through.
 Result<Graph> apply_bypass(const Graph& graph, const Registry& registry);
 
-// apply_bypass, and the requested output (a bypassed node's, when the editor views one)
-// redirected the same way: what the evaluator plans and runs.
-Result<std::pair<Graph, std::optional<PortRef>>> bypassed_graph(
-    const Graph& graph, const Registry& registry, const std::optional<PortRef>& requested);
+// What the evaluator plans and runs: the given graph itself when no node is bypassed (no copy:
+// the case of nearly every frame), else apply_bypass's rewrite; and the requested output (a
+// bypassed node's, when the editor views one) redirected the same way.
+struct BypassedGraph {
+  std::optional<Graph> rewritten;
+  std::optional<PortRef> output;
+  const Graph& graph(const Graph& given) const { return rewritten ? *rewritten : given; }
+};
+Result<BypassedGraph> bypassed_graph(const Graph& graph, const Registry& registry,
+                                     const std::optional<PortRef>& requested);
 
 }  // namespace aq
