@@ -60,16 +60,7 @@ constexpr aq_param_desc kParams[] = {
                   "normal smoothing iterations at load time (the seed found 7 best)"),
     aq::vec3_param("camera_position", 0.3, 2.2, 6.0, -1000, 1000, "camera position (world)"),
     aq::vec3_param("camera_target", -0.3, 0.9, -0.5, -1000, 1000, "point the camera looks at"),
-    aq::float_param("fov", 50.0, 5.0, 150.0, "vertical field of view in degrees", 0.0, "angle"),
-    aq::vec3_param("light_direction", 0.7, -1.0, -0.15, -1, 1,
-                   "direction the light travels (from the water surface down), normalised"),
-    aq::color_param("light_color", 1.0, 0.97, 0.9, "light colour (linear)"),
-    aq::float_param("light_intensity", 1.0, 0.0, 20.0, "light colour multiplier (HDR)"),
-    aq::color_param("ambient", 0.32, 0.37, 0.42, "ambient light (linear)"),
-    aq::float_param("water_height", 6.0, -1000.0, 1000.0,
-                    "world y of the water surface (caustic projection plane)"),
-    aq::float_param("caustic_tile", 4.0, 0.01, 1000.0,
-                    "world units one period of the water's caustic pattern covers"),
+    AQ_SCENE_VIEW_AND_WATER_PARAMS,
     aq::float_param("fish_speed", 0.35, 0.0, 5.0, "fish loop speed, radians per second"),
     aq::float_param("sway", 1.0, 0.0, scene::kMaxSway, "seaweed sway amplitude (0 freezes it)")};
 
