@@ -25,6 +25,11 @@
 //   AQ_MORPH_HALF_WIDTHS  int[5](...): the distinct half-widths, ascending (unused: -1)
 //   AQ_MORPH_ROW_SPANS    int[9](...): span index of row offset dy at [dy + r]
 //   AQ_MORPH_LUMINANCE    0 per channel, 1 luminance order
+//   AQ_MORPH_IN_HDR8      1: the input (and pass 0's spans) hold AQ_FORMAT_RGBA8_HDR
+//   AQ_MORPH_OUT_HDR8     1: pass 1 writes AQ_FORMAT_RGBA8_HDR
+// The encoding is monotone per channel, so per-channel extremes of stored values are the
+// stored extremes: only the last write decodes or encodes (the luminance order decodes to
+// compare, since luminance mixes channels).
 //
 // Orders: 0 = per channel (min/max of each of r, g, b, a separately, the seed's sec. 3.3);
 // 1 = luminance order (a total order on colours: Rec.709 luminance, ties broken by r, g, b, a),
@@ -40,6 +45,12 @@
 #define AQ_MORPH_ROW_SPANS int[9](0, 0, 0, 0, 0, 0, 0, 0, 0)
 #define AQ_MORPH_LUMINANCE 0
 #endif
+#ifndef AQ_MORPH_IN_HDR8
+#define AQ_MORPH_IN_HDR8 0
+#define AQ_MORPH_OUT_HDR8 0
+#endif
+
+#include "aquarelle/hdr8.glsl"
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;  // pass 1 result, or span 0 in pass 0
@@ -68,8 +79,13 @@ uniform sampler2D u_spans[AQ_MORPH_SPAN_COUNT];
 // True when colour a comes strictly before b in the luminance order.
 bool aq_morph_luminance_less(vec4 a, vec4 b) {
   const vec3 weights = vec3(0.2126, 0.7152, 0.0722);
+#if AQ_MORPH_IN_HDR8
+  float la = dot(aq_hdr8_decode(a).rgb, weights);
+  float lb = dot(aq_hdr8_decode(b).rgb, weights);
+#else
   float la = dot(a.rgb, weights);
   float lb = dot(b.rgb, weights);
+#endif
   if (la != lb) return la < lb;
   if (a.r != b.r) return a.r < b.r;
   if (a.g != b.g) return a.g < b.g;
@@ -136,6 +152,11 @@ void main() {
     vec4 below = texelFetch(u_spans[kRowSpans[AQ_MORPH_RADIUS - dy]], down, 0);
     best = aq_morph_combine(aq_morph_combine(best, above), below);
   }
+#if AQ_MORPH_IN_HDR8 && !AQ_MORPH_OUT_HDR8
+  best = aq_hdr8_decode(best);
+#elif !AQ_MORPH_IN_HDR8 && AQ_MORPH_OUT_HDR8
+  best = aq_hdr8_encode(best);
+#endif
   o_color = best;
 }
 #endif

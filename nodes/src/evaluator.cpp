@@ -272,6 +272,16 @@ int readback_rows_per_band(int width, int bytes_per_pixel, int64_t max_bytes) {
   return static_cast<int>(std::clamp<int64_t>(max_bytes / row, 1, std::numeric_limits<int>::max()));
 }
 
+// aquarelle/hdr8.glsl's aq_hdr8_decode on the CPU: rgb c = e² / (1 − e²), alpha as stored.
+static void decode_hdr8(std::vector<float>& rgba) {
+  for (size_t i = 0; i + 3 < rgba.size(); i += 4) {
+    for (size_t c = 0; c < 3; ++c) {
+      const float y = rgba[i + c] * rgba[i + c];
+      rgba[i + c] = y / std::max(1.0f - y, 1.0f / 256.0f);
+    }
+  }
+}
+
 Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format,
                             int64_t max_bytes_per_read) {
   bool single =
@@ -312,6 +322,7 @@ Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t form
     std::snprintf(text, sizeof(text), "reading the texture back failed (GL error 0x%04X)", error);
     return make_error(text);
   }
+  if (format == AQ_FORMAT_RGBA8_HDR) decode_hdr8(out.pixels);
   return out;
 }
 
@@ -322,10 +333,11 @@ Result<ImageF> Evaluator::read_back(const TextureRef& texture) {
   return read_texture(image.texture, image.width, image.height, image.format);
 }
 
-// AQUARELLE_FORMATS_BY_NEED=0 keeps every output in the format its plugin asks for, so a bench
-// run can measure the lever off without a rebuild (the bench sets no EvalOptions for it).
-static bool formats_by_need_from_environment() {
-  const char* value = std::getenv("AQUARELLE_FORMATS_BY_NEED");
+// AQUARELLE_FORMATS_BY_NEED=0 keeps every output in the format its plugin asks for, and
+// AQUARELLE_HDR8=0 only turns the encoded HDR format off, so a bench run can measure each lever
+// off without a rebuild (the bench sets no EvalOptions for them).
+static bool enabled_in_environment(const char* name) {
+  const char* value = std::getenv(name);
   return value == nullptr || std::string(value) != "0";
 }
 
@@ -336,7 +348,9 @@ Result<Plan> compile(const Graph& graph, const Registry& registry, const EvalOpt
   PlanOptions plan_options;
   plan_options.fuse_pointwise = options.fuse_pointwise;
   plan_options.retain_static_outputs = options.retain_outputs || options.retain_static_outputs;
-  plan_options.formats_by_need = options.formats_by_need && formats_by_need_from_environment();
+  plan_options.formats_by_need =
+      options.formats_by_need && enabled_in_environment("AQUARELLE_FORMATS_BY_NEED");
+  plan_options.hdr8 = plan_options.formats_by_need && enabled_in_environment("AQUARELLE_HDR8");
   return compile_plan(graph, registry, plan_options, output);
 }
 
@@ -426,7 +440,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
     key = hash_value(key, format);
     key = hash_value(key, quality_index(settings.quality));
     if (type->time_dependent()) key = hash_value(key, options.frame);
-    for (bool narrowed : planned.eight_bit_outputs) key = hash_value(key, narrowed ? 8 : 0);
+    for (uint32_t stored : planned.stored_formats) key = hash_value(key, stored);
     key = builtin_key(*type, params, options, key);
 
     // Fusion: a deferred node only records its stage; the node reading it runs the chain.
@@ -530,7 +544,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       call.state = &state;
       call.node_id = id;
       call.input_refs = &input_refs;
-      call.eight_bit_outputs = &planned.eight_bit_outputs;
+      call.stored_formats = &planned.stored_formats;
+      call.working_format = format;
       aq_process_ctx ctx{};
       fill_process_ctx(ctx, host, context_.generation(), call, inputs, params, settings, format,
                        time, options.frame, working);
@@ -579,6 +594,18 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
           return make_error("node '" + id + "' (" + type->name + "): produced no output '" +
                             type->outputs[o].name + "' (a plugin bug: report it to its author)");
         }
+      }
+      // An encoded HDR image reaches only readers that decode it: one a plugin passed through
+      // to an output the plan keeps in the working format is decoded here.
+      for (size_t o = 0; o < type->outputs.size(); ++o) {
+        const TextureRef& image = state.images[o];
+        if (!image || image->image.format != AQ_FORMAT_RGBA8_HDR ||
+            call.stored_format(static_cast<uint32_t>(o)) == AQ_FORMAT_RGBA8_HDR)
+          continue;
+        auto decoded = impl_->fuser.run(impl_->host.shaders(), impl_->host.pool(), {}, image,
+                                        image->image.width, image->image.height, format);
+        if (!decoded.ok()) return make_error("node '" + id + "': " + decoded.error().message);
+        state.images[o] = *decoded;
       }
       state.key = key;
       state.valid = true;

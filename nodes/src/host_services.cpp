@@ -95,10 +95,11 @@ bool HostServices::valid_size(CallState* call, int32_t width, int32_t height) {
 
 // An unknown format would get an all-zero texture of some default kind: refuse it by name.
 bool HostServices::valid_format(CallState* call, const char* function, uint32_t format) {
-  if (format >= AQ_FORMAT_RGBA16F && format <= AQ_FORMAT_RGBA8) return true;
-  fail_call(*call, std::string(function) + ": unknown image format " + std::to_string(format) +
-                       " (aq_format in plugin.h: 1 RGBA16F, 2 RGBA32F, 3 R32F, 4 DEPTH32F, "
-                       "5 R32UI, 6 RGBA8; use ctx.working_format for the graph's precision)");
+  if (format >= AQ_FORMAT_RGBA16F && format <= AQ_FORMAT_RGBA8_HDR) return true;
+  fail_call(*call,
+            std::string(function) + ": unknown image format " + std::to_string(format) +
+                " (aq_format in plugin.h: 1 RGBA16F, 2 RGBA32F, 3 R32F, 4 DEPTH32F, "
+                "5 R32UI, 6 RGBA8, 7 RGBA8_HDR; use ctx.working_format for the graph's precision)");
   return false;
 }
 
@@ -112,12 +113,17 @@ int HostServices::output_image(void* data, uint32_t index, int32_t width, int32_
   }
   if (!valid_format(call, "output_image", format)) return AQ_ERROR;
   if (!valid_size(call, width, height)) return AQ_ERROR;
-  // Bandwidth by need: a colour output that every reader reads in 8 bits is stored so.
-  const bool narrowed = call->eight_bit_outputs != nullptr &&
-                        index < call->eight_bit_outputs->size() &&
-                        (*call->eight_bit_outputs)[index];
-  if (narrowed && (format == AQ_FORMAT_RGBA16F || format == AQ_FORMAT_RGBA32F))
-    format = AQ_FORMAT_RGBA8;
+  // Bandwidth by need: a colour output is stored in the narrower format the plan chose for
+  // its readers. An encoded HDR output goes only to readers that decode it: a plugin asking
+  // for one the plan did not choose (output_like an encoded input) gets the working format.
+  const uint32_t stored = call->stored_format(index);
+  const bool colour =
+      format == AQ_FORMAT_RGBA16F || format == AQ_FORMAT_RGBA32F || format == AQ_FORMAT_RGBA8_HDR;
+  if (colour && stored != 0) {
+    format = stored;
+  } else if (format == AQ_FORMAT_RGBA8_HDR) {
+    format = call->working_format;
+  }
   state.images[index] = call->host->pool_.acquire(width, height, format);
   *out = state.images[index]->image;
   return AQ_OK;

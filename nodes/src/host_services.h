@@ -47,8 +47,15 @@ struct CallState {
   std::string error;
   std::vector<TextureRef> scratch;
   const std::vector<TextureRef>* input_refs = nullptr;
-  // Per output: the plan stores it as RGBA8 (bandwidth by need); null or empty: none.
-  const std::vector<bool>* eight_bit_outputs = nullptr;
+  // Per output: the format the plan stores it in (PlannedNode::stored_formats, 0: the
+  // plugin's choice); null or empty: none changes.
+  const std::vector<uint32_t>* stored_formats = nullptr;
+  uint32_t working_format = AQ_FORMAT_RGBA16F;
+
+  uint32_t stored_format(uint32_t index) const {
+    return stored_formats != nullptr && index < stored_formats->size() ? (*stored_formats)[index]
+                                                                       : 0;
+  }
 };
 
 class HostServices {

@@ -72,19 +72,25 @@ std::set<std::string> deferred_nodes(const Graph& graph, const Registry& registr
   return deferred;
 }
 
-// Which image outputs of `id` every reader reads through an AQ_PORT_8BIT_ENOUGH input; an
-// output nobody reads, the requested output and a deferred node's output keep their format.
-std::vector<bool> eight_bit_outputs(const Graph& graph, const Registry& registry,
-                                    const std::vector<std::string>& order, const std::string& id,
-                                    const NodeType& type, const PortRef& target) {
-  std::vector<bool> narrowed(type.outputs.size(), false);
+// The format each image output of `id` is stored in when its readers need less than the
+// writer's own format (bandwidth by need), 0 where the writer's choice stands:
+// - AQ_FORMAT_RGBA8_HDR when the writer and every reader handle it (AQ_PORT_HDR8) and the graph
+//   works in half precision (float asks for accuracy over speed);
+// - AQ_FORMAT_RGBA8 when every reader reads through an AQ_PORT_8BIT_ENOUGH input.
+// An output nobody reads and the requested output keep their format. Empty when none changes.
+std::vector<uint32_t> stored_formats(const Graph& graph, const Registry& registry,
+                                     const std::vector<std::string>& order, const std::string& id,
+                                     const NodeType& type, const PortRef& target, bool hdr8) {
+  std::vector<uint32_t> formats(type.outputs.size(), 0);
   bool any = false;
+  const bool half = graph.settings.precision != "float";
   for (size_t o = 0; o < type.outputs.size(); ++o) {
     if (type.outputs[o].type != AQ_PORT_IMAGE) continue;
     const std::string& port = type.outputs[o].name;
     if (target.node == id && target.port == port) continue;
     int readers = 0;
-    bool all_content = true;
+    bool all_eight_bit = true;
+    bool all_hdr8 = true;
     for (const auto& reader_id : order) {
       const Node& reader = graph.nodes.at(reader_id);
       const NodeType* reader_type = registry.find(reader.type);
@@ -92,13 +98,19 @@ std::vector<bool> eight_bit_outputs(const Graph& graph, const Registry& registry
         if (source.node != id || source.port != port) continue;
         ++readers;
         const int index = reader_type->input_index(input);
-        all_content = all_content && index >= 0 && reader_type->inputs[index].eight_bit_enough;
+        all_eight_bit = all_eight_bit && index >= 0 && reader_type->inputs[index].eight_bit_enough;
+        all_hdr8 = all_hdr8 && index >= 0 && reader_type->inputs[index].hdr8;
       }
     }
-    narrowed[o] = readers > 0 && all_content;
-    any = any || narrowed[o];
+    if (readers == 0) continue;
+    if (all_hdr8 && hdr8 && half && type.outputs[o].hdr8) {
+      formats[o] = AQ_FORMAT_RGBA8_HDR;
+    } else if (all_eight_bit) {
+      formats[o] = AQ_FORMAT_RGBA8;
+    }
+    any = any || formats[o] != 0;
   }
-  return any ? narrowed : std::vector<bool>{};
+  return any ? formats : std::vector<uint32_t>{};
 }
 
 }  // namespace
@@ -169,7 +181,8 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
     varies[id] = planned.varies;
     planned.deferred = deferred.count(id) != 0;
     if (options.formats_by_need && !planned.deferred)
-      planned.eight_bit_outputs = eight_bit_outputs(graph, registry, order, id, *type, *target);
+      planned.stored_formats =
+          stored_formats(graph, registry, order, id, *type, *target, options.hdr8);
     plan.nodes.push_back(planned);
 
     // The chain of deferred nodes feeding this one through its first input.
@@ -225,11 +238,13 @@ std::string format_plan(const Plan& plan) {
     for (const auto& id : pass.chain) chain += (chain.empty() ? "" : " -> ") + id;
     if (pass.fused) chain = "fused: " + chain;
     if (pass.resamples) chain += " (inside the upscale)";
-    std::string narrow;
-    for (size_t o = 0; o < node->eight_bit_outputs.size(); ++o)
-      if (node->eight_bit_outputs[o])
-        narrow += (narrow.empty() ? "" : ", ") + node->type->outputs[o].name;
-    if (!narrow.empty()) chain += " [RGBA8: " + narrow + "]";
+    for (const uint32_t format : {AQ_FORMAT_RGBA8, AQ_FORMAT_RGBA8_HDR}) {
+      std::string narrow;
+      for (size_t o = 0; o < node->stored_formats.size(); ++o)
+        if (node->stored_formats[o] == format)
+          narrow += (narrow.empty() ? "" : ", ") + node->type->outputs[o].name;
+      if (!narrow.empty()) chain += std::string(" [") + format_name(format) + ": " + narrow + "]";
+    }
     char size[32];
     std::snprintf(size, sizeof(size), "%dx%d", pass.size.width, pass.size.height);
     const std::string reads =
@@ -249,7 +264,9 @@ std::string format_plan(const Plan& plan) {
       "reads: image reads per output pixel of a host-fused pass; 'node': the node's own "
       "process() decides (sizes of shadow maps and caustic textures too)\n"
       "[RGBA8: port]: outputs stored in 8 bits because every reader reads them through an "
-      "input content with 8 bits (bandwidth by need)\n";
+      "input content with 8 bits; [RGBA8 HDR: port]: linear HDR colour encoded in 8 bits "
+      "(sqrt(c / (1 + c))) because its writer and every reader handle that (bandwidth by "
+      "need)\n";
   return text;
 }
 

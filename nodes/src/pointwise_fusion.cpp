@@ -7,8 +7,9 @@ std::string fused_uniform_prefix(size_t stage) {
   return "aq_s" + std::to_string(stage) + "_";
 }
 
-std::string fused_fragment_source(const std::vector<const char*>& glsl, bool resample) {
-  std::string source;
+std::string fused_fragment_source(const std::vector<const char*>& glsl, bool resample,
+                                  bool decode_hdr8) {
+  std::string source = decode_hdr8 ? "#include \"aquarelle/hdr8.glsl\"\n" : "";
   for (size_t i = 0; i < glsl.size(); ++i) {
     source += "#define AQ_APPLY aq_apply_" + std::to_string(i) + "\n";
     source += "#define AQ_UNIFORM(name) " + fused_uniform_prefix(i) + "##name\n";
@@ -23,6 +24,7 @@ std::string fused_fragment_source(const std::vector<const char*>& glsl, bool res
       "void main() {\n";
   source += resample ? "  vec4 c = texture(aq_fused_input, v_uv);\n"
                      : "  vec4 c = texelFetch(aq_fused_input, ivec2(gl_FragCoord.xy), 0);\n";
+  if (decode_hdr8) source += "  c = aq_hdr8_decode(c);\n";
   for (size_t i = 0; i < glsl.size(); ++i) {
     source += "  c = aq_apply_" + std::to_string(i) + "(c, gl_FragCoord.xy, aq_fused_size);\n";
   }
@@ -43,7 +45,7 @@ Result<TextureRef> PointwiseFuser::run(ShaderCache& shaders, TexturePool& pool,
     names += (names.empty() ? "" : "+") +
              std::string(stage.pointwise->name != nullptr ? stage.pointwise->name : "pointwise");
   }
-  const std::string text = fused_fragment_source(glsl, resample);
+  const std::string text = fused_fragment_source(glsl, resample, in.format == AQ_FORMAT_RGBA8_HDR);
   const std::string name = "fused(" + names + ")";
   const aq_shader_source fragment{name.c_str(), text.c_str(), nullptr};
   auto program = shaders.program(nullptr, &fragment);

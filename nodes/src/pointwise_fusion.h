@@ -37,8 +37,10 @@ class PointwiseFuser {
 };
 
 // The fused fragment shader for functions `glsl` (stage i's uniforms get the prefix
-// "aq_s<i>_"), reading its input by texel or, with `resample`, bilinearly.
-std::string fused_fragment_source(const std::vector<const char*>& glsl, bool resample);
+// "aq_s<i>_"), reading its input by texel or, with `resample`, bilinearly, and decoding it when
+// it is AQ_FORMAT_RGBA8_HDR (with no stage: the host's decode of an encoded image).
+std::string fused_fragment_source(const std::vector<const char*>& glsl, bool resample,
+                                  bool decode_hdr8 = false);
 std::string fused_uniform_prefix(size_t stage);
 
 }  // namespace aq

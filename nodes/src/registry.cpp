@@ -74,8 +74,8 @@ std::string read_ports(const aq_port_desc* ports, uint32_t count, const char* ki
       return std::string(kind) + " '" + name + "' has unknown port type " +
              std::to_string(port.type) + " (expected AQ_PORT_IMAGE or AQ_PORT_SCENE)";
     }
-    if ((port.flags &
-         ~static_cast<uint32_t>(AQ_PORT_OPTIONAL | AQ_PORT_MULTI | AQ_PORT_8BIT_ENOUGH)) != 0) {
+    if ((port.flags & ~static_cast<uint32_t>(AQ_PORT_OPTIONAL | AQ_PORT_MULTI |
+                                             AQ_PORT_8BIT_ENOUGH | AQ_PORT_HDR8)) != 0) {
       return std::string(kind) + " '" + name + "' has unknown flags " + std::to_string(port.flags);
     }
     if ((port.flags & AQ_PORT_MULTI) != 0 &&
@@ -88,6 +88,10 @@ std::string read_ports(const aq_port_desc* ports, uint32_t count, const char* ki
       return std::string(kind) + " '" + name +
              "' is AQ_PORT_8BIT_ENOUGH: only image inputs may say how they read their image";
     }
+    if ((port.flags & AQ_PORT_HDR8) != 0 && port.type != AQ_PORT_IMAGE) {
+      return std::string(kind) + " '" + name +
+             "' is AQ_PORT_HDR8: only image ports can hold an encoded 8-bit image";
+    }
     if (!seen.insert(name).second) {
       return std::string(kind) + " '" + name + "' is declared twice";
     }
@@ -97,6 +101,7 @@ std::string read_ports(const aq_port_desc* ports, uint32_t count, const char* ki
     info.optional = (port.flags & AQ_PORT_OPTIONAL) != 0;
     info.multi = (port.flags & AQ_PORT_MULTI) != 0;
     info.eight_bit_enough = (port.flags & AQ_PORT_8BIT_ENOUGH) != 0;
+    info.hdr8 = (port.flags & AQ_PORT_HDR8) != 0;
     info.description = text_or_empty(port.description);
     out->push_back(std::move(info));
   }

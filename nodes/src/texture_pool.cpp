@@ -16,6 +16,7 @@ size_t bytes_per_pixel(uint32_t format) {
     case AQ_FORMAT_R32UI:
       return 4;
     case AQ_FORMAT_RGBA8:
+    case AQ_FORMAT_RGBA8_HDR:
       return 4;
     default:
       return 16;
@@ -36,6 +37,8 @@ const char* format_name(uint32_t format) {
       return "R32UI";
     case AQ_FORMAT_RGBA8:
       return "RGBA8";
+    case AQ_FORMAT_RGBA8_HDR:
+      return "RGBA8 HDR";
     default:
       return "unknown";
   }
@@ -55,6 +58,7 @@ GLenum internal_format(uint32_t format) {
     case AQ_FORMAT_R32UI:
       return GL_R32UI;
     case AQ_FORMAT_RGBA8:
+    case AQ_FORMAT_RGBA8_HDR:
       return GL_RGBA8;
     default:
       return GL_RGBA32F;

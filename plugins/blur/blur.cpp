@@ -36,7 +36,9 @@
 namespace {
 
 constexpr aq_port_desc kInputs[] = {
-    aq::image_port("image", "colour to blur"),
+    // AQ_PORT_HDR8: the separable direct kernel (final quality) decodes per tap; the other
+    // methods decode the image once first.
+    aq::image_port("image", "colour to blur", AQ_PORT_HDR8),
     aq::optional_image_port("depth",
                             "linear view depth (R32F); without it the depth term is 1 (far)")};
 constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "blurred colour")};
@@ -126,7 +128,7 @@ struct Blur {
   std::string source;  // the last composed shader text (the host compiles it at once)
 
   int process(aq::Context& ctx) {
-    const aq_image in = ctx.input_image(0);
+    aq_image in = ctx.input_image(0);
     const double sigma = ctx.param_float(kSigma) * ctx.render_scale();  // output pixels
     const double depth_weight = ctx.param_float(kDepthWeight);
     const double radial_weight = ctx.param_float(kRadialWeight);
@@ -140,6 +142,11 @@ struct Blur {
 
     aq_image out;
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+    if (in.format == AQ_FORMAT_RGBA8_HDR && !reads_encoded(ctx, uniform, max_sigma)) {
+      aq_image decoded;
+      if (!decode(ctx, in, &decoded)) return AQ_ERROR;
+      in = decoded;
+    }
     bool ok = false;
     if (ctx.param_enum(kMethod) == kStrided) {
       ok = strided(ctx, in, out, sigma);
@@ -227,15 +234,37 @@ struct Blur {
     return ctx.draw(out);
   }
 
+  // Whether the method these parameters choose reads an encoded image itself (the separable
+  // direct kernel); the others get it decoded first.
+  static bool reads_encoded(const aq::Context& ctx, bool uniform, double max_sigma) {
+    if (ctx.param_enum(kMethod) == kStrided || uniform || max_sigma > kDirectMaxSigma) return false;
+    const int64_t kernel = ctx.param_enum(kDirectKernel);
+    return kernel == kDirectSeparable || (kernel == kDirectAuto && direct_radius(max_sigma) > 2);
+  }
+
+  static bool decode(aq::Context& ctx, const aq_image& in, aq_image* decoded) {
+    if (!ctx.scratch(in.width, in.height, scratch_format(ctx), decoded)) return false;
+    const GLuint program = ctx.program(shaders::blur_decode_frag);
+    if (program == 0) return false;
+    glUseProgram(program);
+    aq::bind_texture(program, "u_image", 0, in);
+    return ctx.draw(*decoded);
+  }
+
   // σ per pixel, σmax small: rows then columns, each pixel with its own σ (a float scratch
-  // between the passes, as the exact separable blur).
+  // between the passes, as the exact separable blur; an encoded one when the input is encoded,
+  // which is what makes the columns' taps cheap).
   bool separable_gaussian(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma,
                           int radius) {
+    const bool encoded = in.format == AQ_FORMAT_RGBA8_HDR;
     aq_image rows;
-    if (!ctx.scratch(in.width, in.height, scratch_format(ctx), &rows)) return false;
+    if (!ctx.scratch(in.width, in.height, encoded ? in.format : scratch_format(ctx), &rows))
+      return false;
     for (int axis = 0; axis < 2; ++axis) {
-      const std::string defines =
-          define("AQ_RADIUS", radius) + define("AQ_AXIS", axis) + depth_define(ctx, in);
+      const aq_image& target = axis == 0 ? rows : out;
+      const std::string defines = define("AQ_RADIUS", radius) + define("AQ_AXIS", axis) +
+                                  depth_define(ctx, in) + define("AQ_DECODE_HDR8", encoded) +
+                                  define("AQ_ENCODE_HDR8", target.format == AQ_FORMAT_RGBA8_HDR);
       GLuint program =
           ctx.program(with_strength(shaders::blur_direct_separable_frag, defines, source));
       if (program == 0) return false;

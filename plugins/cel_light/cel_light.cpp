@@ -29,7 +29,8 @@ constexpr aq_port_desc kInputs[] = {
     aq::optional_image_port("shadow", "light-space depth (shadowmap.depth); unlit test if absent"),
     aq::optional_image_port("caustics", "tileable caustic texture, mean 1 (caustics.image)")};
 constexpr aq_port_desc kOutputs[] = {
-    aq::image_port("image", "lit, cel-shaded colour (HDR)"),
+    // AQ_PORT_HDR8: written encoded (aquarelle/hdr8.glsl) when every reader decodes it.
+    aq::image_port("image", "lit, cel-shaded colour (HDR)", AQ_PORT_HDR8),
     aq::image_port("plain", "the same light without caustics (e.g. the source of `edge`)")};
 
 enum Param {
@@ -58,12 +59,13 @@ constexpr aq_param_desc kParams[] = {
 
 // The shader variant for this node's connections and parameters (see cel_light.frag).
 std::string variant_source(bool has_shadow, bool has_caustics, bool quantize, int pcf_radius,
-                           bool same_size) {
+                           bool same_size, bool encode) {
   return "#define AQ_HAS_SHADOW " + std::to_string(has_shadow ? 1 : 0) +
          "\n#define AQ_HAS_CAUSTICS " + std::to_string(has_caustics ? 1 : 0) +
          "\n#define AQ_QUANTIZE " + std::to_string(quantize ? 1 : 0) + "\n#define AQ_PCF_RADIUS " +
          std::to_string(pcf_radius) + "\n#define AQ_SAME_SIZE " +
-         std::to_string(same_size ? 1 : 0) + "\n" + shaders::cel_light_frag.text;
+         std::to_string(same_size ? 1 : 0) + "\n#define AQ_ENCODE_HDR8 " +
+         std::to_string(encode ? 1 : 0) + "\n" + shaders::cel_light_frag.text;
 }
 
 bool same_size(const aq_image& a, const aq_image& b) {
@@ -75,6 +77,7 @@ struct CelLight {
     bool shadow, caustics, quantize;
     int pcf_radius;
     bool same_size;
+    bool encode;
     bool operator==(const Variant&) const = default;
   };
   Variant variant_{};
@@ -100,11 +103,15 @@ struct CelLight {
     const bool gbuffer_same_size = same_size(position, ctx.input_image(kNormal)) &&
                                    same_size(position, ctx.input_image(kAlbedo)) &&
                                    same_size(position, ctx.input_image(kId));
-    const Variant variant{has_shadow, has_caustics, ctx.param_bool(kQuantize),
-                          static_cast<int>(ctx.param_int(kPcfRadius)), gbuffer_same_size};
+    const Variant variant{has_shadow,
+                          has_caustics,
+                          ctx.param_bool(kQuantize),
+                          static_cast<int>(ctx.param_int(kPcfRadius)),
+                          gbuffer_same_size,
+                          targets[0].format == AQ_FORMAT_RGBA8_HDR};
     if (source.empty() || variant != variant_) {  // not re-made every frame
       source = variant_source(variant.shadow, variant.caustics, variant.quantize,
-                              variant.pcf_radius, variant.same_size);
+                              variant.pcf_radius, variant.same_size, variant.encode);
       variant_ = variant;
     }
     // No source path: hot reload would read the file without the variant's defines.

@@ -37,7 +37,9 @@ constexpr aq_port_desc kInputs[] = {
                             "used by object anchoring"),
     aq_port_desc{"scene", AQ_PORT_SCENE, AQ_PORT_OPTIONAL,
                  "its camera drives the dynamic canvas of screen anchoring"}};
-constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "colour with pigment density")};
+// AQ_PORT_HDR8: written encoded (aquarelle/hdr8.glsl) when every reader decodes it (blur).
+constexpr aq_port_desc kOutputs[] = {
+    aq::image_port("image", "colour with pigment density", AQ_PORT_HDR8)};
 enum Input : uint32_t { kImage, kTurbulence, kGrain, kPaper, kPosition, kScene };
 enum Param : uint32_t {
   kAnchoring,
@@ -153,6 +155,7 @@ struct Pigment {
     if (cached && !update_canvas_cache(ctx, in, defines, canvas)) return AQ_ERROR;
     const std::string text =
         defines + (cached ? "#define AQ_PIGMENT_PASS 2\n" : "#define AQ_PIGMENT_PASS 0\n") +
+        "#define AQ_PIGMENT_ENCODE_HDR8 " + (out.format == AQ_FORMAT_RGBA8_HDR ? "1" : "0") + "\n" +
         shaders::pigment_frag.text;
     const GLuint program =
         ctx.program(aq_shader_source{shaders::pigment_frag.name, text.c_str(), nullptr});

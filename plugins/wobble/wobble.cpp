@@ -16,7 +16,8 @@
 namespace {
 
 constexpr aq_port_desc kInputs[] = {
-    aq::image_port("image", "colour to displace"),
+    // AQ_PORT_HDR8: an encoded image is decoded texel by texel before the bilinear blend.
+    aq::image_port("image", "colour to displace", AQ_PORT_HDR8),
     // Heights in [0, 1] differenced over two paper pixels: 8 bits move the displacement by at
     // most strength/510 paper pixels (README), so the host may store the paper as RGBA8.
     aq_port_desc{"paper", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
@@ -54,7 +55,9 @@ struct Wobble {
                              ctx.input_image(kGradient).width == paper.width &&
                              ctx.input_image(kGradient).height == paper.height;
     const std::string text = std::string("#define AQ_WOBBLE_GRADIENT ") +
-                             (precomputed ? "1" : "0") + "\n" + shaders::wobble_frag.text;
+                             (precomputed ? "1" : "0") + "\n#define AQ_WOBBLE_DECODE_HDR8 " +
+                             (in.format == AQ_FORMAT_RGBA8_HDR ? "1" : "0") + "\n" +
+                             shaders::wobble_frag.text;
     const GLuint program =
         ctx.program(aq_shader_source{shaders::wobble_frag.name, text.c_str(), nullptr});
     if (program == 0) return AQ_ERROR;

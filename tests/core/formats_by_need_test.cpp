@@ -57,7 +57,8 @@ Plan plan_of(const char* text, bool formats_by_need = true,
 
 bool stored_in_8_bits(const Plan& plan, const std::string& id) {
   const PlannedNode* node = plan.find(id);
-  return node != nullptr && !node->eight_bit_outputs.empty() && node->eight_bit_outputs[0];
+  return node != nullptr && !node->stored_formats.empty() &&
+         node->stored_formats[0] == AQ_FORMAT_RGBA8;
 }
 
 TEST(FormatsByNeed, AnOutputReadOnlyForEdgeDetectionIsStoredIn8Bits) {
@@ -173,9 +174,10 @@ TEST(FormatsByNeed, ThePaperIsStoredIn8BitsAndItsGradientIsNot) {
   const Plan plan = plan_of(kPaperGraph);
   const PlannedNode* paper = plan.find("paper");
   ASSERT_NE(paper, nullptr);
-  ASSERT_EQ(paper->eight_bit_outputs.size(), 2u);
-  EXPECT_TRUE(paper->eight_bit_outputs[0]) << "image: read by wobble.paper and pigment.paper";
-  EXPECT_FALSE(paper->eight_bit_outputs[1]) << "gradient: wobble reads it at full precision";
+  ASSERT_EQ(paper->stored_formats.size(), 2u);
+  EXPECT_EQ(paper->stored_formats[0], uint32_t{AQ_FORMAT_RGBA8})
+      << "image: read by wobble.paper and pigment.paper";
+  EXPECT_EQ(paper->stored_formats[1], 0u) << "gradient: wobble reads it at full precision";
 }
 
 Result<ImageF> render_with_lever(const char* graph, bool formats_by_need,

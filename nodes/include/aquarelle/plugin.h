@@ -65,7 +65,14 @@ enum {
    * reads 8-bit texels about twice as fast as float ones); the plugin writing it asks for its
    * usual format and gets the narrower texture. Values outside [0, 1] clamp. An older host
    * refuses the plugin (unknown flag). */
-  AQ_PORT_8BIT_ENOUGH = 1u << 2
+  AQ_PORT_8BIT_ENOUGH = 1u << 2,
+  /* Appended in ABI 1: an image port that handles AQ_FORMAT_RGBA8_HDR. On an input: the plugin
+   * decodes it (aquarelle/hdr8.glsl) or only compares its values (min, max: the encoding is
+   * monotone). On an output: the plugin writes it encoded when the host hands it such a
+   * texture (the aq_image's format says so; the plugin asks for its usual format). The host
+   * stores an output so only when its writer and every reader say AQ_PORT_HDR8, it is not the
+   * requested output and the graph's precision is half. An older host refuses the plugin. */
+  AQ_PORT_HDR8 = 1u << 3
 };
 
 typedef enum aq_format {
@@ -75,7 +82,13 @@ typedef enum aq_format {
   AQ_FORMAT_DEPTH32F = 4, /* depth attachment (shadow maps, z-buffers) */
   AQ_FORMAT_R32UI = 5,    /* integer ids */
   /* Appended in ABI 1: 8-bit unsigned normalised RGBA ([0, 1], steps of 1/255), filterable */
-  AQ_FORMAT_RGBA8 = 6
+  AQ_FORMAT_RGBA8 = 6,
+  /* Appended in ABI 1: linear HDR colour in an RGBA8 texture, rgb encoded per channel as
+   * e = sqrt(c / (1 + c)) for c >= 0 (decode: c = e^2 / (1 - e^2)), alpha linear in [0, 1].
+   * Monotone, so min and max work on the stored values; relative step about 2 % over
+   * [0.1, 2]. Only ports that say AQ_PORT_HDR8 see it (bandwidth by need: llvmpipe reads
+   * several 8-bit texels about three times as fast as float ones). GLSL: aquarelle/hdr8.glsl. */
+  AQ_FORMAT_RGBA8_HDR = 7
 } aq_format;
 
 typedef enum aq_precision { AQ_PRECISION_HALF = 0, AQ_PRECISION_FLOAT = 1 } aq_precision;

@@ -13,6 +13,8 @@
 //   AQ_HAS_SHADOW, AQ_HAS_CAUSTICS, AQ_QUANTIZE  0 or 1
 //   AQ_PCF_RADIUS                                0..4
 //   AQ_SAME_SIZE   1 when every g-buffer input has the output's size (read at gl_FragCoord)
+//   AQ_ENCODE_HDR8 1 when `image` is stored as AQ_FORMAT_RGBA8_HDR (aquarelle/hdr8.glsl)
+#include "aquarelle/hdr8.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_plain;
@@ -111,15 +113,15 @@ vec4 fetch(sampler2D s) {
 #endif
 }
 
+// Every pixel computes the light and background pixels select their colour at the end: on
+// llvmpipe a branch on per-pixel data runs both sides for the whole block anyway, so an early
+// return for the background only added its own reads (measured: the pass 30 -> 26 ms at 720p).
 void main() {
-  if (!(fetch(u_id).r >= 0.5)) {  // id 0 (or NaN): background
-    o_color = vec4(u_environment ? max(fetch(u_albedo).rgb, vec3(0.0)) : u_background, 1.0);
-    o_plain = o_color;
-    return;
-  }
+  bool background = !(fetch(u_id).r >= 0.5);  // id 0 (or NaN)
+  vec4 albedo_texel = fetch(u_albedo);
   vec3 p = fetch(u_position).xyz;
   vec3 n = fetch(u_normal).xyz;
-  vec3 albedo = max(fetch(u_albedo).rgb, vec3(0.0));
+  vec3 albedo = max(albedo_texel.rgb, vec3(0.0));
   float len = length(n);
   n = len > 1e-6 ? n / len : vec3(0.0);
 
@@ -136,6 +138,12 @@ void main() {
     caustic_factor = caustic(p);
 #endif
   }
-  o_color = vec4(cel(albedo * (u_ambient + direct * caustic_factor)), 1.0);
-  o_plain = vec4(cel(albedo * (u_ambient + direct)), 1.0);
+  vec4 lit = vec4(cel(albedo * (u_ambient + direct * caustic_factor)), 1.0);
+  vec4 plain = vec4(cel(albedo * (u_ambient + direct)), 1.0);
+  vec4 behind = vec4(u_environment ? albedo : u_background, 1.0);
+  o_color = background ? behind : lit;
+  o_plain = background ? behind : plain;
+#if AQ_ENCODE_HDR8
+  o_color = aq_hdr8_encode(o_color);
+#endif
 }

@@ -34,7 +34,13 @@
 #define AQ_PIGMENT_TWO_LAYERS 0
 #endif
 
+#include "aquarelle/hdr8.glsl"
 #include "aquarelle/noise.glsl"
+
+// AQ_PIGMENT_ENCODE_HDR8 1: the output is stored as AQ_FORMAT_RGBA8_HDR (its reader decodes).
+#ifndef AQ_PIGMENT_ENCODE_HDR8
+#define AQ_PIGMENT_ENCODE_HDR8 0
+#endif
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
@@ -182,5 +188,8 @@ void main() {
   c = modulate(c, PAPER, screen, on_object, position.xyz);
 #endif
   o_color = vec4(c, color.a);
+#if AQ_PIGMENT_ENCODE_HDR8
+  o_color = aq_hdr8_encode(o_color);
+#endif
 }
 #endif

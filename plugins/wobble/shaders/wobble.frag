@@ -7,6 +7,13 @@
 #ifndef AQ_WOBBLE_GRADIENT
 #define AQ_WOBBLE_GRADIENT 0
 #endif
+// AQ_WOBBLE_DECODE_HDR8 1: u_image holds AQ_FORMAT_RGBA8_HDR. The bilinear blend must mix
+// light, not codes (the encoding is not linear), so the four texels are fetched, decoded and
+// mixed here with the weights and clamp-to-edge of the hardware's filter.
+#ifndef AQ_WOBBLE_DECODE_HDR8
+#define AQ_WOBBLE_DECODE_HDR8 0
+#endif
+#include "aquarelle/hdr8.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 
@@ -16,6 +23,22 @@ uniform vec2 u_paper_size;  // paper pixels across the image
 uniform float u_strength;   // paper pixels of displacement per unit slope (height per paper pixel)
 
 float paper_height(vec2 uv) { return texture(u_paper, uv).r; }
+
+vec4 image_at(vec2 uv) {
+#if AQ_WOBBLE_DECODE_HDR8
+  ivec2 last = textureSize(u_image, 0) - 1;
+  vec2 t = uv * vec2(last + 1) - 0.5;
+  vec2 f = fract(t);
+  ivec2 i0 = ivec2(floor(t));
+  vec4 c00 = aq_hdr8_decode(texelFetch(u_image, clamp(i0, ivec2(0), last), 0));
+  vec4 c10 = aq_hdr8_decode(texelFetch(u_image, clamp(i0 + ivec2(1, 0), ivec2(0), last), 0));
+  vec4 c01 = aq_hdr8_decode(texelFetch(u_image, clamp(i0 + ivec2(0, 1), ivec2(0), last), 0));
+  vec4 c11 = aq_hdr8_decode(texelFetch(u_image, clamp(i0 + ivec2(1, 1), ivec2(0), last), 0));
+  return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+#else
+  return texture(u_image, uv);
+#endif
+}
 
 void main() {
   vec2 step_uv = 1.0 / u_paper_size;
@@ -31,5 +54,5 @@ void main() {
 #endif
   // A NaN or infinite paper would throw the lookup anywhere: keep the pixel in place instead.
   if (any(isnan(gradient)) || any(isinf(gradient))) gradient = vec2(0.0);
-  o_color = texture(u_image, v_uv + u_strength * gradient * step_uv);
+  o_color = image_at(v_uv + u_strength * gradient * step_uv);
 }

@@ -53,8 +53,9 @@ struct EvalOptions {
   // Run chains of pointwise nodes that give a fusable function as one pass (and the output's
   // pointwise tail inside the proxy upscale). Off: every node runs its own process().
   bool fuse_pointwise = true;
-  // Store outputs that every reader reads through an AQ_PORT_8BIT_ENOUGH input as RGBA8
-  // (plan.h). The environment variable AQUARELLE_FORMATS_BY_NEED=0 also turns it off.
+  // Store outputs in the narrower format their readers need: RGBA8 for AQ_PORT_8BIT_ENOUGH
+  // readers, RGBA8_HDR where writer and readers say AQ_PORT_HDR8 (plan.h). The environment
+  // variables AQUARELLE_FORMATS_BY_NEED=0 (both) and AQUARELLE_HDR8=0 (the second) turn it off.
   bool formats_by_need = true;
   // Images for `image_input` nodes, by their `name` parameter (tests, embedding).
   const std::map<std::string, ImageF>* images = nullptr;

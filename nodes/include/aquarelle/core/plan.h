@@ -29,10 +29,12 @@ struct PlannedNode {
   int readers = 0;        // links that read this node's outputs (+1 for the requested output)
   bool varies = false;    // it or something upstream is time-dependent; else cached across frames
   bool deferred = false;  // runs inside its reader's pass (pointwise fusion), not a pass of its own
-  // Per output port (type order): stored as AQ_FORMAT_RGBA8 because every reader reads it
-  // through an AQ_PORT_8BIT_ENOUGH input and it is not the requested output (bandwidth by
-  // need). Empty when no output is narrowed.
-  std::vector<bool> eight_bit_outputs;
+  // Per output port (type order): the format the host stores it in instead of the one its
+  // plugin asks for (bandwidth by need), 0 where the plugin's choice stands: AQ_FORMAT_RGBA8
+  // when every reader reads it through an AQ_PORT_8BIT_ENOUGH input, AQ_FORMAT_RGBA8_HDR when
+  // the writer and every reader say AQ_PORT_HDR8 (half precision only). Never the requested
+  // output. Empty when no output changes.
+  std::vector<uint32_t> stored_formats;
 };
 
 // One pass of the frame: a node's process(), or one fused shader that computes a chain of
@@ -70,9 +72,10 @@ struct Plan {
 struct PlanOptions {
   bool fuse_pointwise = true;
   bool retain_static_outputs = true;  // static nodes' results kept across frames
-  // Store outputs that every reader is content to read in 8 bits as RGBA8 (PlannedNode::
-  // eight_bit_outputs).
+  // Store outputs in the narrower format their readers need (PlannedNode::stored_formats).
   bool formats_by_need = true;
+  // ... including AQ_FORMAT_RGBA8_HDR (with formats_by_need).
+  bool hdr8 = true;
 };
 
 // Compiles the plan; errors name the node (cycle, missing node, unknown type, bad output).

@@ -19,6 +19,8 @@ struct PortInfo {
   bool multi = false;  // takes any number of links (AQ_PORT_MULTI)
   // An image input content with 8 bits a channel (AQ_PORT_8BIT_ENOUGH).
   bool eight_bit_enough = false;
+  // An image port that handles AQ_FORMAT_RGBA8_HDR (AQ_PORT_HDR8).
+  bool hdr8 = false;
 };
 
 struct ParamInfo {

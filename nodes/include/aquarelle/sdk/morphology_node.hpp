@@ -28,8 +28,12 @@ enum Mode : int64_t { kPerChannel = 0, kLuminance = 1 };
 constexpr int kMaxRadius = 4;  // size 9
 constexpr int kMaxSpans = kMaxRadius + 1;
 
-inline constexpr aq_port_desc kInputs[] = {aq::image_port("image", "colour to filter")};
-inline constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "filtered colour")};
+// Both ports take AQ_FORMAT_RGBA8_HDR: the encoding is monotone per channel, so the extremes
+// are taken on the stored values and the image is decoded or encoded only on the last write.
+inline constexpr aq_port_desc kInputs[] = {
+    aq::image_port("image", "colour to filter", AQ_PORT_HDR8)};
+inline constexpr aq_port_desc kOutputs[] = {
+    aq::image_port("image", "filtered colour", AQ_PORT_HDR8)};
 inline constexpr aq_param_desc kParams[] = {
     aq::int_param("size", 3, 1, 2 * kMaxRadius + 1,
                   "window diameter in pixels, odd (1, 3, 5, 7, 9); 1 passes the image through"),
@@ -81,7 +85,7 @@ inline SpanPlan plan_spans(int radius, Footprint footprint) {
 // morphology.glsl). Variants are cached by the host like any program; they carry no source path,
 // so they are not hot-reloaded.
 inline std::string variant_text(const aq_shader_source& shader, int pass, const SpanPlan& plan,
-                                bool luminance) {
+                                bool luminance, bool in_hdr8, bool out_hdr8) {
   auto list = [](const int* values, int count) {
     std::string text;
     for (int i = 0; i < count; ++i) text += (i > 0 ? "," : "") + std::to_string(values[i]);
@@ -94,7 +98,8 @@ inline std::string variant_text(const aq_shader_source& shader, int pass, const 
          std::to_string(plan.span_count) + "\n#define AQ_MORPH_HALF_WIDTHS int[5](" +
          list(widths.data(), kMaxSpans) + ")\n#define AQ_MORPH_ROW_SPANS int[9](" +
          list(plan.row_span.data(), 2 * kMaxRadius + 1) + ")\n#define AQ_MORPH_LUMINANCE " +
-         (luminance ? "1" : "0") + "\n" + shader.text;
+         (luminance ? "1" : "0") + "\n#define AQ_MORPH_IN_HDR8 " + (in_hdr8 ? "1" : "0") +
+         "\n#define AQ_MORPH_OUT_HDR8 " + (out_hdr8 ? "1" : "0") + "\n" + shader.text;
 }
 
 // Runs erosion or dilation, whichever `shader` implements.
@@ -115,14 +120,18 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader) {
   const SpanPlan plan = plan_spans(radius, footprint == kDisc ? kDisc : kSquare);
   const bool luminance = ctx.param_enum(kMode) == kLuminance;
 
+  // The spans keep an encoded input's encoding (the row extremes are some of its texels).
+  const bool in_hdr8 = in.format == AQ_FORMAT_RGBA8_HDR;
   std::array<aq_image, kMaxSpans> spans{};
   for (int i = 0; i < plan.span_count; ++i) {
-    if (!ctx.scratch(in.width, in.height, ctx.working_format(), &spans[i])) return AQ_ERROR;
+    if (!ctx.scratch(in.width, in.height, in_hdr8 ? in.format : ctx.working_format(), &spans[i]))
+      return AQ_ERROR;
   }
   aq_image out;
   if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
-  const std::string rows_text = variant_text(shader, 0, plan, luminance);
-  const std::string columns_text = variant_text(shader, 1, plan, luminance);
+  const bool out_hdr8 = out.format == AQ_FORMAT_RGBA8_HDR;
+  const std::string rows_text = variant_text(shader, 0, plan, luminance, in_hdr8, in_hdr8);
+  const std::string columns_text = variant_text(shader, 1, plan, luminance, in_hdr8, out_hdr8);
   const GLuint rows = ctx.program(aq_shader_source{shader.name, rows_text.c_str(), nullptr});
   const GLuint columns = ctx.program(aq_shader_source{shader.name, columns_text.c_str(), nullptr});
   if (rows == 0 || columns == 0) return AQ_ERROR;

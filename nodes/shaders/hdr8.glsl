@@ -1,0 +1,23 @@
+// Linear HDR colour in an RGBA8 texture (AQ_FORMAT_RGBA8_HDR, plugin.h):
+// `#include "aquarelle/hdr8.glsl"`.
+//
+// rgb is stored per channel as e = sqrt(c / (1 + c)), c >= 0; alpha is linear in [0, 1]. The
+// map is monotone, so min, max and comparisons of whole channels work on the stored values
+// (erode and dilate never decode). c / (1 + c) reaches every HDR value (c = 6 under the
+// caustics is e = 0.93); the square root spends the 256 codes evenly in relative terms.
+// Rounding e to 8 bits moves it by at most 1/510, and dc/de = 2e (1 + c)^2, so
+//   |decode(encode(c)) - c| <= e (1 + c)^2 / 255,  relative (1 + c)^1.5 / (255 sqrt(c)):
+// 1.1 % at c = 1, 1.4 % at c = 0.1 and c = 2, 0.011 absolute at c = 1 (sRGB's 8 bits: 0.2 %
+// at 1). Why 8 bits at all: llvmpipe reads RGBA8 texels through a path of its own, about
+// three times as fast as float ones when a pass reads several (docs/performance.md).
+
+vec4 aq_hdr8_encode(vec4 c) {
+  vec3 rgb = max(c.rgb, vec3(0.0));  // negative light is not light; NaN becomes 0
+  return vec4(sqrt(rgb / (vec3(1.0) + rgb)), clamp(c.a, 0.0, 1.0));
+}
+
+vec4 aq_hdr8_decode(vec4 e) {
+  vec3 y = e.rgb * e.rgb;
+  // e = 1 (code 255) stands for everything above 254.5/255: decode it as 1 / (1 - y) = 256-ish.
+  return vec4(y / max(vec3(1.0) - y, vec3(1.0 / 256.0)), e.a);
+}

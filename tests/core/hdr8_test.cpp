@@ -1,0 +1,297 @@
+// AQ_FORMAT_RGBA8_HDR (plugin.h, aquarelle/hdr8.glsl): linear HDR colour stored in 8 bits as
+// e = sqrt(c / (1 + c)) between a writer and readers that all say AQ_PORT_HDR8, at half
+// precision. The plan tests need no GL; the render tests compare the lever on and off
+// (AQUARELLE_HDR8=0) against the encoding's stated bound, and check that erode and dilate,
+// which never decode, are exact on the stored values.
+#include <gtest/gtest.h>
+
+#include <aquarelle/core/graph_io.h>
+#include <aquarelle/core/plan.h>
+#include <aquarelle/core/registry.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <random>
+
+#include "support/harness.h"
+
+namespace aq::test {
+namespace {
+
+double encode(double c) {
+  return std::sqrt(c / (1.0 + c));
+}
+double decode(double e) {
+  const double y = e * e;
+  return y / std::max(1.0 - y, 1.0 / 256.0);
+}
+// hdr8.glsl: rounding e to 8 bits moves c by at most e (1 + c)^2 / 255.
+double bound(double c) {
+  return encode(c) * (1.0 + c) * (1.0 + c) / 255.0;
+}
+// Half precision rounds the working textures on either side: 2^-11 relative, twice.
+double half_slack(double c) {
+  return 1.0e-3 * std::max(1.0, std::abs(c));
+}
+
+// erode 3, dilate 5, erode 3: the flagship's opening and closing, on an HDR image.
+const char* kMorphologyChain = R"({
+  "aquarelle": 1,
+  "nodes": {
+    "input": {"type": "image_input", "params": {"name": "image"}},
+    "open_erode": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "input.image"}},
+    "dilate": {"type": "dilate", "params": {"size": 5}, "inputs": {"image": "open_erode.image"}},
+    "close_erode": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "dilate.image"}}
+  },
+  "output": "close_erode.image"
+})";
+
+// An encoded image passed through (erode of size 1) to a reader that cannot decode it.
+const char* kPassThrough = R"({
+  "aquarelle": 1,
+  "nodes": {
+    "input": {"type": "image_input", "params": {"name": "image"}},
+    "erode": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "input.image"}},
+    "same": {"type": "erode", "params": {"size": 1}, "inputs": {"image": "erode.image"}},
+    "half": {"type": "tint", "params": {"amount": 0.5, "tint": [0, 0, 0]},
+             "inputs": {"image": "same.image"}}
+  },
+  "output": "half.image"
+})";
+
+const char* kWobble = R"({
+  "aquarelle": 1,
+  "nodes": {
+    "input": {"type": "image_input", "params": {"name": "image"}},
+    "erode": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "input.image"}},
+    "wobble": {"type": "wobble", "params": {"strength": 8.0}, "inputs": {"image": "erode.image"}}
+  },
+  "output": "wobble.image"
+})";
+
+// pigment writes encoded for blur, whose separable direct kernel (final quality, σmax above
+// 1 px) reads the taps itself; the other kernels get the image decoded first.
+std::string pigment_blur(const char* direct_kernel) {
+  return std::string(R"({
+  "aquarelle": 1,
+  "nodes": {
+    "input": {"type": "image_input", "params": {"name": "image"}},
+    "pigment": {"type": "pigment", "params": {"turbulence_weight": 0.3, "grain_weight": 0.2},
+                "inputs": {"image": "input.image"}},
+    "blur": {"type": "blur", "params": {"sigma": 2.0, "depth_weight": 0.5, "radial_weight": 0.35,
+                                        "direct_kernel": ")") +
+         direct_kernel + R"("}, "inputs": {"image": "pigment.image"}}
+  },
+  "output": "blur.image"
+})";
+}
+
+Plan plan_of(const ReadResult& read, const std::string& precision, bool hdr8 = true) {
+  EXPECT_TRUE(read.ok());
+  PlanOptions options;
+  options.hdr8 = hdr8;
+  Graph graph = read.graph;
+  graph.settings.precision = precision;
+  auto plan = compile_plan(graph, registry(), options);
+  EXPECT_TRUE(plan.ok()) << plan.message();
+  return plan.ok() ? *plan : Plan{};
+}
+
+uint32_t stored(const Plan& plan, const std::string& id, size_t output = 0) {
+  const PlannedNode* node = plan.find(id);
+  if (node == nullptr || output >= node->stored_formats.size()) return 0;
+  return node->stored_formats[output];
+}
+
+TEST(Hdr8, TheFlagshipStoresItsLightMorphologyAndPigmentEncoded) {
+  const ReadResult text = read_graph_file(source_path("graphs/underwater.json"), registry());
+  const Plan plan = plan_of(text, "half");
+  for (const char* id : {"light", "open_erode", "dilate", "close_erode", "pigment"})
+    EXPECT_EQ(stored(plan, id), uint32_t{AQ_FORMAT_RGBA8_HDR}) << id;
+  EXPECT_EQ(stored(plan, "light", 1), uint32_t{AQ_FORMAT_RGBA8}) << "plain: edge's source";
+  for (const char* id : {"wobble", "edge", "blur", "gbuf"})
+    EXPECT_NE(stored(plan, id), uint32_t{AQ_FORMAT_RGBA8_HDR}) << id;
+  // Float precision asks for accuracy: nothing is encoded; nor with the lever off.
+  for (const Plan& other : {plan_of(text, "float"), plan_of(text, "half", false)})
+    for (const char* id : {"light", "open_erode", "dilate", "close_erode"})
+      EXPECT_NE(stored(other, id), uint32_t{AQ_FORMAT_RGBA8_HDR}) << id;
+}
+
+TEST(Hdr8, AReaderThatCannotDecodeKeepsTheWorkingFormat) {
+  const Plan plan = plan_of(read_graph_text(kPassThrough, registry(), "pass through"), "half");
+  EXPECT_EQ(stored(plan, "erode"), uint32_t{AQ_FORMAT_RGBA8_HDR}) << "read by an erode";
+  EXPECT_EQ(stored(plan, "same"), 0u) << "read by a tint, which does not decode";
+  EXPECT_EQ(stored(plan, "input"), 0u) << "image_input does not say it can write it";
+}
+
+TEST(Hdr8, OnlyImagePortsMayDeclareIt) {
+  const aq_port_desc scene_input[] = {{"scene", AQ_PORT_SCENE, AQ_PORT_HDR8, "s"}};
+  const aq_port_desc image_output[] = {{"image", AQ_PORT_IMAGE, AQ_PORT_HDR8, "i"}};
+  auto describe = [&](const aq_port_desc* inputs) {
+    aq_node_desc desc{};
+    desc.struct_size = sizeof(aq_node_desc);
+    desc.type_name = "encoded";
+    desc.category = "Filter";
+    desc.description = "test";
+    desc.inputs = inputs;
+    desc.input_count = 1;
+    desc.outputs = image_output;
+    desc.output_count = 1;
+    desc.create = [](const aq_host*) -> void* { return nullptr; };
+    desc.destroy = [](void*) {};
+    desc.process = [](void*, aq_process_ctx*) { return int{AQ_OK}; };
+    std::string why;
+    NodeType type = node_type_from_desc(desc, "test.so", &why);
+    return std::pair{type, why};
+  };
+  auto [refused, why] = describe(scene_input);
+  EXPECT_TRUE(refused.name.empty());
+  EXPECT_NE(why.find("input 'scene' is AQ_PORT_HDR8"), std::string::npos) << why;
+  const aq_port_desc image_input[] = {{"image", AQ_PORT_IMAGE, AQ_PORT_HDR8, "i"}};
+  auto [accepted, none] = describe(image_input);
+  ASSERT_FALSE(accepted.name.empty()) << none;
+  EXPECT_TRUE(accepted.inputs[0].hdr8);
+  EXPECT_TRUE(accepted.outputs[0].hdr8);
+}
+
+// Light between 0 and 6 (the caustics' peaks), with alpha 1, in blocks and noise so that the
+// morphology has edges to move.
+ImageF hdr_image(int width, int height, bool on_codes) {
+  ImageF image(width, height, 4, 1.0f);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        double value = 6.0 * std::pow(unit(random), 2.0);
+        // A value whose code is exact: the encoding maps it to itself.
+        if (on_codes) value = decode(std::round(encode(value) * 255.0) / 255.0);
+        image.at(x, y, c) = static_cast<float>(value);
+      }
+    }
+  }
+  return image;
+}
+
+Result<ImageF> render(const char* graph, const ImageF& input, bool hdr8, bool fuse = true) {
+  if (hdr8) {
+    unsetenv("AQUARELLE_HDR8");
+  } else {
+    setenv("AQUARELLE_HDR8", "0", 1);
+  }
+  RenderOptions options;
+  options.width = input.width;
+  options.height = input.height;
+  options.precision = "half";
+  options.fuse_pointwise = fuse;
+  auto image = render_graph(graph, options, {{"image", input}});
+  unsetenv("AQUARELLE_HDR8");
+  return image;
+}
+
+struct Comparison {
+  double worst_over_bound = 0.0;  // max of |on - off| / (bound + slack)
+  double mean_abs = 0.0;
+  double max_abs = 0.0;
+};
+
+Comparison compare(const ImageF& on, const ImageF& off) {
+  Comparison result;
+  double sum = 0.0;
+  size_t count = 0;
+  for (int y = 0; y < on.height; ++y) {
+    for (int x = 0; x < on.width; ++x) {
+      for (int c = 0; c < 4; ++c) {
+        const double a = on.at(x, y, c);
+        const double b = off.at(x, y, c);
+        const double difference = std::abs(a - b);
+        const double allowed = (c < 3 ? bound(std::max(a, b)) : 0.0) + half_slack(b);
+        result.worst_over_bound = std::max(result.worst_over_bound, difference / allowed);
+        result.max_abs = std::max(result.max_abs, difference);
+        sum += difference;
+        ++count;
+      }
+    }
+  }
+  result.mean_abs = sum / static_cast<double>(count);
+  return result;
+}
+
+TEST(Hdr8, ErodeAndDilateAreExactOnTheStoredValues) {
+  // Values on the codes: the chain encodes them exactly, so only half precision differs.
+  const ImageF codes = hdr_image(64, 48, true);
+  auto on = render(kMorphologyChain, codes, true);
+  auto off = render(kMorphologyChain, codes, false);
+  ASSERT_TRUE(on.ok()) << on.message();
+  ASSERT_TRUE(off.ok()) << off.message();
+  for (size_t i = 0; i < on->pixels.size(); ++i)
+    ASSERT_LE(std::abs(on->pixels[i] - off->pixels[i]), half_slack(off->pixels[i])) << i;
+}
+
+TEST(Hdr8, TheMorphologyChainIsWithinTheEncodingsBound) {
+  const ImageF light = hdr_image(64, 48, false);
+  auto on = render(kMorphologyChain, light, true);
+  auto off = render(kMorphologyChain, light, false);
+  ASSERT_TRUE(on.ok()) << on.message();
+  ASSERT_TRUE(off.ok()) << off.message();
+  const Comparison result = compare(*on, *off);
+  EXPECT_GT(result.max_abs, 0.0) << "nothing was encoded";
+  EXPECT_LE(result.worst_over_bound, 1.0);
+}
+
+// A tint to black at 0.5 halves what it reads (on the GPU: undecoded codes would be far off)
+// through its own pass (unfused) or as the input of a fused chain.
+TEST(Hdr8, AnEncodedImagePassedThroughIsDecodedForItsReader) {
+  const ImageF light = hdr_image(64, 48, false);
+  for (bool fuse : {false, true}) {
+    auto on = render(kPassThrough, light, true, fuse);
+    auto off = render(kPassThrough, light, false, fuse);
+    ASSERT_TRUE(on.ok()) << on.message();
+    ASSERT_TRUE(off.ok()) << off.message();
+    for (ImageF* image : {&*on, &*off})
+      for (size_t i = 0; i < image->pixels.size(); i += 4)
+        for (size_t c = 0; c < 3; ++c) image->pixels[i + c] *= 2.0f;
+    const Comparison result = compare(*on, *off);
+    EXPECT_GT(result.max_abs, 0.0) << "nothing was encoded";
+    EXPECT_LE(result.worst_over_bound, 1.0) << "an encoded image reached the tint undecoded";
+  }
+}
+
+// wobble mixes four decoded texels as the hardware's bilinear filter mixes four half ones: the
+// mix of values each within the bound of the largest is within that bound.
+TEST(Hdr8, WobbleDecodesBeforeItMixes) {
+  const ImageF light = hdr_image(64, 48, false);
+  auto on = render(kWobble, light, true);
+  auto off = render(kWobble, light, false);
+  ASSERT_TRUE(on.ok()) << on.message();
+  ASSERT_TRUE(off.ok()) << off.message();
+  const Comparison result = compare(*on, *off);
+  EXPECT_GT(result.max_abs, 0.0) << "nothing was encoded";
+  EXPECT_LE(result.max_abs, bound(6.0) + half_slack(6.0));
+  // Mixing codes instead of light would be off by a quarter of the value between dark and
+  // bright texels; decoded first, the mean error is that of the rounding alone.
+  EXPECT_LT(result.mean_abs, 0.01);
+}
+
+// A blur mixes values each within the bound of the largest, and the separable kernel stores its
+// rows encoded again: twice the bound of the brightest texel at most.
+TEST(Hdr8, BlurDecodesEveryTap) {
+  const ImageF light = hdr_image(64, 48, false);
+  for (const char* kernel : {"separable", "full"}) {
+    const std::string graph = pigment_blur(kernel);
+    EXPECT_EQ(stored(plan_of(read_graph_text(graph, registry(), "blur"), "half"), "pigment"),
+              uint32_t{AQ_FORMAT_RGBA8_HDR});
+    auto on = render(graph.c_str(), light, true);
+    auto off = render(graph.c_str(), light, false);
+    ASSERT_TRUE(on.ok()) << on.message();
+    ASSERT_TRUE(off.ok()) << off.message();
+    const Comparison result = compare(*on, *off);
+    EXPECT_GT(result.max_abs, 0.0) << kernel << ": nothing was encoded";
+    EXPECT_LE(result.max_abs, 2.0 * bound(6.0) + half_slack(6.0)) << kernel;
+    EXPECT_LT(result.mean_abs, 0.01) << kernel;
+  }
+}
+
+}  // namespace
+}  // namespace aq::test
