@@ -51,8 +51,13 @@ class GBuffer {
     }
     aq_image depth_buffer;
     if (!ctx.scratch(width, height, AQ_FORMAT_DEPTH32F, &depth_buffer)) return AQ_ERROR;
-    GLuint program = ctx.program(shaders::gbuffer_vert, shaders::gbuffer_frag);
-    if (program == 0) return AQ_ERROR;
+    const std::string untextured_text =
+        std::string("#define AQ_GBUFFER_TEXTURED 0\n") + shaders::gbuffer_frag.text;
+    const GLuint programs[2] = {
+        ctx.program(shaders::gbuffer_vert,
+                    aq_shader_source{shaders::gbuffer_frag.name, untextured_text.c_str(), nullptr}),
+        ctx.program(shaders::gbuffer_vert, shaders::gbuffer_frag)};
+    if (programs[0] == 0 || programs[1] == 0) return AQ_ERROR;
 
     meshes_.update(*scene, ctx.raw()->gl_generation);
     if (!ctx.bind_targets(targets, kOutputCount, &depth_buffer)) return AQ_ERROR;
@@ -83,22 +88,24 @@ class GBuffer {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    glUseProgram(program);
-    aq::set_mat4(program, "u_view", glm::value_ptr(view));
-    aq::set_mat4(program, "u_projection", glm::value_ptr(projection));
-    const GLint model_location = glGetUniformLocation(program, "u_model");
-    const GLint normal_location = glGetUniformLocation(program, "u_normal_matrix");
-    const GLint id_location = glGetUniformLocation(program, "u_object_id");
-    const GLint cutoff_location = glGetUniformLocation(program, "u_alpha_cutoff");
-    aq::set_int(program, "u_base_color", 0);
+    for (const GLuint program : programs) {
+      glUseProgram(program);
+      aq::set_mat4(program, "u_view", glm::value_ptr(view));
+      aq::set_mat4(program, "u_projection", glm::value_ptr(projection));
+      aq::set_int(program, "u_base_color", 0);
+    }
     for (uint32_t i = 0; i < scene->mesh_count; ++i) {
       const aq_mesh& mesh = scene->meshes[i];
+      const GLuint program = programs[meshes_.surface_texture(*scene, i) != 0 ? 1 : 0];
+      glUseProgram(program);
       glm::mat4 model = glm::make_mat4(mesh.model);
       glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(model)));
-      glUniformMatrix4fv(model_location, 1, GL_FALSE, mesh.model);
-      glUniformMatrix3fv(normal_location, 1, GL_FALSE, glm::value_ptr(normal_matrix));
-      glUniform1f(id_location, static_cast<float>(mesh.object_id));
-      glUniform1f(cutoff_location, meshes_.bind_surface(*scene, i, 0));
+      glUniformMatrix4fv(glGetUniformLocation(program, "u_model"), 1, GL_FALSE, mesh.model);
+      glUniformMatrix3fv(glGetUniformLocation(program, "u_normal_matrix"), 1, GL_FALSE,
+                         glm::value_ptr(normal_matrix));
+      glUniform1f(glGetUniformLocation(program, "u_object_id"), static_cast<float>(mesh.object_id));
+      glUniform1f(glGetUniformLocation(program, "u_alpha_cutoff"),
+                  meshes_.bind_surface(*scene, i, 0));
       meshes_.draw(mesh);
     }
     glDisable(GL_DEPTH_TEST);

@@ -16,10 +16,21 @@ uniform float u_object_id;
 uniform sampler2D u_base_color;  // the mesh's texture, or one white texel
 uniform float u_alpha_cutoff;    // texture alpha below it is a hole; 0: opaque
 
+// gbuffer.cpp defines AQ_GBUFFER_TEXTURED 0 for meshes without a base colour texture: no texture
+// read and no discard, so llvmpipe can test depth before running the shader (a shader that may
+// discard runs for every overdrawn fragment).
+#ifndef AQ_GBUFFER_TEXTURED
+#define AQ_GBUFFER_TEXTURED 1
+#endif
+
 void main() {
+#if AQ_GBUFFER_TEXTURED
   vec4 texel = texture(u_base_color, v_uv);
   // Cut-out cards (seaweed, plants): a hole, not a transparent colour (seed 001's discard).
   if (texel.a < u_alpha_cutoff) discard;
+#else
+  const vec4 texel = vec4(1.0);
+#endif
   vec3 n = v_normal;
   if (dot(n, n) > 1e-12) {
     // Thin single-sided parts (fins, seaweed) are seen from both sides: light the visible side.

@@ -64,11 +64,7 @@ class SceneMeshCache {
   // none) and returns its alpha cut-off (0: opaque). Call after update().
   float bind_surface(const aq_scene& scene, uint32_t i, GLuint unit) const {
     const aq_mesh_surface* surface = scene_surface(scene, i);
-    GLuint texture = 0;
-    if (surface != nullptr && surface->uvs != nullptr && usable(surface->base_color)) {
-      auto it = textures_.find(surface->base_color.revision);
-      if (it != textures_.end()) texture = it->second.get();
-    }
+    GLuint texture = surface_texture(scene, i);
     if (texture == 0) {
       if (white_.get() == 0) {
         const aq_texture white_texel{kWhite, 1, 1, 0};
@@ -78,6 +74,15 @@ class SceneMeshCache {
     }
     glBindTextureUnit(unit, texture);
     return texture != white_.get() && surface != nullptr ? surface->alpha_cutoff : 0.0f;
+  }
+
+  // Mesh i's uploaded base colour texture, 0 when it has none (bind_surface binds white then):
+  // a shader variant without the texture read and the cut-out's discard serves those meshes.
+  GLuint surface_texture(const aq_scene& scene, uint32_t i) const {
+    const aq_mesh_surface* surface = scene_surface(scene, i);
+    if (surface == nullptr || surface->uvs == nullptr || !usable(surface->base_color)) return 0;
+    auto it = textures_.find(surface->base_color.revision);
+    return it != textures_.end() ? it->second.get() : 0;
   }
 
   // Binds the mesh's vertex array and draws its triangles; the caller sets the uniforms.
