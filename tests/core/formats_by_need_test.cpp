@@ -91,6 +91,25 @@ int no_process(void*, aq_process_ctx*) {
   return AQ_OK;
 }
 
+// A node of one input and one output port, as the registry takes it (or the reason it refuses).
+std::pair<NodeType, std::string> describe(const aq_port_desc* inputs, const aq_port_desc* outputs) {
+  aq_node_desc desc{};
+  desc.struct_size = sizeof(aq_node_desc);
+  desc.type_name = "narrow";
+  desc.category = "Filter";
+  desc.description = "test";
+  desc.inputs = inputs;
+  desc.input_count = 1;
+  desc.outputs = outputs;
+  desc.output_count = 1;
+  desc.create = &no_instance;
+  desc.destroy = &no_destroy;
+  desc.process = &no_process;
+  std::string why;
+  NodeType type = node_type_from_desc(desc, "test.so", &why);
+  return std::pair{type, why};
+}
+
 // The flag says how a node reads an image: a plugin declaring it on an output or on a scene
 // input is refused with a message naming the port.
 TEST(FormatsByNeed, OnlyImageInputsMayDeclareIt) {
@@ -98,23 +117,6 @@ TEST(FormatsByNeed, OnlyImageInputsMayDeclareIt) {
   const aq_port_desc image_input[] = {{"mask", AQ_PORT_IMAGE, AQ_PORT_8BIT_ENOUGH, "m"}};
   const aq_port_desc narrow_output[] = {{"image", AQ_PORT_IMAGE, AQ_PORT_8BIT_ENOUGH, "i"}};
   const aq_port_desc plain_output[] = {{"image", AQ_PORT_IMAGE, 0, "i"}};
-  auto describe = [&](const aq_port_desc* inputs, const aq_port_desc* outputs) {
-    aq_node_desc desc{};
-    desc.struct_size = sizeof(aq_node_desc);
-    desc.type_name = "narrow";
-    desc.category = "Filter";
-    desc.description = "test";
-    desc.inputs = inputs;
-    desc.input_count = 1;
-    desc.outputs = outputs;
-    desc.output_count = 1;
-    desc.create = &no_instance;
-    desc.destroy = &no_destroy;
-    desc.process = &no_process;
-    std::string why;
-    NodeType type = node_type_from_desc(desc, "test.so", &why);
-    return std::pair{type, why};
-  };
   auto [accepted, none] = describe(image_input, plain_output);
   ASSERT_FALSE(accepted.name.empty()) << none;
   EXPECT_TRUE(accepted.inputs[0].eight_bit_enough);
@@ -125,6 +127,21 @@ TEST(FormatsByNeed, OnlyImageInputsMayDeclareIt) {
   EXPECT_TRUE(on_output.name.empty());
   EXPECT_NE(why_output.find("output 'image' is AQ_PORT_8BIT_ENOUGH"), std::string::npos)
       << why_output;
+}
+
+// AQ_PORT_HDR8 (the encoded 8-bit HDR format, tests/core/hdr8_test.cpp) is about the image a
+// port holds, on inputs and outputs alike: only scene ports are refused.
+TEST(FormatsByNeed, OnlyImagePortsMayHandleTheEncodedHdrFormat) {
+  const aq_port_desc scene_input[] = {{"scene", AQ_PORT_SCENE, AQ_PORT_HDR8, "s"}};
+  const aq_port_desc image_input[] = {{"image", AQ_PORT_IMAGE, AQ_PORT_HDR8, "i"}};
+  const aq_port_desc image_output[] = {{"image", AQ_PORT_IMAGE, AQ_PORT_HDR8, "i"}};
+  auto [refused, why] = describe(scene_input, image_output);
+  EXPECT_TRUE(refused.name.empty());
+  EXPECT_NE(why.find("input 'scene' is AQ_PORT_HDR8"), std::string::npos) << why;
+  auto [accepted, none] = describe(image_input, image_output);
+  ASSERT_FALSE(accepted.name.empty()) << none;
+  EXPECT_TRUE(accepted.inputs[0].hdr8);
+  EXPECT_TRUE(accepted.outputs[0].hdr8);
 }
 
 // Storing the source in 8 bits moves each of the Laplacian's 9 texels by at most 1/510; with

@@ -125,36 +125,6 @@ TEST(Hdr8, AReaderThatCannotDecodeKeepsTheWorkingFormat) {
   EXPECT_EQ(stored(plan, "input"), 0u) << "image_input does not say it can write it";
 }
 
-TEST(Hdr8, OnlyImagePortsMayDeclareIt) {
-  const aq_port_desc scene_input[] = {{"scene", AQ_PORT_SCENE, AQ_PORT_HDR8, "s"}};
-  const aq_port_desc image_output[] = {{"image", AQ_PORT_IMAGE, AQ_PORT_HDR8, "i"}};
-  auto describe = [&](const aq_port_desc* inputs) {
-    aq_node_desc desc{};
-    desc.struct_size = sizeof(aq_node_desc);
-    desc.type_name = "encoded";
-    desc.category = "Filter";
-    desc.description = "test";
-    desc.inputs = inputs;
-    desc.input_count = 1;
-    desc.outputs = image_output;
-    desc.output_count = 1;
-    desc.create = [](const aq_host*) -> void* { return nullptr; };
-    desc.destroy = [](void*) {};
-    desc.process = [](void*, aq_process_ctx*) { return int{AQ_OK}; };
-    std::string why;
-    NodeType type = node_type_from_desc(desc, "test.so", &why);
-    return std::pair{type, why};
-  };
-  auto [refused, why] = describe(scene_input);
-  EXPECT_TRUE(refused.name.empty());
-  EXPECT_NE(why.find("input 'scene' is AQ_PORT_HDR8"), std::string::npos) << why;
-  const aq_port_desc image_input[] = {{"image", AQ_PORT_IMAGE, AQ_PORT_HDR8, "i"}};
-  auto [accepted, none] = describe(image_input);
-  ASSERT_FALSE(accepted.name.empty()) << none;
-  EXPECT_TRUE(accepted.inputs[0].hdr8);
-  EXPECT_TRUE(accepted.outputs[0].hdr8);
-}
-
 // Light between 0 and 6 (the caustics' peaks), with alpha 1, in blocks and noise so that the
 // morphology has edges to move.
 ImageF hdr_image(int width, int height, bool on_codes) {
