@@ -37,9 +37,10 @@ levers=(
   "wobble: the paper's precomputed gradient|wobble|-wobble.gradient|off"
   "caustics: grid from the footprint (off by default)|caustics|caustics.auto_grid=true|on"
   "caustics: coverage in closed form over 3 x 3 texels|caustics|caustics.window=2|off"
-  "the default levers off|-|blur.direct_kernel=full pigment.cache_canvas=false -wobble.gradient env:AQUARELLE_FORMATS_BY_NEED=0|off"
+  "the default levers off|-|blur.direct_kernel=full pigment.cache_canvas=false -wobble.gradient env:AQUARELLE_FORMATS_BY_NEED=0 env:AQUARELLE_EPILOGUE_FUSION=0|off"
   "formats by need, all of it: 8-bit edge source and paper, 8-bit HDR light|edge|env:AQUARELLE_FORMATS_BY_NEED=0|off"
   "formats by need: light, morphology and pigment as 8-bit HDR|dilate|env:AQUARELLE_HDR8=0|off"
+  "fusion: vignette and tint in the blur's last draw (epilogue)|tint|env:AQUARELLE_EPILOGUE_FUSION=0|off"
 )
 for i in "${!levers[@]}"; do
   IFS='|' read -r name node settings sense <<< "${levers[$i]}"

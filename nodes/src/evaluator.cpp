@@ -37,7 +37,22 @@ struct FusedChain {
     CallState call;
     aq_process_ctx ctx{};
   };
+  // An epilogue producer (PlannedNode::producer): the node whose process() the chain's pass
+  // runs, applying the stages in its last draw, instead of reading `input`.
+  struct Producer {
+    const NodeType* type = nullptr;
+    NodeState* state = nullptr;
+    std::vector<aq_param_value> params;
+    std::vector<std::string> strings;
+    std::vector<aq_input_value> inputs;
+    std::vector<TextureRef> input_refs;  // held: nothing reuses them before the node runs
+    std::vector<std::vector<aq_input_value>> links;
+    std::vector<aq_input_list> lists;
+    CallState call;
+    aq_process_ctx ctx{};
+  };
   TextureRef input;  // the image the first stage reads
+  std::unique_ptr<Producer> producer;
   std::vector<std::unique_ptr<Stage>> stages;
 };
 
@@ -244,6 +259,40 @@ struct Evaluator::Impl {
     for (auto& [id, state] : states) destroy_state(state);
     states.clear();
   }
+
+  // Epilogue fusion: runs the producer's process() with `stages` as the epilogue of the draw
+  // that writes its output 0, which becomes the chain's result (stored as the chain's last
+  // node's output is: `stored`). A producer that applied no epilogue (it passed its input
+  // through, or its method's shaders do not call aq_epilogue) gets the chain as a pass of its
+  // own, so the result never depends on whether the node cooperated.
+  Result<TextureRef> run_producer(FusedChain::Producer& producer,
+                                  const std::vector<FusedStage>& stages,
+                                  const std::vector<uint32_t>& stored, uint32_t format) {
+    NodeState& state = *producer.state;
+    CallState& call = producer.call;
+    call.stored_formats = &stored;
+    call.epilogue = &stages;
+    call.epilogue_draws = 0;
+    call.error.clear();
+    for (auto& image : state.images) image.reset();
+    for (auto& scene : state.scenes) scene = nullptr;
+    const int status = producer.type->desc->process(state.instance, &producer.ctx);
+    HostServices::reset_gl_state();
+    call.scratch.clear();
+    TextureRef out = state.images.empty() ? TextureRef() : state.images[0];
+    for (auto& image : state.images) image.reset();
+    state.valid = false;
+    const std::string where = "node '" + call.node_id + "' (" + producer.type->name + ")";
+    if (status != AQ_OK || !call.error.empty())
+      return make_error(where + ": " +
+                        (call.error.empty() ? "failed without a message" : call.error));
+    if (!out)
+      return make_error(where + ": produced no output '" + producer.type->outputs[0].name +
+                        "' (a plugin bug: report it to its author)");
+    if (call.epilogue_draws > 0) return out;
+    return fuser.run(host.shaders(), host.pool(), stages, out, out->image.width, out->image.height,
+                     format);
+  }
 };
 
 Evaluator::Evaluator(GlContext& context, const Registry& registry)
@@ -333,9 +382,10 @@ Result<ImageF> Evaluator::read_back(const TextureRef& texture) {
   return read_texture(image.texture, image.width, image.height, image.format);
 }
 
-// AQUARELLE_FORMATS_BY_NEED=0 keeps every output in the format its plugin asks for, and
-// AQUARELLE_HDR8=0 only turns the encoded HDR format off, so a bench run can measure each lever
-// off without a rebuild (the bench sets no EvalOptions for them).
+// AQUARELLE_FORMATS_BY_NEED=0 keeps every output in the format its plugin asks for,
+// AQUARELLE_HDR8=0 only turns the encoded HDR format off and AQUARELLE_EPILOGUE_FUSION=0 runs
+// pointwise chains after an AQ_NODE_EPILOGUE node as a pass of their own, so a bench run can
+// measure each lever off without a rebuild (the bench sets no EvalOptions for them).
 static bool enabled_in_environment(const char* name) {
   const char* value = std::getenv(name);
   return value == nullptr || std::string(value) != "0";
@@ -351,6 +401,7 @@ Result<Plan> compile(const Graph& graph, const Registry& registry, const EvalOpt
   plan_options.formats_by_need =
       options.formats_by_need && enabled_in_environment("AQUARELLE_FORMATS_BY_NEED");
   plan_options.hdr8 = plan_options.formats_by_need && enabled_in_environment("AQUARELLE_HDR8");
+  plan_options.epilogue_fusion = enabled_in_environment("AQUARELLE_EPILOGUE_FUSION");
   return compile_plan(graph, registry, plan_options, output);
 }
 
@@ -461,7 +512,35 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
     const bool tail_into_resample = pass != nullptr && pass->resamples && chain_input &&
                                     chain_input->image.width == working.width &&
                                     chain_input->image.height == working.height;
-    if (is_deferred || ((chain || tail_into_resample) && !(state.valid && state.key == key))) {
+    if (planned.producer) {
+      if (state.instance == nullptr && type->desc != nullptr) {
+        state.instance = type->desc->create(host);
+        if (state.instance == nullptr) {
+          return make_error("node '" + id + "' (" + type->name +
+                            "): the plugin could not create the node (out of memory?)");
+        }
+      }
+      chain = std::make_shared<FusedChain>();
+      chain->producer = std::make_unique<FusedChain::Producer>();
+      FusedChain::Producer& producer = *chain->producer;
+      producer.type = type;
+      producer.state = &state;
+      producer.params = std::move(params);
+      producer.strings = std::move(param_values.strings);
+      producer.inputs = std::move(inputs);
+      producer.input_refs = std::move(input_refs);
+      producer.links = std::move(gathered->links);
+      producer.lists = std::move(gathered->lists);
+      producer.call.host = &impl_->host;
+      producer.call.state = &state;
+      producer.call.node_id = id;
+      producer.call.input_refs = &producer.input_refs;
+      producer.call.working_format = format;
+      fill_process_ctx(producer.ctx, host, context_.generation(), producer.call, producer.inputs,
+                       producer.params, settings, format, time, options.frame, working);
+      if (!producer.lists.empty()) producer.ctx.input_lists = producer.lists.data();
+    } else if (is_deferred ||
+               ((chain || tail_into_resample) && !(state.valid && state.key == key))) {
       if (!chain) {
         chain = std::make_shared<FusedChain>();
         chain->input = input_refs[0];
@@ -501,8 +580,6 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
     } else if (state.valid && state.key == key) {
       timings_.push_back(NodeTiming{id, type->name, 0, 0, true});
     } else if (chain) {
-      const int width = tail_into_resample ? settings.width : chain->input->image.width;
-      const int height = tail_into_resample ? settings.height : chain->input->image.height;
       if (options.finish_each_node) glFinish();
       if (options.measure_gpu_time) state.mark_start();
       auto start = std::chrono::steady_clock::now();
@@ -510,8 +587,15 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       for (auto& stage : chain->stages) {
         stages.push_back(FusedStage{stage->type->fusable, stage->instance, &stage->ctx});
       }
-      auto fused = impl_->fuser.run(impl_->host.shaders(), impl_->host.pool(), stages, chain->input,
-                                    width, height, format);
+      Result<TextureRef> fused = make_error("no fused pass ran");
+      if (chain->producer) {
+        fused = impl_->run_producer(*chain->producer, stages, planned.stored_formats, format);
+      } else {
+        const int width = tail_into_resample ? settings.width : chain->input->image.width;
+        const int height = tail_into_resample ? settings.height : chain->input->image.height;
+        fused = impl_->fuser.run(impl_->host.shaders(), impl_->host.pool(), stages, chain->input,
+                                 width, height, format);
+      }
       if (options.finish_each_node) glFinish();
       auto end = std::chrono::steady_clock::now();
       if (options.measure_gpu_time) state.mark_end();

@@ -73,7 +73,18 @@ void HostServices::log(void* data, int level, const char* message) {
 uint32_t HostServices::program(void* data, const aq_shader_source* vertex,
                                const aq_shader_source* fragment) {
   auto* call = static_cast<CallState*>(data);
-  auto result = call->host->shaders_.program(vertex, fragment);
+  // An AQ_NODE_EPILOGUE node's fragment shaders get aq_epilogue(): the identity, or the
+  // pointwise chain fused into its last draw.
+  const bool epilogue = fragment != nullptr && fragment->text != nullptr &&
+                        call->state != nullptr && call->state->type != nullptr &&
+                        call->state->type->takes_epilogue();
+  std::string text;
+  aq_shader_source with_epilogue{};
+  if (epilogue) {
+    text = epilogue_source(call->epilogue) + "#line 1\n" + fragment->text;
+    with_epilogue = aq_shader_source{fragment->name, text.c_str(), nullptr};
+  }
+  auto result = call->host->shaders_.program(vertex, epilogue ? &with_epilogue : fragment);
   if (!result.ok()) {
     fail(data, result.message().c_str());
     return 0;
@@ -203,9 +214,36 @@ int HostServices::bind_targets(void* data, const aq_image* colors, uint32_t coun
 
 void HostServices::draw_fullscreen(void* data) {
   auto* call = static_cast<CallState*>(data);
+  if (call->epilogue != nullptr && !call->epilogue->empty() && !apply_epilogue(call)) return;
   glBindVertexArray(call->host->empty_vao_.get());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
+}
+
+// A draw whose program calls aq_epilogue (its aq_epilogue_size uniform is live) gets the
+// stages' uniforms; it must write the node's output 0, the only image the chain stands for.
+bool HostServices::apply_epilogue(CallState* call) {
+  GLint program = 0;
+  glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+  if (program == 0 || glGetUniformLocation(static_cast<GLuint>(program), "aq_epilogue_size") < 0)
+    return true;
+  const TextureRef& output = call->state->images.empty() ? TextureRef() : call->state->images[0];
+  GLint attached = 0;
+  glGetNamedFramebufferAttachmentParameteriv(call->host->framebuffer_.get(), GL_COLOR_ATTACHMENT0,
+                                             GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &attached);
+  if (!output || static_cast<GLuint>(attached) != output->image.texture) {
+    fail_call(*call,
+              "a draw applied aq_epilogue but does not write output 0 (AQ_NODE_EPILOGUE: call it "
+              "only on the value written to the node's first output)");
+    return false;
+  }
+  if (!set_epilogue_uniforms(*call->epilogue, static_cast<GLuint>(program), output->image.width,
+                             output->image.height)) {
+    fail_call(*call, "setting the uniforms of the fused epilogue failed");
+    return false;
+  }
+  ++call->epilogue_draws;
+  return true;
 }
 
 void HostServices::reset_gl_state() {

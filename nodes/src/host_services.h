@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "builtin_nodes.h"
+#include "pointwise_fusion.h"
 #include "shader_cache.h"
 
 namespace aq {
@@ -52,6 +53,11 @@ struct CallState {
   const std::vector<uint32_t>* stored_formats = nullptr;
   uint32_t working_format = AQ_FORMAT_RGBA16F;
 
+  // Epilogue fusion (AQ_NODE_EPILOGUE): the pointwise stages the node's draws into output 0
+  // apply (null: none, the identity), and how many draws applied them.
+  const std::vector<FusedStage>* epilogue = nullptr;
+  int epilogue_draws = 0;
+
   uint32_t stored_format(uint32_t index) const {
     return stored_formats != nullptr && index < stored_formats->size() ? (*stored_formats)[index]
                                                                        : 0;
@@ -75,6 +81,7 @@ class HostServices {
  private:
   static HostServices* current_;
   static void* get_proc_address(const char* name);
+  static bool apply_epilogue(CallState* call);
   static void fail(void* data, const char* message);
   static void log(void* data, int level, const char* message);
   static uint32_t program(void* data, const aq_shader_source* vertex,

@@ -50,13 +50,15 @@ const std::string* first_input_source(const Node& node, const NodeType& type) {
   return link == node.inputs.end() ? nullptr : &link->second.node;
 }
 
-// Pointwise nodes whose function runs inside their reader's pass instead of a pass of their
-// own: they give a fusable function, are not the output, and their only reader is another
-// such node reading them on its image input.
+// Nodes that run inside their reader's pass instead of a pass of their own. Pointwise nodes:
+// they give a fusable function, are not the output, and their only reader is another such
+// node reading them on its image input. Epilogue producers (`epilogue`, no proxy render): an
+// AQ_NODE_EPILOGUE node whose only reader is such a node, reading its output 0; its process()
+// then runs in the chain's pass with the chain as the epilogue of its last draw.
 std::set<std::string> deferred_nodes(const Graph& graph, const Registry& registry,
                                      const std::vector<std::string>& order,
                                      const std::map<std::string, int>& readers,
-                                     const std::string& target) {
+                                     const std::string& target, bool epilogue) {
   std::set<std::string> deferred;
   auto fusable = [&](const std::string& id) {
     const NodeType* type = registry.find(graph.nodes.at(id).type);
@@ -67,7 +69,12 @@ std::set<std::string> deferred_nodes(const Graph& graph, const Registry& registr
     const NodeType* reader_type = registry.find(graph.nodes.at(reader_id).type);
     const std::string* source = first_input_source(graph.nodes.at(reader_id), *reader_type);
     if (source == nullptr) continue;
-    if (*source != target && readers.at(*source) == 1 && fusable(*source)) deferred.insert(*source);
+    if (*source == target || readers.at(*source) != 1) continue;
+    const NodeType* source_type = registry.find(graph.nodes.at(*source).type);
+    const std::string& port = graph.nodes.at(reader_id).inputs.at(reader_type->inputs[0].name).port;
+    if (fusable(*source) || (epilogue && source_type != nullptr && source_type->takes_epilogue() &&
+                             port == source_type->outputs[0].name))
+      deferred.insert(*source);
   }
   return deferred;
 }
@@ -160,14 +167,17 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
     for (const auto& [port, source] : graph.nodes.at(id).inputs) ++readers[source.node];
   }
   readers[target->node] += 1;
+  const bool proxy = plan.working.width != plan.output_size.width ||
+                     plan.working.height != plan.output_size.height;
+  // A proxy render resamples the output's pointwise tail instead (the producer would have to
+  // write at the graph's size).
   const std::set<std::string> deferred =
-      options.fuse_pointwise ? deferred_nodes(graph, registry, order, readers, target->node)
+      options.fuse_pointwise ? deferred_nodes(graph, registry, order, readers, target->node,
+                                              options.epilogue_fusion && !proxy)
                              : std::set<std::string>{};
 
   std::map<std::string, bool> varies;
   std::map<std::string, std::vector<std::string>> chain_of;  // deferred stages ending at a node
-  const bool proxy = plan.working.width != plan.output_size.width ||
-                     plan.working.height != plan.output_size.height;
   for (const auto& id : order) {
     const Node& node = graph.nodes.at(id);
     const NodeType* type = registry.find(node.type);
@@ -180,6 +190,7 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
       planned.varies = planned.varies || varies[source.node];
     varies[id] = planned.varies;
     planned.deferred = deferred.count(id) != 0;
+    planned.producer = planned.deferred && type->fusable == nullptr;
     if (options.formats_by_need && !planned.deferred)
       planned.stored_formats =
           stored_formats(graph, registry, order, id, *type, *target, options.hdr8);
@@ -209,7 +220,9 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
                      proxy && first_input_source(node, *type) != nullptr;
     if (pass.resamples) pass.size = plan.output_size;
     pass.fused = pass.chain.size() > 1 || pass.resamples;
-    pass.reads_per_pixel = pass.fused ? 1 : -1;
+    const PlannedNode* head = plan.find(pass.chain.front());
+    pass.epilogue = head != nullptr && head->producer;
+    pass.reads_per_pixel = pass.fused && !pass.epilogue ? 1 : -1;
     pass.intermediates_saved = static_cast<int>(pass.chain.size()) - 1;
     pass.cached = !planned.varies && options.retain_static_outputs;
     plan.passes.push_back(std::move(pass));
@@ -236,7 +249,11 @@ std::string format_plan(const Plan& plan) {
     const PlannedNode* node = plan.find(pass.node);
     std::string chain;
     for (const auto& id : pass.chain) chain += (chain.empty() ? "" : " -> ") + id;
-    if (pass.fused) chain = "fused: " + chain;
+    if (pass.epilogue) {
+      chain = "epilogue: " + chain;
+    } else if (pass.fused) {
+      chain = "fused: " + chain;
+    }
     if (pass.resamples) chain += " (inside the upscale)";
     for (const uint32_t format : {AQ_FORMAT_RGBA8, AQ_FORMAT_RGBA8_HDR}) {
       std::string narrow;
@@ -263,6 +280,8 @@ std::string format_plan(const Plan& plan) {
   text +=
       "reads: image reads per output pixel of a host-fused pass; 'node': the node's own "
       "process() decides (sizes of shadow maps and caustic textures too)\n"
+      "epilogue: the first node's process() runs with the pointwise nodes after it applied "
+      "in its last draw (AQ_NODE_EPILOGUE)\n"
       "[RGBA8: port]: outputs stored in 8 bits because every reader reads them through an "
       "input content with 8 bits; [RGBA8 HDR: port]: linear HDR colour encoded in 8 bits "
       "(sqrt(c / (1 + c))) because its writer and every reader handle that (bandwidth by "

@@ -32,6 +32,39 @@ std::string fused_fragment_source(const std::vector<const char*>& glsl, bool res
   return source;
 }
 
+std::string epilogue_source(const std::vector<FusedStage>* stages) {
+  if (stages == nullptr || stages->empty()) return "vec4 aq_epilogue(vec4 c) { return c; }\n";
+  std::string source;
+  for (size_t i = 0; i < stages->size(); ++i) {
+    source += "#define AQ_APPLY aq_epilogue_" + std::to_string(i) + "\n";
+    source += "#define AQ_UNIFORM(name) " + fused_uniform_prefix(i) + "##name\n";
+    source += (*stages)[i].pointwise->glsl;
+    source += "\n#undef AQ_APPLY\n#undef AQ_UNIFORM\n";
+  }
+  source += "uniform vec2 aq_epilogue_size;\nvec4 aq_epilogue(vec4 c) {\n";
+  for (size_t i = 0; i < stages->size(); ++i)
+    source +=
+        "  c = aq_epilogue_" + std::to_string(i) + "(c, gl_FragCoord.xy, aq_epilogue_size);\n";
+  source += "  return c;\n}\n";
+  return source;
+}
+
+bool set_epilogue_uniforms(const std::vector<FusedStage>& stages, GLuint program, int width,
+                           int height) {
+  for (size_t i = 0; i < stages.size(); ++i) {
+    const FusedStage& stage = stages[i];
+    stage.ctx->width = width;
+    stage.ctx->height = height;
+    const std::string prefix = fused_uniform_prefix(i);
+    if (stage.pointwise->set_uniforms(stage.instance, stage.ctx, program, prefix.c_str()) != AQ_OK)
+      return false;
+  }
+  glUseProgram(program);  // a stage may have changed the binding
+  glUniform2f(glGetUniformLocation(program, "aq_epilogue_size"), static_cast<float>(width),
+              static_cast<float>(height));
+  return true;
+}
+
 Result<TextureRef> PointwiseFuser::run(ShaderCache& shaders, TexturePool& pool,
                                        const std::vector<FusedStage>& stages,
                                        const TextureRef& input, int width, int height,

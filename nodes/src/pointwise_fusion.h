@@ -43,4 +43,14 @@ std::string fused_fragment_source(const std::vector<const char*>& glsl, bool res
                                   bool decode_hdr8 = false);
 std::string fused_uniform_prefix(size_t stage);
 
+// What the host prepends to the fragment shaders of an AQ_NODE_EPILOGUE node: `vec4
+// aq_epilogue(vec4)`, the identity without stages, else the stages applied in order at
+// gl_FragCoord of an image of `aq_epilogue_size` pixels (stage i's uniforms prefixed as in a
+// fused pass).
+std::string epilogue_source(const std::vector<FusedStage>* stages);
+// Sets the stages' uniforms and aq_epilogue_size on `program` for a draw of width x height;
+// false when a stage's set_uniforms failed.
+bool set_epilogue_uniforms(const std::vector<FusedStage>& stages, GLuint program, int width,
+                           int height);
+
 }  // namespace aq

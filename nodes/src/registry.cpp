@@ -283,7 +283,7 @@ NodeType node_type_from_desc(const aq_node_desc& desc, const std::string& plugin
   if (!is_type_name(type.name)) {
     return refuse("the type name may hold only a-z, 0-9 and '_'");
   }
-  const uint32_t known_flags = AQ_NODE_TIME_DEPENDENT | AQ_NODE_POINTWISE;
+  const uint32_t known_flags = AQ_NODE_TIME_DEPENDENT | AQ_NODE_POINTWISE | AQ_NODE_EPILOGUE;
   if ((desc.flags & ~known_flags) != 0) {
     return refuse("unknown flags " + std::to_string(desc.flags & ~known_flags));
   }
@@ -318,6 +318,12 @@ NodeType node_type_from_desc(const aq_node_desc& desc, const std::string& plugin
       return refuse("its pointwise description needs struct_size, glsl and set_uniforms");
     }
     type.fusable = &pointwise;
+  }
+  if ((desc.flags & AQ_NODE_EPILOGUE) != 0 &&
+      (type.fusable != nullptr || type.outputs.empty() || type.outputs[0].type != AQ_PORT_IMAGE)) {
+    return refuse(
+        "AQ_NODE_EPILOGUE needs an image as output 0 and a node that is not itself fusable "
+        "(a pointwise node is fused by its function instead)");
   }
   type.category = text_or_empty(desc.category);
   type.description = text_or_empty(desc.description);

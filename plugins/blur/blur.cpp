@@ -353,5 +353,5 @@ struct Blur {
 AQ_NODE(kBlurNode, Blur, "blur", "Filter",
         "Underwater blur growing with depth^3 and distance from the centre: exact separable "
         "Gaussian (default) or the seed's strided 5x5 kernel.",
-        0, kInputs, kOutputs, kParams);
+        AQ_NODE_EPILOGUE, kInputs, kOutputs, kParams);
 AQ_PLUGIN("blur", "1.0", &kBlurNode)

@@ -54,7 +54,7 @@ TEST(Cli, RenderPlanPrintsThePassesWithoutRendering) {
                                   " --plan --quality final");
   EXPECT_EQ(plan.exit_code, 0) << plan.output;
   EXPECT_NE(plan.output.find("working size 1280x720"), std::string::npos) << plan.output;
-  EXPECT_NE(plan.output.find("fused: vignette -> tint"), std::string::npos) << plan.output;
+  EXPECT_NE(plan.output.find("epilogue: blur -> vignette -> tint"), std::string::npos) << plan.output;
   auto preview = aq::test::aquarelle("render " + aq::test::source_path("graphs/underwater.json") +
                                      " --plan --quality preview");
   EXPECT_NE(preview.output.find("working size 640x360"), std::string::npos) << preview.output;

@@ -105,7 +105,7 @@ TEST(Plan, TheFlagshipGraphCachesWhatIsStatic) {
   for (const auto& pass : plan->passes) {
     EXPECT_NE(text.find(pass.node), std::string::npos) << pass.node;
   }
-  EXPECT_NE(text.find("fused: vignette -> tint"), std::string::npos) << text;
+  EXPECT_NE(text.find("epilogue: blur -> vignette -> tint"), std::string::npos) << text;
 }
 
 TEST(Plan, ACycleIsAnErrorNamingItsNodes) {

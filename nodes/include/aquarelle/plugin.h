@@ -225,7 +225,14 @@ typedef struct aq_param_desc {
 
 enum {
   AQ_NODE_TIME_DEPENDENT = 1u << 0, /* output changes with time: re-run every frame */
-  AQ_NODE_POINTWISE = 1u << 1       /* output pixel depends only on the same input pixel */
+  AQ_NODE_POINTWISE = 1u << 1,      /* output pixel depends only on the same input pixel */
+  /* Appended in ABI 1: the node's shaders may apply the host's epilogue to what they write to
+   * output 0. The host prepends `vec4 aq_epilogue(vec4 colour)` to every fragment shader the
+   * node compiles: the identity, or, when the pointwise chain that alone reads output 0 runs
+   * inside this node's last pass (epilogue fusion), that chain's functions. A shader calls it
+   * only on the value it writes to output 0 (the host refuses a draw into anything else). A
+   * node that never calls it stays correct: the host then runs the chain as its own pass. */
+  AQ_NODE_EPILOGUE = 1u << 2
 };
 
 struct aq_host;

@@ -39,6 +39,7 @@ void main() {
                 texture(u_image, (frag + vec2(-along, -across)) * inv_size) +
                 texture(u_image, (frag + vec2(across, -along)) * inv_size);
   o_color = w1 > 0.0 ? (centre + block * blocks) / (1.0 + 4.0 * block) : centre;
+  o_color = aq_epilogue(o_color);  // the pointwise nodes after the blur, when the host fuses them
 }
 #else
 void main() {
@@ -82,5 +83,6 @@ void main() {
   // non-finite neighbour (0 · ∞) cannot leak into a sharp pixel.
   float inv_norm = 1.0 / norm;
   o_color = weight[1] > 0.0 ? sum * (inv_norm * inv_norm) : centre;
+  o_color = aq_epilogue(o_color);  // the pointwise nodes after the blur, when the host fuses them
 }
 #endif

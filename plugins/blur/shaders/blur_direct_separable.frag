@@ -67,6 +67,9 @@ void main() {
 #endif
   // Every neighbour weight underflowed: the input itself, exactly (no 0 · ∞ from a neighbour).
   o_color = first_weight > 0.0 ? sum / norm : centre;
+#if AQ_AXIS == 1
+  o_color = aq_epilogue(o_color);  // the pointwise nodes after the blur, when the host fuses them
+#endif
 #if AQ_ENCODE_HDR8
   o_color = aq_hdr8_encode(o_color);
 #endif

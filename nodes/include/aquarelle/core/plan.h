@@ -29,6 +29,9 @@ struct PlannedNode {
   int readers = 0;        // links that read this node's outputs (+1 for the requested output)
   bool varies = false;    // it or something upstream is time-dependent; else cached across frames
   bool deferred = false;  // runs inside its reader's pass (pointwise fusion), not a pass of its own
+  // Deferred as the producer of its reader's pointwise chain (AQ_NODE_EPILOGUE): its process()
+  // runs in the chain's pass, the chain applied in its last draw.
+  bool producer = false;
   // Per output port (type order): the format the host stores it in instead of the one its
   // plugin asks for (bandwidth by need), 0 where the plugin's choice stands: AQ_FORMAT_RGBA8
   // when every reader reads it through an AQ_PORT_8BIT_ENOUGH input, AQ_FORMAT_RGBA8_HDR when
@@ -47,6 +50,7 @@ struct PlannedPass {
   bool fused = false;              // a host-generated shader runs the chain
   bool resamples = false;          // reads the working size, writes the graph's size
   bool cached = false;             // static: computed once, reused while its key holds
+  bool epilogue = false;           // chain.front() is an epilogue producer (PlannedNode::producer)
   // Image reads per output pixel when the host knows them (fused passes: one texel or one
   // bilinear lookup of the chain's input), -1 for a plugin's own process().
   int reads_per_pixel = -1;
@@ -71,6 +75,9 @@ struct Plan {
 
 struct PlanOptions {
   bool fuse_pointwise = true;
+  // With fuse_pointwise: a pointwise chain runs in the last draw of an AQ_NODE_EPILOGUE node it
+  // alone reads (not in proxy renders, whose tail runs in the upscale).
+  bool epilogue_fusion = true;
   bool retain_static_outputs = true;  // static nodes' results kept across frames
   // Store outputs in the narrower format their readers need (PlannedNode::stored_formats).
   bool formats_by_need = true;

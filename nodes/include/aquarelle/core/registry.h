@@ -51,6 +51,7 @@ struct NodeType {
 
   bool time_dependent() const { return (flags & AQ_NODE_TIME_DEPENDENT) != 0; }
   bool pointwise() const { return (flags & AQ_NODE_POINTWISE) != 0; }
+  bool takes_epilogue() const { return (flags & AQ_NODE_EPILOGUE) != 0; }
   bool has_multi_input() const {
     for (const PortInfo& port : inputs) {
       if (port.multi) return true;

@@ -1,0 +1,135 @@
+// Epilogue fusion (plugin.h, AQ_NODE_EPILOGUE): the pointwise chain that alone reads a
+// producer's output 0 runs inside the producer's last draw. Fused must equal unfused within
+// 1e-6 in float whatever the producer's method does: its shaders apply the chain, or it passes
+// its input through / draws with shaders that do not, and the host runs the chain itself.
+#include <gtest/gtest.h>
+
+#include <aquarelle/core/evaluator.h>
+#include <aquarelle/core/gl_context.h>
+#include <aquarelle/core/graph_io.h>
+#include <aquarelle/core/plan.h>
+
+#include <string>
+
+#include "support/harness.h"
+
+namespace aq::test {
+namespace {
+
+// The flagship's tail: blur with a radial σ up to 2 px, then vignette and tint.
+std::string tail_graph(const std::string& blur_params) {
+  return R"({
+  "aquarelle": 1,
+  "nodes": {
+    "input": {"type": "image_input", "params": {"name": "image"}},
+    "blur": {"type": "blur", "params": )" +
+         blur_params + R"(, "inputs": {"image": "input.image"}},
+    "vignette": {"type": "vignette", "inputs": {"image": "blur.image"}},
+    "tint": {"type": "tint", "params": {"amount": 0.2}, "inputs": {"image": "vignette.image"}}
+  },
+  "output": "tint.image"
+})";
+}
+
+const std::string kSeparable =
+    R"({"sigma": 2.0, "depth_weight": 0.5, "radial_weight": 0.35, "direct_kernel": "separable"})";
+
+RenderOptions options(bool fuse, const char* quality = "final") {
+  RenderOptions o;
+  o.width = 96;
+  o.height = 64;
+  o.quality = quality;
+  o.fuse_pointwise = fuse;
+  return o;
+}
+
+std::map<std::string, ImageF> input_images() {
+  return {{"image", random_image(96, 64, 5, 0.0f, 3.0f)}};
+}
+
+Plan plan_of(const std::string& text, const char* quality = "final",
+             const std::optional<PortRef>& output = std::nullopt) {
+  auto read = read_graph_text(text, registry(), "epilogue test");
+  EXPECT_TRUE(read.ok());
+  Graph graph = read.graph;
+  graph.settings.width = 96;
+  graph.settings.height = 64;
+  graph.settings.quality = quality;
+  auto plan = compile_plan(graph, registry(), PlanOptions{}, output);
+  EXPECT_TRUE(plan.ok()) << plan.message();
+  return plan.ok() ? *plan : Plan{};
+}
+
+TEST(EpilogueFusion, TheTailRunsInTheBlursLastDraw) {
+  const Plan plan = plan_of(tail_graph(kSeparable));
+  const PlannedPass* pass = plan.pass_of("tint");
+  ASSERT_NE(pass, nullptr);
+  EXPECT_TRUE(pass->epilogue);
+  EXPECT_EQ(pass->chain, (std::vector<std::string>{"blur", "vignette", "tint"}));
+  ASSERT_NE(plan.find("blur"), nullptr);
+  EXPECT_TRUE(plan.find("blur")->producer);
+  EXPECT_EQ(plan.passes.size(), 2u) << "input, then the blur with its epilogue";
+}
+
+TEST(EpilogueFusion, NotInAProxyRenderNorWhenTheBlurIsViewed) {
+  // A proxy's tail runs inside the upscale; the viewed blur is its own output.
+  EXPECT_FALSE(plan_of(tail_graph(kSeparable), "preview").pass_of("tint")->epilogue);
+  const Plan viewed = plan_of(tail_graph(kSeparable), "final", PortRef{"blur", "image"});
+  EXPECT_EQ(viewed.find("blur")->producer, false);
+}
+
+// The separable kernel and the one-pass kernel call aq_epilogue; strided does not and σ = 0
+// passes the input through: the host runs the chain for those.
+TEST(EpilogueFusion, FusedEqualsUnfusedForEveryBlurMethod) {
+  for (const std::string& params :
+       {kSeparable,
+        std::string(R"({"sigma": 1.0, "radial_weight": 0.35, "direct_kernel": "full"})"),
+        std::string(R"({"method": "strided", "sigma": 2.0})"), std::string(R"({"sigma": 0.0})")}) {
+    RenderOptions fused = options(true);
+    fused.precision = "float";
+    RenderOptions unfused = options(false);
+    unfused.precision = "float";
+    auto a = render_graph(tail_graph(params), fused, input_images());
+    auto b = render_graph(tail_graph(params), unfused, input_images());
+    ASSERT_TRUE(a.ok()) << params << ": " << a.message();
+    ASSERT_TRUE(b.ok()) << params << ": " << b.message();
+    EXPECT_LE(max_abs_diff(*a, *b), 1e-6) << params;
+    EXPECT_GT(max_abs_diff(*a, input_images().at("image")), 0.05) << params << ": did nothing";
+  }
+}
+
+TEST(EpilogueFusion, TheBlurRunsOnceAndTheTailNever) {
+  auto read = read_graph_text(tail_graph(kSeparable), registry(), "epilogue test");
+  ASSERT_TRUE(read.ok());
+  auto context = create_headless_context(GlBackend::kAuto);
+  ASSERT_TRUE(context.ok()) << context.message();
+  Evaluator evaluator(**context, registry());
+  auto images = input_images();
+  EvalOptions eval;
+  eval.images = &images;
+  auto out = evaluator.evaluate(read.graph, eval);
+  ASSERT_TRUE(out.ok()) << out.message();
+  std::map<std::string, NodeTiming> timing;
+  for (const auto& t : evaluator.last_timings()) timing[t.node] = t;
+  EXPECT_TRUE(timing["blur"].fused);
+  EXPECT_TRUE(timing["vignette"].fused);
+  EXPECT_EQ(evaluator.run_counts().count("blur"), 0u) << "the blur ran a pass of its own";
+  EXPECT_EQ(evaluator.run_counts().at("tint"), 1) << "the chain's one pass";
+  // A second frame with nothing changed is cached whole.
+  auto again = evaluator.evaluate(read.graph, eval);
+  ASSERT_TRUE(again.ok()) << again.message();
+  EXPECT_EQ(evaluator.run_counts().at("tint"), 1);
+  // A change to the blur reaches the output through the fused pass.
+  Graph sharper = read.graph;
+  sharper.nodes.at("blur").params["sigma"] = 1.0;
+  auto changed = evaluator.evaluate(sharper, eval);
+  ASSERT_TRUE(changed.ok()) << changed.message();
+  EXPECT_EQ(evaluator.run_counts().at("tint"), 2);
+  auto first = evaluator.read_back(*out);
+  auto second = evaluator.read_back(*changed);
+  ASSERT_TRUE(first.ok() && second.ok());
+  EXPECT_GT(max_abs_diff(*first, *second), 1e-3);
+}
+
+}  // namespace
+}  // namespace aq::test
