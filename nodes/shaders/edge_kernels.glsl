@@ -5,7 +5,10 @@
 //   aq_laplacian3x3: |sum of the 8 neighbours - 8 centre| (the underwater seed's "Sobel" kernel,
 //                    -8 centre; seed 003's edge detection): 0 on a constant neighbourhood
 //   aq_sobel3x3:     Sobel gradient magnitude sqrt(gx² + gy²)
-// Used by the `edge` and `layered` plugins; reference/edge.h has them in double.
+// Used by the `edge` and `layered` plugins; reference/edge.h has them in double. Guarded: a
+// fused pass may hold two edge stages.
+#ifndef AQ_EDGE_KERNELS_GLSL
+#define AQ_EDGE_KERNELS_GLSL
 
 vec3 aq_laplacian3x3(vec3 n[9]) {
   return abs(n[0] + n[1] + n[2] + n[3] + n[5] + n[6] + n[7] + n[8] - 8.0 * n[4]);
@@ -24,3 +27,4 @@ vec4 aq_sobel3x3(vec4 n[9]) {
   vec4 gy = (n[6] + 2.0 * n[7] + n[8]) - (n[0] + 2.0 * n[1] + n[2]);
   return sqrt(gx * gx + gy * gy);
 }
+#endif  // AQ_EDGE_KERNELS_GLSL

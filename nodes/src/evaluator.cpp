@@ -34,6 +34,7 @@ struct FusedChain {
     std::vector<aq_param_value> params;
     std::vector<std::string> strings;  // params[i].s points into these
     std::vector<aq_input_value> inputs;
+    std::vector<TextureRef> input_refs;  // held: extra inputs are read when the chain runs
     CallState call;
     aq_process_ctx ctx{};
   };
@@ -277,6 +278,7 @@ struct Evaluator::Impl {
     for (auto& image : state.images) image.reset();
     for (auto& scene : state.scenes) scene = nullptr;
     const int status = producer.type->desc->process(state.instance, &producer.ctx);
+    unbind_stage_samplers(stages);
     HostServices::reset_gl_state();
     call.scratch.clear();
     TextureRef out = state.images.empty() ? TextureRef() : state.images[0];
@@ -562,6 +564,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       stage->params = std::move(params);
       stage->strings = std::move(param_values.strings);
       stage->inputs = std::move(inputs);
+      stage->input_refs = input_refs;
       stage->call.host = &impl_->host;
       stage->call.state = &state;
       stage->call.node_id = id;
@@ -585,7 +588,11 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       auto start = std::chrono::steady_clock::now();
       std::vector<FusedStage> stages;
       for (auto& stage : chain->stages) {
-        stages.push_back(FusedStage{stage->type->fusable, stage->instance, &stage->ctx});
+        FusedStage fused_stage{stage->type->fusable, stage->instance, &stage->ctx, {}};
+        for (size_t k = 1; k < stage->inputs.size(); ++k)
+          fused_stage.samplers.emplace_back(stage->type->inputs[k].name,
+                                            stage->inputs[k].image.texture);
+        stages.push_back(std::move(fused_stage));
       }
       Result<TextureRef> fused = make_error("no fused pass ran");
       if (chain->producer) {

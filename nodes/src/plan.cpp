@@ -60,9 +60,14 @@ std::set<std::string> deferred_nodes(const Graph& graph, const Registry& registr
                                      const std::map<std::string, int>& readers,
                                      const std::string& target, bool epilogue) {
   std::set<std::string> deferred;
+  // A fusable node whose extra image inputs are all connected (aq_pointwise_desc).
   auto fusable = [&](const std::string& id) {
-    const NodeType* type = registry.find(graph.nodes.at(id).type);
-    return type != nullptr && type->fusable != nullptr;
+    const Node& node = graph.nodes.at(id);
+    const NodeType* type = registry.find(node.type);
+    if (type == nullptr || type->fusable == nullptr) return false;
+    for (size_t i = 1; i < type->inputs.size(); ++i)
+      if (node.inputs.count(type->inputs[i].name) == 0) return false;
+    return true;
   };
   for (const auto& reader_id : order) {
     if (!fusable(reader_id)) continue;

@@ -49,8 +49,30 @@ std::string epilogue_source(const std::vector<FusedStage>* stages) {
   return source;
 }
 
+namespace {
+// Binds every stage's extra inputs to units from kFusedSamplerUnit on (program bound).
+void bind_stage_samplers(const std::vector<FusedStage>& stages, GLuint program) {
+  GLuint unit = kFusedSamplerUnit;
+  for (size_t i = 0; i < stages.size(); ++i) {
+    for (const auto& [name, texture] : stages[i].samplers) {
+      glBindTextureUnit(unit, texture);
+      glUniform1i(glGetUniformLocation(program, (fused_uniform_prefix(i) + name).c_str()),
+                  static_cast<GLint>(unit));
+      ++unit;
+    }
+  }
+}
+}  // namespace
+
+void unbind_stage_samplers(const std::vector<FusedStage>& stages) {
+  GLuint unit = kFusedSamplerUnit;
+  for (const FusedStage& stage : stages)
+    for (size_t k = 0; k < stage.samplers.size(); ++k) glBindTextureUnit(unit++, 0);
+}
+
 bool set_epilogue_uniforms(const std::vector<FusedStage>& stages, GLuint program, int width,
                            int height) {
+  bind_stage_samplers(stages, program);
   for (size_t i = 0; i < stages.size(); ++i) {
     const FusedStage& stage = stages[i];
     stage.ctx->width = width;
@@ -91,6 +113,7 @@ Result<TextureRef> PointwiseFuser::run(ShaderCache& shaders, TexturePool& pool,
   }
   TextureRef out = pool.acquire(width, height, format);
   glUseProgram(*program);
+  bind_stage_samplers(stages, *program);
   for (size_t i = 0; i < stages.size(); ++i) {
     const FusedStage& stage = stages[i];
     stage.ctx->width = width;
@@ -113,6 +136,7 @@ Result<TextureRef> PointwiseFuser::run(ShaderCache& shaders, TexturePool& pool,
   glBindVertexArray(vertex_array_.get());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
+  unbind_stage_samplers(stages);
   glBindTextureUnit(0, 0);
   glUseProgram(0);
   glNamedFramebufferTexture(framebuffer_.get(), GL_COLOR_ATTACHMENT0, 0, 0);

@@ -20,7 +20,12 @@ struct FusedStage {
   const aq_pointwise_desc* pointwise = nullptr;
   void* instance = nullptr;
   aq_process_ctx* ctx = nullptr;  // as for process(); its width and height are the pass's
+  // The node's inputs after the first: port name and texture, bound as AQ_UNIFORM(name).
+  std::vector<std::pair<std::string, GLuint>> samplers;
 };
+
+// Texture units the host binds fused stages' extra inputs to: above those plugins use.
+constexpr GLuint kFusedSamplerUnit = 20;
 
 class PointwiseFuser {
  public:
@@ -52,5 +57,7 @@ std::string epilogue_source(const std::vector<FusedStage>* stages);
 // false when a stage's set_uniforms failed.
 bool set_epilogue_uniforms(const std::vector<FusedStage>& stages, GLuint program, int width,
                            int height);
+// Unbinds what set_epilogue_uniforms (or a fused pass) bound for the stages' extra inputs.
+void unbind_stage_samplers(const std::vector<FusedStage>& stages);
 
 }  // namespace aq

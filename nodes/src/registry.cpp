@@ -305,13 +305,16 @@ NodeType node_type_from_desc(const aq_node_desc& desc, const std::string& plugin
   if (desc.struct_size >= offsetof(aq_node_desc, pointwise) + sizeof(desc.pointwise) &&
       desc.pointwise != nullptr) {
     const aq_pointwise_desc& pointwise = *desc.pointwise;
-    const bool one_image_in_one_out = type.inputs.size() == 1 && type.outputs.size() == 1 &&
-                                      type.inputs[0].type == AQ_PORT_IMAGE &&
-                                      type.outputs[0].type == AQ_PORT_IMAGE;
-    if ((desc.flags & AQ_NODE_POINTWISE) == 0 || !one_image_in_one_out) {
+    // Input 0 is the image the function maps pixel by pixel; further image inputs (edge's
+    // detection source) are bound by the host as samplers the function may read anywhere.
+    bool images_in_one_out =
+        !type.inputs.empty() && type.outputs.size() == 1 && type.outputs[0].type == AQ_PORT_IMAGE;
+    for (const PortInfo& port : type.inputs)
+      images_in_one_out = images_in_one_out && port.type == AQ_PORT_IMAGE && !port.multi;
+    if ((desc.flags & AQ_NODE_POINTWISE) == 0 || !images_in_one_out) {
       return refuse(
-          "a fusable function (pointwise) needs the AQ_NODE_POINTWISE flag and exactly "
-          "one image input and one image output");
+          "a fusable function (pointwise) needs the AQ_NODE_POINTWISE flag, image inputs only "
+          "(the first is the one it maps pixel by pixel) and one image output");
     }
     if (pointwise.struct_size < sizeof(aq_pointwise_desc) || pointwise.glsl == nullptr ||
         pointwise.set_uniforms == nullptr) {

@@ -35,34 +35,41 @@ constexpr aq_param_desc kParams[] = {
                     "width of the smooth ramp above the threshold to full darkening")};
 
 struct Edge {
+  std::string fragment = aq::pointwise_fragment(shaders::edge_glsl.text);
+
   int process(aq::Context& ctx) {
     const aq_image in = ctx.input_image(kImage);
     if (ctx.param_float(kFactor) >= 1.0) return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
     const aq_image source = ctx.connected(kSource) ? ctx.input_image(kSource) : in;
     aq_image out;
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
-    const bool sobel = ctx.param_enum(kKernel) == 1;
-    const std::string text =
-        std::string(sobel ? "#define AQ_EDGE_SOBEL 1\n" : "") + shaders::edge_frag.text;
-    const GLuint program = ctx.program(aq_shader_source{shaders::edge_frag.name, text.c_str(),
-                                                        sobel ? nullptr : shaders::edge_frag.path});
+    const GLuint program = ctx.program(aq_shader_source{"edge.glsl", fragment.c_str(), nullptr});
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
     aq::bind_texture(program, "u_image", 0, in);
     aq::bind_texture(program, "u_source", 1, source);
-    aq::set_float(program, "u_factor", ctx.param_float(kFactor));
-    aq::set_float(program, "u_threshold", ctx.param_float(kThreshold));
-    aq::set_float(program, "u_softness", std::max(ctx.param_float(kSoftness), 1e-3));
+    set_uniforms(ctx, program, "u_");
     const bool drawn = ctx.draw(out);
     aq::unbind_textures(2);
     return drawn ? AQ_OK : AQ_ERROR;
+  }
+
+  // The uniforms of edge.glsl but its source, named prefix + name (the host binds the source
+  // when it fuses this node's function, which it does only with `source` connected).
+  int set_uniforms(aq::Context& ctx, GLuint program, const std::string& prefix) {
+    aq::set_float(program, (prefix + "factor").c_str(), ctx.param_float(kFactor));
+    aq::set_float(program, (prefix + "threshold").c_str(), ctx.param_float(kThreshold));
+    aq::set_float(program, (prefix + "softness").c_str(),
+                  std::max(ctx.param_float(kSoftness), 1e-3));
+    aq::set_int(program, (prefix + "sobel").c_str(), ctx.param_enum(kKernel) == 1 ? 1 : 0);
+    return AQ_OK;
   }
 };
 
 }  // namespace
 
-AQ_NODE(kEdgeNode, Edge, "edge", "Watercolor",
-        "Edge darkening: Laplacian or Sobel edges (optionally of an effect-free `source`) scale "
-        "the HSV value by `factor` through a smooth threshold.",
-        0, kInputs, kOutputs, kParams);
+AQ_POINTWISE_NODE(kEdgeNode, Edge, "edge", "Watercolor",
+                  "Edge darkening: Laplacian or Sobel edges (optionally of an effect-free "
+                  "`source`) scale the HSV value by `factor` through a smooth threshold.",
+                  kInputs, kOutputs, kParams, shaders::edge_glsl);
 AQ_PLUGIN("edge", "1.0", &kEdgeNode)

@@ -104,5 +104,5 @@ struct Wobble {
 AQ_NODE(kWobbleNode, Wobble, "wobble", "Watercolor",
         "Paper wobble: shifts each lookup by the paper height's gradient times a strength "
         "(in paper pixels, the same at every resolution).",
-        0, kInputs, kOutputs, kParams);
+        AQ_NODE_EPILOGUE, kInputs, kOutputs, kParams);
 AQ_PLUGIN("wobble", "1.0", &kWobbleNode)

@@ -131,5 +131,67 @@ TEST(EpilogueFusion, TheBlurRunsOnceAndTheTailNever) {
   EXPECT_GT(max_abs_diff(*first, *second), 1e-3);
 }
 
+// edge is pointwise in its image and reads its detection source around the pixel: the host binds
+// the source for the fused function. As wobble's epilogue (the flagship's order) and inside a
+// plain fused chain, fused equals unfused within 1e-6 in float.
+const char* kWobbleEdge = R"({
+  "aquarelle": 1,
+  "nodes": {
+    "input": {"type": "image_input", "params": {"name": "image"}},
+    "cells": {"type": "noise", "params": {"type": "worley", "scale": 8, "seed": 3}},
+    "wobble": {"type": "wobble", "params": {"strength": 6.0}, "inputs": {"image": "input.image"}},
+    "edge": {"type": "edge", "params": {"threshold": 0.05, "softness": 0.2, "factor": 0.5},
+             "inputs": {"image": "wobble.image", "source": "cells.image"}},
+    "tint": {"type": "tint", "params": {"amount": 0.1}, "inputs": {"image": "input.image"}},
+    "edge2": {"type": "edge", "params": {"kernel": "sobel", "factor": 0.3},
+              "inputs": {"image": "tint.image", "source": "cells.image"}},
+    "vignette": {"type": "vignette", "inputs": {"image": "edge2.image"}},
+    "sum": {"type": "edge", "params": {"factor": 1.0},
+            "inputs": {"image": "edge.image", "source": "vignette.image"}}
+  },
+  "output": "sum.image"
+})";
+
+TEST(EpilogueFusion, EdgeRunsInsideTheWobbleAndInsideAFusedChain) {
+  const Plan plan = plan_of(kWobbleEdge);
+  const PlannedPass* edge = plan.pass_of("edge");
+  ASSERT_NE(edge, nullptr);
+  EXPECT_TRUE(edge->epilogue);
+  // `sum` (an edge reading edge.image) joins the chain too.
+  EXPECT_EQ(edge->chain, (std::vector<std::string>{"wobble", "edge", "sum"}));
+  const PlannedPass* vignette = plan.pass_of("vignette");
+  ASSERT_NE(vignette, nullptr);
+  EXPECT_EQ(vignette->chain, (std::vector<std::string>{"tint", "edge2", "vignette"}));
+  for (const char* output : {"edge.image", "vignette.image"}) {
+    RenderOptions fused = options(true);
+    fused.precision = "float";
+    fused.output = output;
+    RenderOptions unfused = options(false);
+    unfused.precision = "float";
+    unfused.output = output;
+    auto a = render_graph(kWobbleEdge, fused, input_images());
+    auto b = render_graph(kWobbleEdge, unfused, input_images());
+    ASSERT_TRUE(a.ok()) << a.message();
+    ASSERT_TRUE(b.ok()) << b.message();
+    EXPECT_LE(max_abs_diff(*a, *b), 1e-6) << output;
+  }
+}
+
+// Without `source`, edge detects on its own image's neighbourhood: not pointwise, not fused.
+TEST(EpilogueFusion, EdgeWithoutASourceRunsOnItsOwn) {
+  const Plan plan = plan_of(R"({
+    "aquarelle": 1,
+    "nodes": {
+      "input": {"type": "image_input", "params": {"name": "image"}},
+      "wobble": {"type": "wobble", "inputs": {"image": "input.image"}},
+      "edge": {"type": "edge", "inputs": {"image": "wobble.image"}},
+      "tint": {"type": "tint", "inputs": {"image": "edge.image"}}
+    },
+    "output": "tint.image"
+  })");
+  EXPECT_EQ(plan.pass_of("edge")->chain, std::vector<std::string>{"edge"});
+  EXPECT_FALSE(plan.find("wobble")->deferred);
+}
+
 }  // namespace
 }  // namespace aq::test

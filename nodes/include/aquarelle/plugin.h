@@ -250,7 +250,11 @@ struct aq_param_value;
  * both macros differently for each fused node. It may #include "aquarelle/<lib>.glsl".
  * `set_uniforms` sets them on the bound `program`: the uniform AQ_UNIFORM(x) is named
  * prefix + "x". ctx is as for process(), with width and height those of the fused pass.
- * Returns AQ_OK, or AQ_ERROR after ctx->host->fail. */
+ * Returns AQ_OK, or AQ_ERROR after ctx->host->fail.
+ * `color` is the node's first input at the pixel. Its other inputs (image ports only) are bound
+ * by the host, before set_uniforms, as `uniform sampler2D AQ_UNIFORM(<port name>)`, readable
+ * anywhere (edge reads its detection source 3x3); the host fuses such a node only when all of
+ * them are connected (an unconnected one may stand for the first input's neighbourhood). */
 typedef struct aq_pointwise_desc {
   uint32_t struct_size;
   const char* name; /* shown in compile errors, e.g. "tint.glsl" */

@@ -54,5 +54,6 @@ void main() {
 #endif
   // A NaN or infinite paper would throw the lookup anywhere: keep the pixel in place instead.
   if (any(isnan(gradient)) || any(isinf(gradient))) gradient = vec2(0.0);
-  o_color = image_at(v_uv + u_strength * gradient * step_uv);
+  // aq_epilogue: the pointwise nodes after the wobble (edge) when the host fuses them.
+  o_color = aq_epilogue(image_at(v_uv + u_strength * gradient * step_uv));
 }
