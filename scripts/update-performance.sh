@@ -40,9 +40,11 @@ levers=(
   "the default levers off|-|blur.direct_kernel=full pigment.cache_canvas=false -wobble.gradient env:AQUARELLE_FORMATS_BY_NEED=0 env:AQUARELLE_EPILOGUE_FUSION=0|off"
   "formats by need, all of it: 8-bit edge source and paper, 8-bit HDR light|edge|env:AQUARELLE_FORMATS_BY_NEED=0|off"
   "formats by need: light, morphology and pigment as 8-bit HDR|dilate|env:AQUARELLE_HDR8=0|off"
-  "fusion: vignette and tint in the blur's last draw (epilogue)|tint|env:AQUARELLE_EPILOGUE_FUSION=0|off"
+  "fusion: vignette and tint in the blur's last draw, edge in the wobble's (epilogue)|-|env:AQUARELLE_EPILOGUE_FUSION=0|off"
 )
+# AQ_LEVERS_FROM_JSON=1: only rewrite the table from the runs already in docs/performance/levers.
 for i in "${!levers[@]}"; do
+  [ -z "${AQ_LEVERS_FROM_JSON:-}" ] || break
   IFS='|' read -r name node settings sense <<< "${levers[$i]}"
   sets=()
   envs=()
@@ -89,10 +91,18 @@ def final_psnr(report):
 
 
 def node_cost(report, node):
-    for n in report["modes"]["cached_static_nodes"]["nodes"]:
-        if n["id"] == node:
-            return n["wall_ms"]["median"] / report["copy_pass_ms"]
-    return None
+    """The node's cost in copy passes; a node fused into another's pass has none of its own:
+    then the cost of the pass that runs it (its reader's, named "pass of <reader>")."""
+    nodes = report["modes"]["cached_static_nodes"]["nodes"]
+    for i, n in enumerate(nodes):
+        if n["id"] != node:
+            continue
+        if not n.get("fused"):
+            return n["wall_ms"]["median"] / report["copy_pass_ms"], node
+        for owner in nodes[i + 1:]:
+            if not owner.get("fused"):
+                return owner["wall_ms"]["median"] / report["copy_pass_ms"], "pass of " + owner["id"]
+    return None, node
 
 
 runs = [json.load(open(f"{out}/{i}.json")) for i in range(len(levers))]
@@ -107,8 +117,14 @@ fmt = lambda v, f="{:.1f}": "-" if v is None else f.format(v)
 for i, spec in enumerate(levers[1:], start=1):
     name, node, settings, sense = spec.split("|")
     without, with_ = (runs[i], on) if sense == "off" else (on, runs[i])
-    node_text = "-" if node == "-" else (
-        f"{node} {fmt(node_cost(without, node))} → {fmt(node_cost(with_, node))}")
+    if node == "-":
+        node_text = "-"
+    else:
+        (cost_without, name_without), (cost_with, name_with) = (node_cost(without, node),
+                                                                node_cost(with_, node))
+        node_text = (f"{name_without} {fmt(cost_without)} → {fmt(cost_with)}"
+                     if name_without == name_with else
+                     f"{name_without} {fmt(cost_without)} → {name_with} {fmt(cost_with)}")
     lines.append(f"| {name} | `{settings}` | {without['copy_passes_per_frame']:.1f} → "
                  f"{with_['copy_passes_per_frame']:.1f} | {node_text} | "
                  f"{fmt(final_psnr(without))} → {fmt(final_psnr(with_))} |")
