@@ -202,31 +202,12 @@ TEST(EpilogueFusion, OnlyANonPointwiseImageProducerMayTakeAnEpilogue) {
   static const aq_pointwise_desc function = {
       sizeof(aq_pointwise_desc), "f.glsl", "vec4 AQ_APPLY(vec4 c, vec2 p, vec2 s) { return c; }",
       [](void*, aq_process_ctx*, uint32_t, const char*) { return int{AQ_OK}; }};
-  auto describe = [](uint32_t flags, const aq_port_desc* outputs,
-                     const aq_pointwise_desc* pointwise) {
-    aq_node_desc desc{};
-    desc.struct_size = sizeof(aq_node_desc);
-    desc.type_name = "producer";
-    desc.category = "Filter";
-    desc.description = "test";
-    desc.flags = flags;
-    desc.inputs = image;
-    desc.input_count = 1;
-    desc.outputs = outputs;
-    desc.output_count = 1;
-    desc.create = [](const aq_host*) -> void* { return nullptr; };
-    desc.destroy = [](void*) {};
-    desc.process = [](void*, aq_process_ctx*) { return int{AQ_OK}; };
-    desc.pointwise = pointwise;
-    std::string why;
-    NodeType type = node_type_from_desc(desc, "test.so", &why);
-    return std::pair{type, why};
-  };
-  auto [accepted, none] = describe(AQ_NODE_EPILOGUE, image, nullptr);
+  auto [accepted, none] = describe_node(image, image, AQ_NODE_EPILOGUE);
   ASSERT_FALSE(accepted.name.empty()) << none;
   EXPECT_TRUE(accepted.takes_epilogue());
-  for (auto [type, why] : {describe(AQ_NODE_EPILOGUE | AQ_NODE_POINTWISE, image, &function),
-                           describe(AQ_NODE_EPILOGUE, scene, nullptr)}) {
+  for (auto [type, why] :
+       {describe_node(image, image, AQ_NODE_EPILOGUE | AQ_NODE_POINTWISE, &function),
+        describe_node(image, scene, AQ_NODE_EPILOGUE)}) {
     EXPECT_TRUE(type.name.empty());
     EXPECT_NE(why.find("AQ_NODE_EPILOGUE"), std::string::npos) << why;
   }

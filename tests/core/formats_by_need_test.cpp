@@ -83,33 +83,6 @@ TEST(FormatsByNeed, ViewingTheOutputOrTurningTheLeverOffKeepsTheFormat) {
 Result<ImageF> render_with_lever(const char* graph, bool formats_by_need,
                                  const std::string& precision, const std::string& output = "");
 
-void* no_instance(const aq_host*) {
-  return nullptr;
-}
-void no_destroy(void*) {}
-int no_process(void*, aq_process_ctx*) {
-  return AQ_OK;
-}
-
-// A node of one input and one output port, as the registry takes it (or the reason it refuses).
-std::pair<NodeType, std::string> describe(const aq_port_desc* inputs, const aq_port_desc* outputs) {
-  aq_node_desc desc{};
-  desc.struct_size = sizeof(aq_node_desc);
-  desc.type_name = "narrow";
-  desc.category = "Filter";
-  desc.description = "test";
-  desc.inputs = inputs;
-  desc.input_count = 1;
-  desc.outputs = outputs;
-  desc.output_count = 1;
-  desc.create = &no_instance;
-  desc.destroy = &no_destroy;
-  desc.process = &no_process;
-  std::string why;
-  NodeType type = node_type_from_desc(desc, "test.so", &why);
-  return std::pair{type, why};
-}
-
 // The flag says how a node reads an image: a plugin declaring it on an output or on a scene
 // input is refused with a message naming the port.
 TEST(FormatsByNeed, OnlyImageInputsMayDeclareIt) {
@@ -117,13 +90,13 @@ TEST(FormatsByNeed, OnlyImageInputsMayDeclareIt) {
   const aq_port_desc image_input[] = {{"mask", AQ_PORT_IMAGE, AQ_PORT_8BIT_ENOUGH, "m"}};
   const aq_port_desc narrow_output[] = {{"image", AQ_PORT_IMAGE, AQ_PORT_8BIT_ENOUGH, "i"}};
   const aq_port_desc plain_output[] = {{"image", AQ_PORT_IMAGE, 0, "i"}};
-  auto [accepted, none] = describe(image_input, plain_output);
+  auto [accepted, none] = describe_node(image_input, plain_output);
   ASSERT_FALSE(accepted.name.empty()) << none;
   EXPECT_TRUE(accepted.inputs[0].eight_bit_enough);
-  auto [on_scene, why_scene] = describe(scene_input, plain_output);
+  auto [on_scene, why_scene] = describe_node(scene_input, plain_output);
   EXPECT_TRUE(on_scene.name.empty());
   EXPECT_NE(why_scene.find("input 'scene' is AQ_PORT_8BIT_ENOUGH"), std::string::npos) << why_scene;
-  auto [on_output, why_output] = describe(image_input, narrow_output);
+  auto [on_output, why_output] = describe_node(image_input, narrow_output);
   EXPECT_TRUE(on_output.name.empty());
   EXPECT_NE(why_output.find("output 'image' is AQ_PORT_8BIT_ENOUGH"), std::string::npos)
       << why_output;
@@ -135,10 +108,10 @@ TEST(FormatsByNeed, OnlyImagePortsMayHandleTheEncodedHdrFormat) {
   const aq_port_desc scene_input[] = {{"scene", AQ_PORT_SCENE, AQ_PORT_HDR8, "s"}};
   const aq_port_desc image_input[] = {{"image", AQ_PORT_IMAGE, AQ_PORT_HDR8, "i"}};
   const aq_port_desc image_output[] = {{"image", AQ_PORT_IMAGE, AQ_PORT_HDR8, "i"}};
-  auto [refused, why] = describe(scene_input, image_output);
+  auto [refused, why] = describe_node(scene_input, image_output);
   EXPECT_TRUE(refused.name.empty());
   EXPECT_NE(why.find("input 'scene' is AQ_PORT_HDR8"), std::string::npos) << why;
-  auto [accepted, none] = describe(image_input, image_output);
+  auto [accepted, none] = describe_node(image_input, image_output);
   ASSERT_FALSE(accepted.name.empty()) << none;
   EXPECT_TRUE(accepted.inputs[0].hdr8);
   EXPECT_TRUE(accepted.outputs[0].hdr8);

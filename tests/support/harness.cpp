@@ -236,6 +236,28 @@ ImageF gradient_image(int width, int height) {
   return image;
 }
 
+std::pair<NodeType, std::string> describe_node(const aq_port_desc* input,
+                                               const aq_port_desc* output, uint32_t flags,
+                                               const aq_pointwise_desc* pointwise) {
+  aq_node_desc desc{};
+  desc.struct_size = sizeof(aq_node_desc);
+  desc.type_name = "described";
+  desc.category = "Filter";
+  desc.description = "test";
+  desc.flags = flags;
+  desc.inputs = input;
+  desc.input_count = 1;
+  desc.outputs = output;
+  desc.output_count = 1;
+  desc.create = [](const aq_host*) -> void* { return nullptr; };
+  desc.destroy = [](void*) {};
+  desc.process = [](void*, aq_process_ctx*) { return int{AQ_OK}; };
+  desc.pointwise = pointwise;
+  std::string why;
+  NodeType type = node_type_from_desc(desc, "test.so", &why);
+  return {std::move(type), why};
+}
+
 ImageF random_image(int width, int height, unsigned seed, float lo, float hi) {
   ImageF image(width, height, 4);
   // A fixed LCG rather than <random> distributions, whose output is implementation-defined.

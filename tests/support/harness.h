@@ -18,6 +18,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 
 namespace aq::test {
 
@@ -68,5 +69,11 @@ ImageF checker_image(int width, int height, int cell);
 
 // Path of a file in the source tree (e.g. "graphs/tint.json").
 std::string source_path(const std::string& relative);
+
+// What the registry makes of a node with one input and one output port (the type, or empty with
+// the reason it refuses it): for tests of port and node flags. Its create/process do nothing.
+std::pair<NodeType, std::string> describe_node(const aq_port_desc* input,
+                                               const aq_port_desc* output, uint32_t flags = 0,
+                                               const aq_pointwise_desc* pointwise = nullptr);
 
 }  // namespace aq::test
