@@ -7,15 +7,34 @@ std::string fused_uniform_prefix(size_t stage) {
   return "aq_s" + std::to_string(stage) + "_";
 }
 
+namespace {
+// The stages' functions, stage i's named `function`<i> with its uniforms prefixed
+// (fused_uniform_prefix), and the calls that apply them in order to `c` at gl_FragCoord of an
+// image of `size` pixels: what a fused pass and an epilogue both put in their shader.
+struct StageCode {
+  std::string functions;
+  std::string calls;
+};
+StageCode stage_code(const std::vector<const char*>& glsl, const std::string& function,
+                     const char* size) {
+  StageCode code;
+  for (size_t i = 0; i < glsl.size(); ++i) {
+    const std::string name = function + std::to_string(i);
+    code.functions += "#define AQ_APPLY " + name + "\n";
+    code.functions += "#define AQ_UNIFORM(name) " + fused_uniform_prefix(i) + "##name\n";
+    code.functions += glsl[i];
+    code.functions += "\n#undef AQ_APPLY\n#undef AQ_UNIFORM\n";
+    code.calls += "  c = " + name + "(c, gl_FragCoord.xy, " + size + ");\n";
+  }
+  return code;
+}
+}  // namespace
+
 std::string fused_fragment_source(const std::vector<const char*>& glsl, bool resample,
                                   bool decode_hdr8) {
+  const StageCode code = stage_code(glsl, "aq_apply_", "aq_fused_size");
   std::string source = decode_hdr8 ? "#include \"aquarelle/hdr8.glsl\"\n" : "";
-  for (size_t i = 0; i < glsl.size(); ++i) {
-    source += "#define AQ_APPLY aq_apply_" + std::to_string(i) + "\n";
-    source += "#define AQ_UNIFORM(name) " + fused_uniform_prefix(i) + "##name\n";
-    source += glsl[i];
-    source += "\n#undef AQ_APPLY\n#undef AQ_UNIFORM\n";
-  }
+  source += code.functions;
   source +=
       "in vec2 v_uv;\n"
       "layout(location = 0) out vec4 o_color;\n"
@@ -25,28 +44,18 @@ std::string fused_fragment_source(const std::vector<const char*>& glsl, bool res
   source += resample ? "  vec4 c = texture(aq_fused_input, v_uv);\n"
                      : "  vec4 c = texelFetch(aq_fused_input, ivec2(gl_FragCoord.xy), 0);\n";
   if (decode_hdr8) source += "  c = aq_hdr8_decode(c);\n";
-  for (size_t i = 0; i < glsl.size(); ++i) {
-    source += "  c = aq_apply_" + std::to_string(i) + "(c, gl_FragCoord.xy, aq_fused_size);\n";
-  }
+  source += code.calls;
   source += "  o_color = c;\n}\n";
   return source;
 }
 
 std::string epilogue_source(const std::vector<FusedStage>* stages) {
   if (stages == nullptr || stages->empty()) return "vec4 aq_epilogue(vec4 c) { return c; }\n";
-  std::string source;
-  for (size_t i = 0; i < stages->size(); ++i) {
-    source += "#define AQ_APPLY aq_epilogue_" + std::to_string(i) + "\n";
-    source += "#define AQ_UNIFORM(name) " + fused_uniform_prefix(i) + "##name\n";
-    source += (*stages)[i].pointwise->glsl;
-    source += "\n#undef AQ_APPLY\n#undef AQ_UNIFORM\n";
-  }
-  source += "uniform vec2 aq_epilogue_size;\nvec4 aq_epilogue(vec4 c) {\n";
-  for (size_t i = 0; i < stages->size(); ++i)
-    source +=
-        "  c = aq_epilogue_" + std::to_string(i) + "(c, gl_FragCoord.xy, aq_epilogue_size);\n";
-  source += "  return c;\n}\n";
-  return source;
+  std::vector<const char*> glsl;
+  for (const FusedStage& stage : *stages) glsl.push_back(stage.pointwise->glsl);
+  const StageCode code = stage_code(glsl, "aq_epilogue_", "aq_epilogue_size");
+  return code.functions + "uniform vec2 aq_epilogue_size;\nvec4 aq_epilogue(vec4 c) {\n" +
+         code.calls + "  return c;\n}\n";
 }
 
 namespace {
@@ -70,8 +79,12 @@ void unbind_stage_samplers(const std::vector<FusedStage>& stages) {
     for (size_t k = 0; k < stage.samplers.size(); ++k) glBindTextureUnit(unit++, 0);
 }
 
-bool set_epilogue_uniforms(const std::vector<FusedStage>& stages, GLuint program, int width,
-                           int height) {
+namespace {
+// Binds the stages' extra inputs and sets their uniforms on `program` (bound) for a draw of
+// width x height, then sets `size_uniform`. Returns the 1-based index of a stage whose
+// set_uniforms failed, 0 when all succeeded.
+size_t set_stage_uniforms(const std::vector<FusedStage>& stages, GLuint program, int width,
+                          int height, const char* size_uniform) {
   bind_stage_samplers(stages, program);
   for (size_t i = 0; i < stages.size(); ++i) {
     const FusedStage& stage = stages[i];
@@ -79,12 +92,18 @@ bool set_epilogue_uniforms(const std::vector<FusedStage>& stages, GLuint program
     stage.ctx->height = height;
     const std::string prefix = fused_uniform_prefix(i);
     if (stage.pointwise->set_uniforms(stage.instance, stage.ctx, program, prefix.c_str()) != AQ_OK)
-      return false;
+      return i + 1;
   }
   glUseProgram(program);  // a stage may have changed the binding
-  glUniform2f(glGetUniformLocation(program, "aq_epilogue_size"), static_cast<float>(width),
+  glUniform2f(glGetUniformLocation(program, size_uniform), static_cast<float>(width),
               static_cast<float>(height));
-  return true;
+  return 0;
+}
+}  // namespace
+
+bool set_epilogue_uniforms(const std::vector<FusedStage>& stages, GLuint program, int width,
+                           int height) {
+  return set_stage_uniforms(stages, program, width, height, "aq_epilogue_size") == 0;
 }
 
 Result<TextureRef> PointwiseFuser::run(ShaderCache& shaders, TexturePool& pool,
@@ -113,23 +132,13 @@ Result<TextureRef> PointwiseFuser::run(ShaderCache& shaders, TexturePool& pool,
   }
   TextureRef out = pool.acquire(width, height, format);
   glUseProgram(*program);
-  bind_stage_samplers(stages, *program);
-  for (size_t i = 0; i < stages.size(); ++i) {
-    const FusedStage& stage = stages[i];
-    stage.ctx->width = width;
-    stage.ctx->height = height;
-    const std::string prefix = fused_uniform_prefix(i);
-    if (stage.pointwise->set_uniforms(stage.instance, stage.ctx, *program, prefix.c_str()) !=
-        AQ_OK) {
-      glUseProgram(0);
-      return make_error("setting the uniforms of fused stage " + std::to_string(i + 1) + " failed");
-    }
+  if (const size_t failed = set_stage_uniforms(stages, *program, width, height, "aq_fused_size")) {
+    unbind_stage_samplers(stages);
+    glUseProgram(0);
+    return make_error("setting the uniforms of fused stage " + std::to_string(failed) + " failed");
   }
-  glUseProgram(*program);  // a stage may have changed the binding
   glBindTextureUnit(0, in.texture);
   glUniform1i(glGetUniformLocation(*program, "aq_fused_input"), 0);
-  glUniform2f(glGetUniformLocation(*program, "aq_fused_size"), static_cast<float>(width),
-              static_cast<float>(height));
   glNamedFramebufferTexture(framebuffer_.get(), GL_COLOR_ATTACHMENT0, out->image.texture, 0);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
   glViewport(0, 0, width, height);
