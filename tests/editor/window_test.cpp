@@ -60,6 +60,13 @@ class EditorWindowTest : public ::testing::Test {
     if (!dir_.empty() && !HasFailure()) fs::remove_all(dir_);
   }
 
+  // Writes `script` and runs it on graph.json at 1280x720 with a screenshot; returns the status.
+  int run_script(const nlohmann::json& script, std::string* log) {
+    std::ofstream(dir_ / "script.json") << script.dump(2);
+    return run_editor(
+        "graph.json --script script.json --screenshot shot.png --quit --size 1280x720", log);
+  }
+
   // Runs `aquarelle edit` under xvfb-run; returns the editor's exit status, its output in `log`.
   // The status is written by a shell inside xvfb-run: xvfb-run's own status also reflects its
   // clean-up, which can fail when several Xvfb servers come and go at once.
@@ -246,13 +253,8 @@ TEST_F(EditorWindowTest, ChordsSaveSafelyAndNukeStyleEdits) {
       {{"do", "paste"}, {"at", {900, 300}}},
       {{"do", "save"}, {"path", "edited.json"}},
   };
-  std::ofstream(dir_ / "script.json") << script.dump(2);
   std::string log;
-  ASSERT_EQ(run_editor("graph.json --script script.json --screenshot shot.png --quit --size "
-                       "1280x720",
-                       &log),
-            0)
-      << log;
+  ASSERT_EQ(run_script(script, &log), 0) << log;
   EXPECT_NE(log.find("(key): done"), std::string::npos) << log;
   EXPECT_NE(log.find("exists already"), std::string::npos) << log;
   std::ifstream original(source, std::ios::binary), saved(dir_ / "graph.json", std::ios::binary);
@@ -288,13 +290,8 @@ TEST_F(EditorWindowTest, GroupCollapsesNodesLinksAtItsPortsAndUngroups) {
       {{"do", "undo"}},
       {{"do", "select"}, {"nodes", {"tint"}}},
   };
-  std::ofstream(dir_ / "script.json") << script.dump(2);
   std::string log;
-  ASSERT_EQ(run_editor("graph.json --script script.json --screenshot shot.png --quit --size "
-                       "1280x720",
-                       &log),
-            0)
-      << log;
+  ASSERT_EQ(run_script(script, &log), 0) << log;
   const nlohmann::json grouped = read_json(dir_ / "grouped.json");
   const nlohmann::json groups = grouped["editor"]["groups"];
   ASSERT_EQ(groups.size(), 1u) << grouped.dump(2);
@@ -331,13 +328,8 @@ TEST_F(EditorWindowTest, WipeComparesTwoOutputs) {
       {{"do", "view"}, {"wipe", 0.3}},
       {{"do", "compare"}, {"output", "nosuch.image"}, {"expect", "refused"}},
   };
-  std::ofstream(dir_ / "script.json") << script.dump(2);
   std::string log;
-  ASSERT_EQ(run_editor("graph.json --script script.json --screenshot shot.png --quit --size "
-                       "1280x720",
-                       &log),
-            0)
-      << log;
+  ASSERT_EQ(run_script(script, &log), 0) << log;
   EXPECT_NE(log.find("compare A tint.image | B gbuf.albedo"), std::string::npos) << log;
   auto config = aq::ColorConfig::load();
   ASSERT_TRUE(config.ok());
