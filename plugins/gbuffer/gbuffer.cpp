@@ -14,10 +14,12 @@
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/sdk/scene_gpu.hpp>
 #include <aquarelle/sdk/scene_math.hpp>
+#include <aquarelle/sdk/static_layer.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include <string>
+#include <vector>
 
 #include "gbuffer_shaders.h"
 
@@ -33,6 +35,11 @@ constexpr aq_port_desc kOutputs[] = {
                    "linear view depth (world units along the view axis); far plane "
                    "on the background (R32F)"),
     aq::image_port("id", "object id as a float (R32F); 0 on the background")};
+enum Param { kCacheStatic };
+constexpr aq_param_desc kParams[] = {aq::bool_param(
+    "cache_static", true,
+    "keep the meshes that did not move since the last frame in a cached layer and draw only "
+    "what moved over a copy of it (the same targets)")};
 
 class GBuffer {
  public:
@@ -60,43 +67,92 @@ class GBuffer {
     if (programs[0] == 0 || programs[1] == 0) return AQ_ERROR;
 
     meshes_.update(*scene, ctx.raw()->gl_generation);
-    if (!ctx.bind_targets(targets, kOutputCount, &depth_buffer)) return AQ_ERROR;
+    const glm::mat4 view = aq::scene_math::camera_view(scene->camera);
+    const glm::mat4 projection = aq::scene_math::camera_projection(
+        scene->camera, static_cast<float>(width) / static_cast<float>(height));
+    const Frame frame{*scene, view, projection, programs};
 
-    const float far_plane = scene->camera.far_plane;
+    // Meshes that did not move since the last frame come from the cached layer (background
+    // included); only what moved (the fish, the swaying seaweed) is drawn each frame.
+    const std::vector<bool>& unchanged = unchanged_.update(*scene);
+    bool layered = false;
+    if (unchanged_.any() && ctx.param_bool(kCacheStatic)) {
+      aq::Fnv1a key;
+      unchanged_.mix_into(key, *scene);
+      key.mix(view);
+      key.mix(projection);
+      key.mix(scene->camera.far_plane);
+      key.mix(aq::scene_has_environment(*scene));
+      key.mix(scene->environment_top);
+      key.mix(scene->environment_bottom);
+      layer_.ensure(ctx.raw()->gl_generation, targets, kOutputCount, depth_buffer);
+      if (layer_.key == key.value) {
+        layered = true;
+      } else if (layer_.bind()) {
+        if (!draw_background(ctx, frame)) return AQ_ERROR;
+        draw_meshes(frame, &unchanged, true);
+        layer_.key = key.value;
+        layered = true;
+      }
+      if (layered) layer_.copy_to(targets, kOutputCount, depth_buffer);
+    }
+
+    if (!ctx.bind_targets(targets, kOutputCount, &depth_buffer)) return AQ_ERROR;
+    if (layered) {
+      draw_meshes(frame, &unchanged, false);
+    } else {
+      if (!draw_background(ctx, frame)) return AQ_ERROR;
+      draw_meshes(frame, nullptr, false);
+    }
+    aq::unbind_textures(1);
+    return AQ_OK;
+  }
+
+ private:
+  struct Frame {
+    const aq_scene& scene;
+    glm::mat4 view, projection;
+    const GLuint* programs;  // [untextured, textured]
+  };
+
+  // Clears the bound targets to the background's values (or draws the environment there).
+  static bool draw_background(aq::Context& ctx, const Frame& frame) {
+    const float far_plane = frame.scene.camera.far_plane;
     const float depth_one = 1.0f;
     glClearBufferfv(GL_DEPTH, 0, &depth_one);
-
-    glm::mat4 view = aq::scene_math::camera_view(scene->camera);
-    glm::mat4 projection = aq::scene_math::camera_projection(
-        scene->camera, static_cast<float>(width) / static_cast<float>(height));
-    if (aq::scene_has_environment(*scene)) {
+    if (aq::scene_has_environment(frame.scene)) {
       // One pass writes the whole background (the clear values and the environment's colour):
       // on llvmpipe five clears and a pass with four targets masked cost 1.4-1.6 copy passes,
       // one pass writing all five 1.0-1.1.
-      if (!draw_environment(ctx, *scene, glm::inverse(projection * view), far_plane))
-        return AQ_ERROR;
-    } else {
-      const float zero[4] = {0, 0, 0, 0};
-      const float far_value[4] = {far_plane, 0, 0, 0};
-      glClearBufferfv(GL_COLOR, kPosition, zero);
-      glClearBufferfv(GL_COLOR, kNormal, zero);
-      glClearBufferfv(GL_COLOR, kAlbedo, zero);
-      glClearBufferfv(GL_COLOR, kDepth, far_value);
-      glClearBufferfv(GL_COLOR, kId, zero);
+      return draw_environment(ctx, frame.scene, glm::inverse(frame.projection * frame.view),
+                              far_plane);
     }
+    const float zero[4] = {0, 0, 0, 0};
+    const float far_value[4] = {far_plane, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, kPosition, zero);
+    glClearBufferfv(GL_COLOR, kNormal, zero);
+    glClearBufferfv(GL_COLOR, kAlbedo, zero);
+    glClearBufferfv(GL_COLOR, kDepth, far_value);
+    glClearBufferfv(GL_COLOR, kId, zero);
+    return true;
+  }
 
+  // Draws the meshes whose `unchanged` flag equals `which` (all of them when it is null).
+  void draw_meshes(const Frame& frame, const std::vector<bool>* unchanged, bool which) const {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    for (const GLuint program : programs) {
-      glUseProgram(program);
-      aq::set_mat4(program, "u_view", glm::value_ptr(view));
-      aq::set_mat4(program, "u_projection", glm::value_ptr(projection));
-      aq::set_int(program, "u_base_color", 0);
+    for (int p = 0; p < 2; ++p) {
+      glUseProgram(frame.programs[p]);
+      aq::set_mat4(frame.programs[p], "u_view", glm::value_ptr(frame.view));
+      aq::set_mat4(frame.programs[p], "u_projection", glm::value_ptr(frame.projection));
+      aq::set_int(frame.programs[p], "u_base_color", 0);
     }
-    for (uint32_t i = 0; i < scene->mesh_count; ++i) {
-      const aq_mesh& mesh = scene->meshes[i];
-      const GLuint program = programs[meshes_.surface_texture(*scene, i) != 0 ? 1 : 0];
+    const aq_scene& scene = frame.scene;
+    for (uint32_t i = 0; i < scene.mesh_count; ++i) {
+      if (unchanged != nullptr && (*unchanged)[i] != which) continue;
+      const aq_mesh& mesh = scene.meshes[i];
+      const GLuint program = frame.programs[meshes_.surface_texture(scene, i) != 0 ? 1 : 0];
       glUseProgram(program);
       glm::mat4 model = glm::make_mat4(mesh.model);
       glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(model)));
@@ -105,15 +161,12 @@ class GBuffer {
                          glm::value_ptr(normal_matrix));
       glUniform1f(glGetUniformLocation(program, "u_object_id"), static_cast<float>(mesh.object_id));
       glUniform1f(glGetUniformLocation(program, "u_alpha_cutoff"),
-                  meshes_.bind_surface(*scene, i, 0));
+                  meshes_.bind_surface(scene, i, 0));
       meshes_.draw(mesh);
     }
     glDisable(GL_DEPTH_TEST);
-    aq::unbind_textures(1);
-    return AQ_OK;
   }
 
- private:
   // The background of every target in one pass: the gradient behind the scene in albedo,
   // the values that mark the background (w = 0, id 0, depth = far plane) in the others.
   static bool draw_environment(aq::Context& ctx, const aq_scene& scene,
@@ -131,12 +184,14 @@ class GBuffer {
   }
 
   aq::SceneMeshCache meshes_;
+  aq::UnchangedMeshes unchanged_;
+  aq::CachedTargets layer_;
 };
 
 }  // namespace
 
-AQ_NODE_NO_PARAMS(kGBufferNode, GBuffer, "gbuffer", "Scene",
-                  "Rasterises the scene from its camera: world position, normal, albedo, linear "
-                  "depth and object id (0 = background).",
-                  0, kInputs, kOutputs);
+AQ_NODE(kGBufferNode, GBuffer, "gbuffer", "Scene",
+        "Rasterises the scene from its camera: world position, normal, albedo, linear "
+        "depth and object id (0 = background).",
+        0, kInputs, kOutputs, kParams);
 AQ_PLUGIN("gbuffer", "1.0", &kGBufferNode)

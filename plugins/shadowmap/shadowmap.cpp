@@ -12,6 +12,7 @@
 #include <aquarelle/sdk/gl_raii.hpp>
 #include <aquarelle/sdk/scene_gpu.hpp>
 #include <aquarelle/sdk/scene_math.hpp>
+#include <aquarelle/sdk/static_layer.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -83,28 +84,28 @@ class ShadowMap {
     // Meshes unchanged since the last frame (same vertex data, same placement) are drawn once
     // into a cached map; each frame copies it and draws only what moved (fish, swaying weed).
     // The depth test keeps the nearest surface whatever the order, so the map is the same.
-    std::vector<bool> unchanged = find_unchanged(*scene);
-    const uint64_t static_key = static_casters_key(*scene, unchanged, light, size, ctx);
-    const bool any_unchanged =
-        std::find(unchanged.begin(), unchanged.end(), true) != unchanged.end();
-    if (any_unchanged &&
-        !update_static_casters(ctx, *scene, unchanged, static_key, size, program)) {
-      return AQ_ERROR;
-    }
-    if (any_unchanged) {
-      glCopyImageSubData(casters_color_.get(), GL_TEXTURE_2D, 0, 0, 0, 0, depth.texture,
-                         GL_TEXTURE_2D, 0, 0, 0, 0, size, size, 1);
-      glCopyImageSubData(casters_depth_.get(), GL_TEXTURE_2D, 0, 0, 0, 0, depth_buffer.texture,
-                         GL_TEXTURE_2D, 0, 0, 0, 0, size, size, 1);
+    const std::vector<bool>& unchanged = unchanged_.update(*scene);
+    bool layered = false;
+    if (unchanged_.any()) {
+      aq::Fnv1a key;
+      unchanged_.mix_into(key, *scene);
+      key.mix(light);
+      key.mix(size);
+      for (Param p : {kSlopeBias, kConstantBias, kMaxBias}) key.mix(ctx.param_float(p));
+      layer_.ensure(ctx.raw()->gl_generation, &depth, 1, depth_buffer);
+      if (layer_.key == key.value) {
+        layered = true;
+      } else if (layer_.bind()) {
+        clear_targets();
+        draw_meshes(*scene, &unchanged, true, program);
+        layer_.key = key.value;
+        layered = true;
+      }
+      if (layered) layer_.copy_to(&depth, 1, depth_buffer);
     }
     if (!ctx.bind_targets(&depth, 1, &depth_buffer)) return AQ_ERROR;
-    if (!any_unchanged) clear_targets();
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glUseProgram(program);
-    draw_meshes(*scene, unchanged, false, program);
-    glDisable(GL_DEPTH_TEST);
+    if (!layered) clear_targets();
+    draw_meshes(*scene, layered ? &unchanged : nullptr, false, program);
     aq::unbind_textures(1);  // the cut-out texture unit, and the program
     return AQ_OK;
   }
@@ -117,112 +118,29 @@ class ShadowMap {
     glClearBufferfv(GL_DEPTH, 0, &one);
   }
 
-  void draw_meshes(const aq_scene& scene, const std::vector<bool>& unchanged, bool which,
+  // Draws the meshes whose `unchanged` flag equals `which` (all of them when it is null).
+  void draw_meshes(const aq_scene& scene, const std::vector<bool>* unchanged, bool which,
                    GLuint program) const {
-    const GLint model_location = glGetUniformLocation(program, "u_model");
-    const GLint cutoff_location = glGetUniformLocation(program, "u_alpha_cutoff");
-    aq::set_int(program, "u_base_color", 0);
-    for (uint32_t i = 0; i < scene.mesh_count; ++i) {
-      if (unchanged[i] != which) continue;
-      glUniformMatrix4fv(model_location, 1, GL_FALSE, scene.meshes[i].model);
-      glUniform1f(cutoff_location, meshes_.bind_surface(scene, i, 0));
-      meshes_.draw(scene.meshes[i]);
-    }
-  }
-
-  // Which meshes have the vertex data and placement they had on the previous call.
-  std::vector<bool> find_unchanged(const aq_scene& scene) {
-    std::vector<bool> unchanged(scene.mesh_count, false);
-    std::vector<MeshState> now(scene.mesh_count);
-    for (uint32_t i = 0; i < scene.mesh_count; ++i) {
-      now[i].revision = scene.meshes[i].geometry_revision;
-      std::copy(std::begin(scene.meshes[i].model), std::end(scene.meshes[i].model),
-                now[i].model.begin());
-      unchanged[i] = i < previous_.size() && previous_[i] == now[i];
-    }
-    previous_ = std::move(now);
-    return unchanged;
-  }
-
-  // Everything the cached map depends on: which meshes, their data and placement, the light,
-  // the biases and the size.
-  static uint64_t static_casters_key(const aq_scene& scene, const std::vector<bool>& unchanged,
-                                     const glm::mat4& light, int size, aq::Context& ctx) {
-    uint64_t key = 1469598103934665603ull;
-    auto mix = [&key](const void* data, size_t bytes) {
-      const auto* p = static_cast<const unsigned char*>(data);
-      for (size_t i = 0; i < bytes; ++i) key = (key ^ p[i]) * 1099511628211ull;
-    };
-    for (uint32_t i = 0; i < scene.mesh_count; ++i) {
-      if (!unchanged[i]) continue;
-      mix(&i, sizeof(i));
-      mix(&scene.meshes[i].geometry_revision, sizeof(uint64_t));
-      mix(scene.meshes[i].model, sizeof(scene.meshes[i].model));
-    }
-    mix(glm::value_ptr(light), sizeof(float) * 16);
-    mix(&size, sizeof(size));
-    for (Param p : {kSlopeBias, kConstantBias, kMaxBias}) {
-      const double value = ctx.param_float(p);
-      mix(&value, sizeof(value));
-    }
-    return key;
-  }
-
-  // Renders the unchanged meshes into the cached map when what it depends on changed.
-  bool update_static_casters(aq::Context& ctx, const aq_scene& scene,
-                             const std::vector<bool>& unchanged, uint64_t key, int size,
-                             GLuint program) {
-    const uint32_t generation = ctx.raw()->gl_generation;
-    if (generation != casters_generation_ || size != casters_size_) {
-      if (generation != casters_generation_) {
-        casters_color_.forget();  // names of an old context mean nothing here
-        casters_depth_.forget();
-        casters_framebuffer_.forget();
-      }
-      glTextureStorage2D(casters_color_.create(), 1, GL_R32F, size, size);
-      glTextureStorage2D(casters_depth_.create(), 1, GL_DEPTH_COMPONENT32F, size, size);
-      const GLuint framebuffer = casters_framebuffer_.create();
-      glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, casters_color_.get(), 0);
-      glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, casters_depth_.get(), 0);
-      casters_generation_ = generation;
-      casters_size_ = size;
-      casters_key_ = 0;
-    }
-    if (key == casters_key_) return true;
-    glBindFramebuffer(GL_FRAMEBUFFER, casters_framebuffer_.get());
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-      glBindFramebuffer(GL_FRAMEBUFFER, 0);
-      ctx.fail("shadowmap: the cached caster framebuffer is incomplete");
-      return false;
-    }
-    glViewport(0, 0, size, size);
-    clear_targets();
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glUseProgram(program);
-    draw_meshes(scene, unchanged, true, program);
+    const GLint model_location = glGetUniformLocation(program, "u_model");
+    const GLint cutoff_location = glGetUniformLocation(program, "u_alpha_cutoff");
+    aq::set_int(program, "u_base_color", 0);
+    for (uint32_t i = 0; i < scene.mesh_count; ++i) {
+      if (unchanged != nullptr && (*unchanged)[i] != which) continue;
+      glUniformMatrix4fv(model_location, 1, GL_FALSE, scene.meshes[i].model);
+      glUniform1f(cutoff_location, meshes_.bind_surface(scene, i, 0));
+      meshes_.draw(scene.meshes[i]);
+    }
     glDisable(GL_DEPTH_TEST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    casters_key_ = key;
-    return true;
   }
-
-  struct MeshState {
-    uint64_t revision = 0;
-    std::array<float, 16> model{};
-    bool operator==(const MeshState&) const = default;
-  };
 
   aq::SceneMeshCache meshes_;
   aq::view_bounds::MeshBoxes boxes_;
-  std::vector<MeshState> previous_;
-  aq::gl::Texture casters_color_;
-  aq::gl::Texture casters_depth_;
-  aq::gl::Framebuffer casters_framebuffer_;
-  uint32_t casters_generation_ = 0;
-  int casters_size_ = 0;
-  uint64_t casters_key_ = 0;
+  aq::UnchangedMeshes unchanged_;
+  aq::CachedTargets layer_;
 };
 
 }  // namespace

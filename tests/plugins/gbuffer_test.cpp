@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -196,6 +197,60 @@ TEST(GBuffer, TheEnvironmentPassWritesTheClearValuesBehindTheScene) {
   }
   EXPECT_EQ(background, 96 * 54);
   EXPECT_GT(far_depth, nearest_far) << "the far plane, behind the camera's near plane";
+}
+
+}  // namespace
+
+namespace {
+
+// One g-buffer target of the underwater scene, from the node instance `node_id` (a new id is a
+// new instance with nothing cached), at `frame`, seen from `eye`.
+ImageF underwater_target(const std::string& node_id, const std::string& port, int frame,
+                         const std::array<double, 3>& eye, bool cache_static = true) {
+  nlohmann::json g = {
+      {"aquarelle", 1},
+      {"nodes",
+       {{"scene",
+         {{"type", "scene"}, {"params", {{"preset", "underwater"}, {"camera_position", eye}}}}},
+        {node_id,
+         {{"type", "gbuffer"},
+          {"params", {{"cache_static", cache_static}}},
+          {"inputs", {{"scene", "scene.scene"}}}}}}},
+      {"output", node_id + "." + port}};
+  aq::test::RenderOptions options;
+  options.width = 96;
+  options.height = 54;
+  options.precision = "half";
+  options.frame = frame;
+  auto image = aq::test::render_graph(g.dump(), options);
+  EXPECT_TRUE(image.ok()) << image.message();
+  return image.ok() ? *image : ImageF();
+}
+
+// Meshes that did not move since the last call come from a cached layer and only the fish and
+// the swaying seaweed are drawn over a copy of it: every target must be the one drawn from
+// scratch, also on the call after the camera moved (the layer's key) and in half precision
+// (the layer copies the formats the host chose).
+TEST(GBuffer, CachedStillMeshesGiveTheTargetsDrawnFromScratch) {
+  const std::array<double, 3> eye{0.3, 2.2, 6.0}, moved{1.0, 2.6, 5.0};
+  for (const char* port : {"position", "normal", "albedo", "depth", "id"}) {
+    const std::string warm = std::string("warm_") + port;
+    ImageF at_three, at_four_moved;
+    for (int frame = 1; frame <= 3; ++frame) at_three = underwater_target(warm, port, frame, eye);
+    at_four_moved = underwater_target(warm, port, 4, moved);
+    const ImageF at_five_moved = underwater_target(warm, port, 5, moved);
+    ASSERT_FALSE(at_three.empty());
+    const ImageF scratch_three = underwater_target("off", port, 3, eye, false);
+    const ImageF scratch_five = underwater_target("off", port, 5, moved, false);
+    EXPECT_EQ(aq::test::max_abs_diff(at_three, scratch_three), 0.0) << port;
+    EXPECT_EQ(
+        aq::test::max_abs_diff(at_four_moved, underwater_target("off", port, 4, moved, false)), 0.0)
+        << port << " after the camera moved";
+    EXPECT_EQ(aq::test::max_abs_diff(at_five_moved, scratch_five), 0.0) << port;
+    EXPECT_GT(aq::test::max_abs_diff(scratch_three, underwater_target("off", port, 4, eye, false)),
+              0.0)
+        << port << ": something moved between frames 3 and 4";
+  }
 }
 
 }  // namespace
