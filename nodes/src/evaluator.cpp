@@ -35,6 +35,7 @@ struct FusedChain {
     std::vector<std::string> strings;  // params[i].s points into these
     std::vector<aq_input_value> inputs;
     std::vector<TextureRef> input_refs;  // held: extra inputs are read when the chain runs
+    std::vector<uint64_t> input_keys;
     CallState call;
     aq_process_ctx ctx{};
   };
@@ -47,6 +48,7 @@ struct FusedChain {
     std::vector<std::string> strings;
     std::vector<aq_input_value> inputs;
     std::vector<TextureRef> input_refs;  // held: nothing reuses them before the node runs
+    std::vector<uint64_t> input_keys;
     std::vector<std::vector<aq_input_value>> links;
     std::vector<aq_input_list> lists;
     CallState call;
@@ -83,6 +85,7 @@ void fill_process_ctx(aq_process_ctx& ctx, const aq_host* host, uint32_t gl_gene
   ctx.quality = quality_index(settings.quality);
   ctx.render_scale = render_scale(settings.quality);
   ctx.input_lists = nullptr;
+  ctx.input_keys = nullptr;
 }
 
 // A node's parameters as the ABI passes them; `strings` owns what params[i].s points to.
@@ -154,6 +157,7 @@ ParamValues convert_params(const Node& node, const NodeType& type,
 // A node's inputs as the ABI passes them, and the textures behind its image inputs.
 struct GatheredInputs {
   std::vector<aq_input_value> values;
+  std::vector<uint64_t> keys;      // per input (aq_process_ctx::input_keys); 0 unconnected
   std::vector<TextureRef> images;  // per input; empty for scenes and unconnected inputs
   // Every link of each input, for nodes with an AQ_PORT_MULTI port (ctx.input_lists); empty
   // otherwise. `lists` points into `links` (and into `values` for single-link inputs).
@@ -167,6 +171,7 @@ Result<GatheredInputs> gather_inputs(const std::string& id, const Node& node, co
                                      std::map<std::string, NodeState>& states, uint64_t* key) {
   GatheredInputs gathered;
   gathered.values.resize(type.inputs.size());
+  gathered.keys.assign(type.inputs.size(), 0);
   gathered.images.resize(type.inputs.size());
   for (size_t i = 0; i < type.inputs.size(); ++i) {
     const PortInfo& port = type.inputs[i];
@@ -185,6 +190,8 @@ Result<GatheredInputs> gather_inputs(const std::string& id, const Node& node, co
         }
         *key = hash_value(*key, source.key);
         *key = hash_string(*key, link->second.port);
+        const uint64_t before = gathered.keys[i] == 0 ? kHashSeed : gathered.keys[i];
+        gathered.keys[i] = hash_string(hash_value(before, source.key), link->second.port);
         gathered.links[i].push_back(
             aq_input_value{AQ_PORT_SCENE, 1, {0, 0, 0, 0}, source.scenes[index]});
       }
@@ -214,6 +221,7 @@ Result<GatheredInputs> gather_inputs(const std::string& id, const Node& node, co
     }
     *key = hash_value(*key, source.key);
     *key = hash_string(*key, link->second.port);
+    gathered.keys[i] = hash_string(hash_value(kHashSeed, source.key), link->second.port);
     in.connected = 1;
     if (port.type == AQ_PORT_IMAGE) {
       gathered.images[i] = source.images[index];
@@ -292,8 +300,10 @@ struct Evaluator::Impl {
       return make_error(where + ": produced no output '" + producer.type->outputs[0].name +
                         "' (a plugin bug: report it to its author)");
     if (call.epilogue_draws > 0) return out;
+    const uint32_t chain_format =
+        !stored.empty() && stored[0] == AQ_FORMAT_RGBA8_HDR ? stored[0] : format;
     return fuser.run(host.shaders(), host.pool(), stages, out, out->image.width, out->image.height,
-                     format);
+                     chain_format);
   }
 };
 
@@ -541,6 +551,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       fill_process_ctx(producer.ctx, host, context_.generation(), producer.call, producer.inputs,
                        producer.params, settings, format, time, options.frame, working);
       if (!producer.lists.empty()) producer.ctx.input_lists = producer.lists.data();
+      producer.input_keys = gathered->keys;
+      producer.ctx.input_keys = producer.input_keys.data();
     } else if (is_deferred ||
                ((chain || tail_into_resample) && !(state.valid && state.key == key))) {
       if (!chain) {
@@ -570,6 +582,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       stage->call.node_id = id;
       fill_process_ctx(stage->ctx, host, context_.generation(), stage->call, stage->inputs,
                        stage->params, settings, format, time, options.frame, working);
+      stage->input_keys = gathered->keys;
+      stage->ctx.input_keys = stage->input_keys.data();
       chain->stages.push_back(std::move(stage));
     }
     if (is_deferred) {
@@ -600,8 +614,13 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       } else {
         const int width = tail_into_resample ? settings.width : chain->input->image.width;
         const int height = tail_into_resample ? settings.height : chain->input->image.height;
+        // The plan may store the chain's result as 8-bit HDR for readers that decode it.
+        const uint32_t chain_format =
+            !planned.stored_formats.empty() && planned.stored_formats[0] == AQ_FORMAT_RGBA8_HDR
+                ? planned.stored_formats[0]
+                : format;
         fused = impl_->fuser.run(impl_->host.shaders(), impl_->host.pool(), stages, chain->input,
-                                 width, height, format);
+                                 width, height, chain_format);
       }
       if (options.finish_each_node) glFinish();
       auto end = std::chrono::steady_clock::now();
@@ -641,6 +660,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       fill_process_ctx(ctx, host, context_.generation(), call, inputs, params, settings, format,
                        time, options.frame, working);
       if (!gathered->lists.empty()) ctx.input_lists = gathered->lists.data();
+      ctx.input_keys = gathered->keys.data();
 
       for (auto& image : state.images) image.reset();
       for (auto& scene : state.scenes) scene = nullptr;

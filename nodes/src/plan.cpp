@@ -227,6 +227,16 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
     pass.fused = pass.chain.size() > 1 || pass.resamples;
     const PlannedNode* head = plan.find(pass.chain.front());
     pass.epilogue = head != nullptr && head->producer;
+    // 8-bit HDR is a promise of the pass's writer: the host's fused pass encodes, an epilogue
+    // producer only when its own output 0 handles AQ_PORT_HDR8.
+    if (pass.epilogue) {
+      const bool encodes = !head->type->outputs.empty() && head->type->outputs[0].hdr8;
+      std::vector<uint32_t>& stored = plan.nodes.back().stored_formats;
+      for (uint32_t& format : stored)
+        if (format == AQ_FORMAT_RGBA8_HDR && !encodes) format = 0;
+      if (std::all_of(stored.begin(), stored.end(), [](uint32_t f) { return f == 0; }))
+        stored.clear();
+    }
     pass.reads_per_pixel = pass.fused && !pass.epilogue ? 1 : -1;
     pass.intermediates_saved = static_cast<int>(pass.chain.size()) - 1;
     pass.cached = !planned.varies && options.retain_static_outputs;

@@ -31,9 +31,9 @@ StageCode stage_code(const std::vector<const char*>& glsl, const std::string& fu
 }  // namespace
 
 std::string fused_fragment_source(const std::vector<const char*>& glsl, bool resample,
-                                  bool decode_hdr8) {
+                                  bool decode_hdr8, bool encode_hdr8) {
   const StageCode code = stage_code(glsl, "aq_apply_", "aq_fused_size");
-  std::string source = decode_hdr8 ? "#include \"aquarelle/hdr8.glsl\"\n" : "";
+  std::string source = decode_hdr8 || encode_hdr8 ? "#include \"aquarelle/hdr8.glsl\"\n" : "";
   source += code.functions;
   source +=
       "in vec2 v_uv;\n"
@@ -45,7 +45,7 @@ std::string fused_fragment_source(const std::vector<const char*>& glsl, bool res
                      : "  vec4 c = texelFetch(aq_fused_input, ivec2(gl_FragCoord.xy), 0);\n";
   if (decode_hdr8) source += "  c = aq_hdr8_decode(c);\n";
   source += code.calls;
-  source += "  o_color = c;\n}\n";
+  source += encode_hdr8 ? "  o_color = aq_hdr8_encode(c);\n}\n" : "  o_color = c;\n}\n";
   return source;
 }
 
@@ -119,7 +119,8 @@ Result<TextureRef> PointwiseFuser::run(ShaderCache& shaders, TexturePool& pool,
     names += (names.empty() ? "" : "+") +
              std::string(stage.pointwise->name != nullptr ? stage.pointwise->name : "pointwise");
   }
-  const std::string text = fused_fragment_source(glsl, resample, in.format == AQ_FORMAT_RGBA8_HDR);
+  const std::string text = fused_fragment_source(glsl, resample, in.format == AQ_FORMAT_RGBA8_HDR,
+                                                 format == AQ_FORMAT_RGBA8_HDR);
   const std::string name = "fused(" + names + ")";
   const aq_shader_source fragment{name.c_str(), text.c_str(), nullptr};
   auto program = shaders.program(nullptr, &fragment);

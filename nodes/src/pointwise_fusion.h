@@ -30,8 +30,9 @@ constexpr GLuint kFusedSamplerUnit = 20;
 class PointwiseFuser {
  public:
   // Applies `stages` in order to `input`, writing a new pool texture of width x height in
-  // `format`. An input of another size is read with bilinear filtering (pixel centres map to
-  // pixel centres), one of the same size texel by texel.
+  // `format` (AQ_FORMAT_RGBA8_HDR: encoded, aquarelle/hdr8.glsl). An input of another size is read
+  // with bilinear filtering (pixel centres map to pixel centres), one of the same size texel by
+  // texel.
   Result<TextureRef> run(ShaderCache& shaders, TexturePool& pool,
                          const std::vector<FusedStage>& stages, const TextureRef& input, int width,
                          int height, uint32_t format);
@@ -43,9 +44,10 @@ class PointwiseFuser {
 
 // The fused fragment shader for functions `glsl` (stage i's uniforms get the prefix
 // "aq_s<i>_"), reading its input by texel or, with `resample`, bilinearly, and decoding it when
-// it is AQ_FORMAT_RGBA8_HDR (with no stage: the host's decode of an encoded image).
+// it is AQ_FORMAT_RGBA8_HDR (with no stage: the host's decode of an encoded image), and encoding
+// what it writes with `encode_hdr8`.
 std::string fused_fragment_source(const std::vector<const char*>& glsl, bool resample,
-                                  bool decode_hdr8 = false);
+                                  bool decode_hdr8 = false, bool encode_hdr8 = false);
 std::string fused_uniform_prefix(size_t stage);
 
 // What the host prepends to the fragment shaders of an AQ_NODE_EPILOGUE node: `vec4

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <string>
 
+#include "canvas_view.h"
 #include "pigment_shaders.h"
 
 namespace {
@@ -75,39 +76,8 @@ constexpr aq_param_desc kParams[] = {
                    "while the camera stays (same image, the noise computed once); off: computed "
                    "every frame")};
 
-constexpr double kPi = 3.14159265358979323846;
-
-// The dynamic canvas follows the camera: turning by an angle moves the canvas with the scene
-// content at the image centre (1 / (2 tan(fov/2)) image heights per radian), and moving towards
-// the target zooms it by the change of log2 distance.
-struct Canvas {
-  double pan_x = 0.0;
-  double pan_y = 0.0;
-  double zoom = 0.0;
-};
-
-Canvas canvas_for(const aq_scene* scene) {
-  Canvas canvas;
-  if (scene == nullptr) return canvas;
-  const aq_camera& camera = scene->camera;
-  double f[3];
-  double length = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    f[k] = static_cast<double>(camera.target[k]) - camera.position[k];
-    length += f[k] * f[k];
-  }
-  length = std::sqrt(length);
-  if (!(length > 0.0) || !std::isfinite(length)) return canvas;
-  for (double& component : f) component /= length;
-  const double yaw = std::atan2(f[0], -f[2]);  // 0 looking down −z, positive turning right
-  const double pitch = std::asin(std::clamp(f[1], -1.0, 1.0));
-  const double fov = std::clamp(static_cast<double>(camera.fov_y_degrees), 1.0, 179.0) * kPi / 180;
-  const double heights_per_radian = 1.0 / (2.0 * std::tan(fov / 2.0));
-  canvas.pan_x = yaw * heights_per_radian;
-  canvas.pan_y = pitch * heights_per_radian;
-  canvas.zoom = -std::log2(length);
-  return canvas;
-}
+using pigment::Canvas;
+using pigment::canvas_for;
 
 // The procedural canvas densities of one view (pass 1 of pigment.frag), kept while the view,
 // the size and the parameters they depend on stay the same.
@@ -138,15 +108,11 @@ struct Pigment {
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
     const Canvas canvas = canvas_for(ctx.input_scene(kScene));
     // The variant holds only what this call uses (llvmpipe runs both sides of every branch).
-    std::string defines;
-    const char* names[3] = {"AQ_PIGMENT_TURBULENCE", "AQ_PIGMENT_GRAIN", "AQ_PIGMENT_PAPER"};
-    for (uint32_t i = 0; i < 3; ++i) {
-      const int mode = weights[i] == 0.0f ? 0 : (ctx.connected(kTurbulence + i) ? 1 : 2);
-      defines += std::string("#define ") + names[i] + " " + std::to_string(mode) + "\n";
-    }
+    std::array<int, 3> modes{};
+    for (uint32_t i = 0; i < 3; ++i)
+      modes[i] = weights[i] == 0.0f ? 0 : (ctx.connected(kTurbulence + i) ? 1 : 2);
+    std::string defines = pigment::canvas_defines(modes, canvas);
     defines += std::string("#define AQ_PIGMENT_OBJECT ") + (object ? "1" : "0") + "\n";
-    defines += std::string("#define AQ_PIGMENT_TWO_LAYERS ") +
-               (canvas.zoom != std::floor(canvas.zoom) ? "1" : "0") + "\n";
     // Screen anchoring with a procedural density: its values depend on the view alone.
     bool procedural = false;
     for (uint32_t i = 0; i < 3; ++i)
@@ -169,15 +135,7 @@ struct Pigment {
     // Unit 0: image; 1-3: the density textures (the image stands in for unconnected ones so
     // every sampler names a complete texture); 4: position.
     aq::bind_texture(program, "u_image", 0, in);
-    std::array<GLint, 3> units{};
-    for (uint32_t i = 0; i < 3; ++i) {
-      units[i] = static_cast<GLint>(1 + i);
-      glActiveTexture(GL_TEXTURE1 + i);
-      glBindTexture(GL_TEXTURE_2D, ctx.connected(kTurbulence + i)
-                                       ? ctx.input_image(kTurbulence + i).texture
-                                       : in.texture);
-    }
-    glUniform1iv(glGetUniformLocation(program, "u_textures"), 3, units.data());
+    pigment::bind_density_textures(ctx, program, kTurbulence, in.texture);
     aq::bind_texture(program, "u_position", 4, object ? ctx.input_image(kPosition) : in);
     glUniform1fv(glGetUniformLocation(program, "u_weights"), 3, weights.data());
     const bool drawn = ctx.draw(out);
@@ -188,16 +146,14 @@ struct Pigment {
   // What the procedural densities depend on: frequencies, seed, aspect, the canvas view.
   static void set_canvas_uniforms(aq::Context& ctx, GLuint program, const aq_image& in,
                                   const Canvas& canvas) {
-    const std::array<float, 3> frequencies = {
-        static_cast<float>(ctx.param_float(kTurbulenceFrequency)),
-        static_cast<float>(ctx.param_float(kGrainFrequency)),
-        static_cast<float>(ctx.param_float(kPaperFrequency))};
-    glUniform1fv(glGetUniformLocation(program, "u_frequencies"), 3, frequencies.data());
-    aq::set_float(program, "u_world_scale", ctx.param_float(kWorldScale));
-    aq::set_float(program, "u_seed", static_cast<double>(ctx.param_int(kSeed)));
-    aq::set_float(program, "u_aspect", static_cast<double>(in.width) / in.height);
-    aq::set_vec2(program, "u_pan", canvas.pan_x, canvas.pan_y);
-    aq::set_float(program, "u_zoom", canvas.zoom);
+    pigment::DensityParams params;
+    params.frequencies = {static_cast<float>(ctx.param_float(kTurbulenceFrequency)),
+                          static_cast<float>(ctx.param_float(kGrainFrequency)),
+                          static_cast<float>(ctx.param_float(kPaperFrequency))};
+    params.world_scale = ctx.param_float(kWorldScale);
+    params.seed = ctx.param_int(kSeed);
+    pigment::set_canvas_uniforms(program, params, static_cast<double>(in.width) / in.height,
+                                 canvas);
   }
 
   // Renders the densities of this view (pass 1) unless the cache already holds them.
@@ -223,14 +179,7 @@ struct Pigment {
     glUseProgram(program);
     set_canvas_uniforms(ctx, program, in, canvas);
     // Every sampler names a complete texture, as in the main pass.
-    std::array<GLint, 3> units{1, 2, 3};
-    for (uint32_t i = 0; i < 3; ++i) {
-      glActiveTexture(GL_TEXTURE1 + i);
-      glBindTexture(GL_TEXTURE_2D, ctx.connected(kTurbulence + i)
-                                       ? ctx.input_image(kTurbulence + i).texture
-                                       : in.texture);
-    }
-    glUniform1iv(glGetUniformLocation(program, "u_textures"), 3, units.data());
+    pigment::bind_density_textures(ctx, program, kTurbulence, in.texture);
     aq::bind_texture(program, "u_image", 0, in);
     aq::bind_texture(program, "u_position", 4, in);
     if (!ctx.draw(aq_image{cache.texture.get(), in.width, in.height, AQ_FORMAT_RGBA32F}))
@@ -246,4 +195,7 @@ AQ_NODE(kPigmentNode, Pigment, "pigment", "Watercolor",
         "Pigment density variation (Bousseau 2006): turbulence, pigment dispersion and paper "
         "grain modulate C' = C(1 − (1 − C)(d − 1)); screen (dynamic canvas) or object anchoring.",
         0, kInputs, kOutputs, kParams);
-AQ_PLUGIN("pigment", "1.0", &kPigmentNode)
+const aq_node_desc* pigment_canvas_node_desc();
+const aq_node_desc* pigment_apply_node_desc();
+
+AQ_PLUGIN("pigment", "1.0", &kPigmentNode, pigment_canvas_node_desc(), pigment_apply_node_desc())

@@ -26,7 +26,9 @@ constexpr aq_port_desc kInputs[] = {
     aq::optional_image_port("gradient",
                             "the paper's `gradient` output (with `paper` connected): read once "
                             "per pixel instead of differencing the height with four reads")};
-constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "displaced colour")};
+// AQ_PORT_HDR8: written encoded when every reader decodes it; with an epilogue, the output is
+// the fused chain's (in graphs/underwater.json edge and pigment_apply, read by blur).
+constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "displaced colour", AQ_PORT_HDR8)};
 enum Input : uint32_t { kImage, kPaper, kGradient };
 enum Param : uint32_t { kStrength, kPaperResolution, kGrain, kSeed };
 constexpr aq_param_desc kParams[] = {
@@ -54,10 +56,11 @@ struct Wobble {
     const bool precomputed = ctx.connected(kPaper) && ctx.connected(kGradient) &&
                              ctx.input_image(kGradient).width == paper.width &&
                              ctx.input_image(kGradient).height == paper.height;
-    const std::string text = std::string("#define AQ_WOBBLE_GRADIENT ") +
-                             (precomputed ? "1" : "0") + "\n#define AQ_WOBBLE_DECODE_HDR8 " +
-                             (in.format == AQ_FORMAT_RGBA8_HDR ? "1" : "0") + "\n" +
-                             shaders::wobble_frag.text;
+    const std::string text =
+        std::string("#define AQ_WOBBLE_GRADIENT ") + (precomputed ? "1" : "0") +
+        "\n#define AQ_WOBBLE_DECODE_HDR8 " + (in.format == AQ_FORMAT_RGBA8_HDR ? "1" : "0") +
+        "\n#define AQ_WOBBLE_ENCODE_HDR8 " + (out.format == AQ_FORMAT_RGBA8_HDR ? "1" : "0") +
+        "\n" + shaders::wobble_frag.text;
     const GLuint program =
         ctx.program(aq_shader_source{shaders::wobble_frag.name, text.c_str(), nullptr});
     if (program == 0) return AQ_ERROR;

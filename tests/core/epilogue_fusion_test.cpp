@@ -178,6 +178,51 @@ TEST(EpilogueFusion, EdgeRunsInsideTheWobbleAndInsideAFusedChain) {
   }
 }
 
+// The flagship's order: pigment_apply (its density bound by the host) joins edge in the wobble's
+// draw; fused equals unfused within 1e-6 in float, and the canvas runs as a node of its own.
+TEST(EpilogueFusion, PigmentApplyJoinsEdgeInsideTheWobble) {
+  const std::string graph = R"({
+    "aquarelle": 1,
+    "nodes": {
+      "input": {"type": "image_input", "params": {"name": "image"}},
+      "cells": {"type": "noise", "params": {"type": "worley", "scale": 8, "seed": 3}},
+      "canvas": {"type": "pigment_canvas", "params": {"grain_frequency": 32.0}},
+      "wobble": {"type": "wobble", "params": {"strength": 6.0}, "inputs": {"image": "input.image"}},
+      "edge": {"type": "edge", "params": {"threshold": 0.05, "softness": 0.2, "factor": 0.5},
+               "inputs": {"image": "wobble.image", "source": "cells.image"}},
+      "pigment": {"type": "pigment_apply", "params": {"turbulence_weight": 0.8},
+                  "inputs": {"image": "edge.image", "density": "canvas.density"}},
+      "tint": {"type": "tint", "params": {"amount": 0.1}, "inputs": {"image": "pigment.image"}}
+    },
+    "output": "tint.image"
+  })";
+  const Plan plan = plan_of(graph);
+  const PlannedPass* pass = plan.pass_of("tint");
+  ASSERT_NE(pass, nullptr);
+  EXPECT_TRUE(pass->epilogue);
+  EXPECT_EQ(pass->chain, (std::vector<std::string>{"wobble", "edge", "pigment", "tint"}));
+  EXPECT_FALSE(plan.find("canvas")->deferred);
+  RenderOptions fused = options(true);
+  fused.precision = "float";
+  RenderOptions unfused = options(false);
+  unfused.precision = "float";
+  auto a = render_graph(graph, fused, input_images());
+  auto b = render_graph(graph, unfused, input_images());
+  ASSERT_TRUE(a.ok()) << a.message();
+  ASSERT_TRUE(b.ok()) << b.message();
+  EXPECT_LE(max_abs_diff(*a, *b), 1e-6);
+  auto plain = render_graph(
+      graph,
+      [&] {
+        RenderOptions o = unfused;
+        o.output = "edge.image";
+        return o;
+      }(),
+      input_images());
+  ASSERT_TRUE(plain.ok()) << plain.message();
+  EXPECT_GT(max_abs_diff(*b, *plain), 1e-3) << "the pigment did something";
+}
+
 // Without `source`, edge detects on its own image's neighbourhood: not pointwise, not fused.
 TEST(EpilogueFusion, EdgeWithoutASourceRunsOnItsOwn) {
   const Plan plan = plan_of(R"({

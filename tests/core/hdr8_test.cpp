@@ -12,7 +12,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <random>
+#include <string>
 
 #include "support/harness.h"
 
@@ -260,6 +262,62 @@ TEST(Hdr8, BlurDecodesEveryTap) {
     EXPECT_GT(result.max_abs, 0.0) << kernel << ": nothing was encoded";
     EXPECT_LE(result.max_abs, 2.0 * bound(6.0) + half_slack(6.0)) << kernel;
     EXPECT_LT(result.mean_abs, 0.01) << kernel;
+  }
+}
+
+// The flagship's chain wobble → edge → pigment_apply → blur: at final the wobble's draw runs
+// edge and pigment_apply as its epilogue and encodes the result; in a proxy render the host's
+// fused pass (edge and pigment_apply) encodes it. Either way the blur decodes every tap: within
+// twice the bound of the brightest texel, as for a blur alone.
+const char* kFlagshipChain = R"({
+  "aquarelle": 1,
+  "nodes": {
+    "input": {"type": "image_input", "params": {"name": "image"}},
+    "cells": {"type": "noise", "params": {"type": "worley", "scale": 8, "seed": 3}},
+    "canvas": {"type": "pigment_canvas", "params": {"grain_frequency": 32.0}},
+    "wobble": {"type": "wobble", "params": {"strength": 6.0}, "inputs": {"image": "input.image"}},
+    "edge": {"type": "edge", "params": {"threshold": 0.05, "softness": 0.2, "factor": 0.5},
+             "inputs": {"image": "wobble.image", "source": "cells.image"}},
+    "pigment": {"type": "pigment_apply",
+                "inputs": {"image": "edge.image", "density": "canvas.density"}},
+    "blur": {"type": "blur", "params": {"sigma": 2.0, "depth_weight": 0.5, "radial_weight": 0.35},
+             "inputs": {"image": "pigment.image"}}
+  },
+  "output": "blur.image"
+})";
+
+TEST(Hdr8, TheEpilogueAndTheFusedPassEncodeWhatTheyWrite) {
+  const ImageF light = hdr_image(64, 48, false);
+  for (const char* quality : {"final", "preview"}) {
+    ReadResult read = read_graph_text(kFlagshipChain, registry(), "flagship chain");
+    read.graph.settings.quality = quality;
+    const Plan plan = plan_of(read, "half");
+    EXPECT_EQ(stored(plan, "pigment"), uint32_t{AQ_FORMAT_RGBA8_HDR}) << quality;
+    const PlannedPass* pass = plan.pass_of("pigment");
+    ASSERT_NE(pass, nullptr);
+    EXPECT_EQ(pass->epilogue, std::string(quality) == "final") << quality;
+    EXPECT_GE(pass->chain.size(), 2u) << quality;
+    std::map<std::string, ImageF> results[2];
+    for (int on = 0; on < 2; ++on) {
+      if (on == 1) {
+        unsetenv("AQUARELLE_HDR8");
+      } else {
+        setenv("AQUARELLE_HDR8", "0", 1);
+      }
+      RenderOptions options;
+      options.width = light.width;
+      options.height = light.height;
+      options.precision = "half";
+      options.quality = quality;
+      auto image = render_graph(kFlagshipChain, options, {{"image", light}});
+      unsetenv("AQUARELLE_HDR8");
+      ASSERT_TRUE(image.ok()) << image.message();
+      results[on]["blur"] = *image;
+    }
+    const Comparison result = compare(results[1]["blur"], results[0]["blur"]);
+    EXPECT_GT(result.max_abs, 0.0) << quality << ": nothing was encoded";
+    EXPECT_LE(result.max_abs, 2.0 * bound(6.0) + half_slack(6.0)) << quality;
+    EXPECT_LT(result.mean_abs, 0.01) << quality;
   }
 }
 

@@ -363,6 +363,12 @@ typedef struct aq_process_ctx {
    * no input of the node is AQ_PORT_MULTI. plugin.hpp's Context::link_count and input_scene(i,
    * k) read it. */
   const struct aq_input_list* input_lists;
+  /* Appended in ABI 1: one key per input, in description order: equal keys mean the input holds
+   * what it held on an earlier call (the host's key of its producer: type, parameters, inputs,
+   * size, format and frame when time-dependent), so a node may keep what it derived from an
+   * input while the key stays. 0 for an unconnected input and from hosts that do not set it
+   * (then nothing may be assumed). plugin.hpp's Context::input_key reads it. */
+  const uint64_t* input_keys;
 } aq_process_ctx;
 
 typedef struct aq_host {

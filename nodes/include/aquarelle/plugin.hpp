@@ -208,6 +208,11 @@ class Context {
   const aq_scene* input_scene(uint32_t input) const {
     return connected(input) ? raw_->inputs[input].scene : nullptr;
   }
+  // The host's key of what input `input` holds (aq_process_ctx::input_keys): equal keys on two
+  // calls mean the same content. 0 when unconnected or unknown (an older host): assume nothing.
+  uint64_t input_key(uint32_t input) const {
+    return connected(input) && has_input_keys() ? raw_->input_keys[input] : 0;
+  }
   // Links of an AQ_PORT_MULTI input (any input: 0 or 1 for a plain one), in graph order.
   uint32_t link_count(uint32_t input) const {
     if (input >= raw_->input_count) return 0;
@@ -302,6 +307,10 @@ class Context {
   }
 
  private:
+  bool has_input_keys() const {
+    return raw_->struct_size >= offsetof(aq_process_ctx, input_keys) + sizeof(void*) &&
+           raw_->input_keys != nullptr;
+  }
   bool has_input_lists() const {
     return raw_->struct_size >= offsetof(aq_process_ctx, input_lists) + sizeof(void*) &&
            raw_->input_lists != nullptr;
@@ -390,14 +399,16 @@ struct PointwiseAdapter {
 // aq_pointwise_desc): reads the input texel, applies the function, writes the result. A
 // node's process() uses it so that its own pass and the host's fused pass share one
 // definition.
-inline std::string pointwise_fragment(const char* glsl) {
-  return std::string("#define AQ_APPLY aq_apply\n#define AQ_UNIFORM(name) u_##name\n") + glsl +
+// encode_hdr8: the output is stored as AQ_FORMAT_RGBA8_HDR (aquarelle/hdr8.glsl encodes it).
+inline std::string pointwise_fragment(const char* glsl, bool encode_hdr8 = false) {
+  return std::string(encode_hdr8 ? "#include \"aquarelle/hdr8.glsl\"\n" : "") +
+         "#define AQ_APPLY aq_apply\n#define AQ_UNIFORM(name) u_##name\n" + glsl +
          "\nlayout(location = 0) out vec4 o_color;\n"
          "uniform sampler2D u_image;\n"
          "void main() {\n"
          "  vec4 c = texelFetch(u_image, ivec2(gl_FragCoord.xy), 0);\n"
-         "  o_color = aq_apply(c, gl_FragCoord.xy, vec2(textureSize(u_image, 0)));\n"
-         "}\n";
+         "  o_color = aq_apply(c, gl_FragCoord.xy, vec2(textureSize(u_image, 0)));\n" +
+         (encode_hdr8 ? "  o_color = aq_hdr8_encode(o_color);\n" : "") + "}\n";
 }
 
 template <typename T, size_t N>
@@ -472,8 +483,8 @@ constexpr uint32_t count_of(const T (&)[N]) {
 
 // Same, for a source node: no inputs (generators such as noise, caustics, scene).
 #define AQ_SOURCE_NODE(NAME, NodeClass, type_name, category, description, flags, outputs, params) \
-  AQ_SOURCE_NODE_CHECKED(NAME, NodeClass, type_name, category, description, flags, outputs, params, \
-                         nullptr)
+  AQ_SOURCE_NODE_CHECKED(NAME, NodeClass, type_name, category, description, flags, outputs,       \
+                         params, nullptr)
 
 // Same as AQ_SOURCE_NODE with a validate-time file check (aq_node_desc::check).
 #define AQ_SOURCE_NODE_CHECKED(NAME, NodeClass, type_name, category, description, flags, outputs, \

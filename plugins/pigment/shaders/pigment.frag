@@ -23,6 +23,8 @@
 //   anchoring's procedural densities depend only on the view (canvas pan and zoom), not on the
 //   image: pigment.cpp keeps them in a texture while the view stays, so a still camera pays
 //   for the noise once.
+//   Pass 1 for the `pigment_canvas` node: AQ_PIGMENT_BAKE_INPUTS 1 writes the input textures'
+//   densities too (sampled on the canvas), and AQ_PIGMENT_DENSITY_OFFSET 0.5 writes n + 0.5.
 #ifndef AQ_PIGMENT_PASS
 #define AQ_PIGMENT_PASS 0
 #endif
@@ -34,8 +36,16 @@
 #define AQ_PIGMENT_TWO_LAYERS 0
 #endif
 
+#ifndef AQ_PIGMENT_BAKE_INPUTS
+#define AQ_PIGMENT_BAKE_INPUTS 0
+#endif
+#ifndef AQ_PIGMENT_DENSITY_OFFSET
+#define AQ_PIGMENT_DENSITY_OFFSET 0.0
+#endif
+
 #include "aquarelle/hdr8.glsl"
 #include "aquarelle/noise.glsl"
+#include "aquarelle/pigment_density.glsl"
 
 // AQ_PIGMENT_ENCODE_HDR8 1: the output is stored as AQ_FORMAT_RGBA8_HDR (its reader decodes).
 #ifndef AQ_PIGMENT_ENCODE_HDR8
@@ -127,12 +137,6 @@ float object_density(int source, vec3 world) {
   return aq_gaussian_noise(cell.xy + offset, cell.z + u_seed * 4099.0) / 6.0;
 }
 
-vec3 apply_density(vec3 c, float weight, float n) {
-  if (!(abs(n) <= 1e30)) n = 0.0;  // NaN or infinite texture: no change
-  float d = clamp(1.0 + weight * n, 0.0, 2.0);
-  return c * (1.0 - (1.0 - c) * (d - 1.0));
-}
-
 vec3 modulate(vec3 c, int source, vec2 screen, bool on_object, vec3 world) {
   float n;
 #if AQ_PIGMENT_OBJECT == 1
@@ -144,23 +148,23 @@ vec3 modulate(vec3 c, int source, vec2 screen, bool on_object, vec3 world) {
 #else
   n = canvas_density(source, screen);
 #endif
-  return apply_density(c, u_weights[source], n);
+  return aq_pigment_density(c, u_weights[source], n);
 }
 
 #if AQ_PIGMENT_PASS == 1
 void main() {
   vec2 screen = (v_uv - 0.5) * vec2(u_aspect, 1.0);
   vec4 n = vec4(0.0);
-#if AQ_PIGMENT_TURBULENCE == 2
+#if AQ_PIGMENT_TURBULENCE == 2 || (AQ_PIGMENT_BAKE_INPUTS && AQ_PIGMENT_TURBULENCE == 1)
   n.r = canvas_density(TURBULENCE, screen);
 #endif
-#if AQ_PIGMENT_GRAIN == 2
+#if AQ_PIGMENT_GRAIN == 2 || (AQ_PIGMENT_BAKE_INPUTS && AQ_PIGMENT_GRAIN == 1)
   n.g = canvas_density(GRAIN, screen);
 #endif
-#if AQ_PIGMENT_PAPER == 2
+#if AQ_PIGMENT_PAPER == 2 || (AQ_PIGMENT_BAKE_INPUTS && AQ_PIGMENT_PAPER == 1)
   n.b = canvas_density(PAPER, screen);
 #endif
-  o_color = n;
+  o_color = vec4(n.rgb + AQ_PIGMENT_DENSITY_OFFSET, 1.0);
 }
 #else
 void main() {

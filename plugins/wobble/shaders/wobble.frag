@@ -13,6 +13,11 @@
 #ifndef AQ_WOBBLE_DECODE_HDR8
 #define AQ_WOBBLE_DECODE_HDR8 0
 #endif
+// AQ_WOBBLE_ENCODE_HDR8 1: the target is AQ_FORMAT_RGBA8_HDR; what is written (after the
+// epilogue) is encoded.
+#ifndef AQ_WOBBLE_ENCODE_HDR8
+#define AQ_WOBBLE_ENCODE_HDR8 0
+#endif
 #include "aquarelle/hdr8.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
@@ -56,4 +61,7 @@ void main() {
   if (any(isnan(gradient)) || any(isinf(gradient))) gradient = vec2(0.0);
   // aq_epilogue: the pointwise nodes after the wobble (edge) when the host fuses them.
   o_color = aq_epilogue(image_at(v_uv + u_strength * gradient * step_uv));
+#if AQ_WOBBLE_ENCODE_HDR8
+  o_color = aq_hdr8_encode(o_color);
+#endif
 }
