@@ -33,14 +33,16 @@ mkdir -p "$out"
 levers=(
   "the graph's defaults|-||-"
   "blur: separable direct kernel|blur|blur.direct_kernel=full|off"
-  "pigment: canvas densities kept while the view stays|pigment|pigment.cache_canvas=false|off"
+  "pigment: canvas densities kept while the view stays|canvas|canvas.cache=false|off"
+  "pigment as canvas + pointwise apply (fused) instead of one node|pigment|one-node-pigment|off"
+  "gbuffer: still meshes from a cached layer|gbuf|gbuf.cache_static=false|off"
   "wobble: the paper's precomputed gradient|wobble|-wobble.gradient|off"
   "caustics: grid from the footprint (off by default)|caustics|caustics.auto_grid=true|on"
   "caustics: coverage in closed form over 3 x 3 texels|caustics|caustics.window=2|off"
-  "the default levers off|-|blur.direct_kernel=full pigment.cache_canvas=false -wobble.gradient env:AQUARELLE_FORMATS_BY_NEED=0 env:AQUARELLE_EPILOGUE_FUSION=0|off"
+  "the default levers off|-|blur.direct_kernel=full one-node-pigment pigment.cache_canvas=false gbuf.cache_static=false -wobble.gradient env:AQUARELLE_FORMATS_BY_NEED=0 env:AQUARELLE_EPILOGUE_FUSION=0|off"
   "formats by need, all of it: 8-bit edge source and paper, 8-bit HDR light|edge|env:AQUARELLE_FORMATS_BY_NEED=0|off"
   "formats by need: light, morphology and pigment as 8-bit HDR|dilate|env:AQUARELLE_HDR8=0|off"
-  "fusion: vignette and tint in the blur's last draw, edge in the wobble's (epilogue)|-|env:AQUARELLE_EPILOGUE_FUSION=0|off"
+  "fusion: vignette and tint in the blur's last draw, edge and pigment_apply in the wobble's (epilogue)|-|env:AQUARELLE_EPILOGUE_FUSION=0|off"
 )
 # AQ_LEVERS_FROM_JSON=1: only rewrite the table from the runs already in docs/performance/levers.
 for i in "${!levers[@]}"; do
@@ -50,7 +52,27 @@ for i in "${!levers[@]}"; do
   envs=()
   run_graph=$graph
   for s in $settings; do
-    if [ "${s#env:}" != "$s" ]; then
+    if [ "$s" = one-node-pigment ]; then
+      # The flagship's pigment_canvas + pigment_apply as the one `pigment` node they split from
+      # (same parameters); later --set of pigment.* apply to that node.
+      copy=$(dirname "$graph")/.levers-$i-pigment.json
+      /usr/bin/python3 - "$run_graph" "$copy" <<'PYTHON'
+import json, sys
+graph = json.load(open(sys.argv[1]))
+nodes = graph["nodes"]
+canvas = nodes.pop("canvas")
+apply = nodes["pigment"]
+params = dict(canvas.get("params", {}))
+params.pop("cache", None)
+params.update(apply.get("params", {}))
+inputs = {k: v for k, v in canvas.get("inputs", {}).items()}
+inputs["image"] = apply["inputs"]["image"]
+nodes["pigment"] = {"type": "pigment", "params": params, "inputs": inputs}
+json.dump(graph, open(sys.argv[2], "w"), indent=2)
+PYTHON
+      [ "$run_graph" = "$graph" ] || rm -f "$run_graph"
+      run_graph=$copy
+    elif [ "${s#env:}" != "$s" ]; then
       envs+=("${s#env:}")  # env:NAME=VALUE: a host switch the bench has no --set for
     elif [ "${s#-}" != "$s" ]; then
       # -NODE.INPUT: the graph without that link (a copy beside the original, so that paths
@@ -63,6 +85,7 @@ node, port = sys.argv[3].split(".")
 del graph["nodes"][node]["inputs"][port]
 json.dump(graph, open(sys.argv[2], "w"), indent=2)
 PYTHON
+      [ "$run_graph" = "$graph" ] || rm -f "$run_graph"
       run_graph=$copy
     else
       sets+=(--set "$s")
