@@ -256,7 +256,7 @@ std::string format_plan(const Plan& plan) {
                 plan.output_size.width, plan.output_size.height, format_name(plan.format),
                 plan.nodes.size(), plan.passes.size() + (plan.upscale ? 1 : 0));
   text += line;
-  std::snprintf(line, sizeof(line), "%-4s %-16s %-12s %-11s %-8s %-7s %-6s %s\n", "pass", "node",
+  std::snprintf(line, sizeof(line), "%-4s %-16s %-14s %-11s %-8s %-7s %-6s %s\n", "pass", "node",
                 "type", "size", "format", "reads", "static", "computes");
   text += line;
   int index = 0;
@@ -281,13 +281,13 @@ std::string format_plan(const Plan& plan) {
     std::snprintf(size, sizeof(size), "%dx%d", pass.size.width, pass.size.height);
     const std::string reads =
         pass.reads_per_pixel < 0 ? std::string("node") : std::to_string(pass.reads_per_pixel);
-    std::snprintf(line, sizeof(line), "%-4d %-16s %-12s %-11s %-8s %-7s %-6s %s\n", ++index,
+    std::snprintf(line, sizeof(line), "%-4d %-16s %-14s %-11s %-8s %-7s %-6s %s\n", ++index,
                   pass.node.c_str(), node->type->name.c_str(), size, format_name(pass.format),
                   reads.c_str(), pass.cached ? "yes" : "no", chain.c_str());
     text += line;
   }
   if (plan.upscale) {
-    std::snprintf(line, sizeof(line), "%-4d %-16s %-12s %dx%d bilinear upscale of %s\n", ++index,
+    std::snprintf(line, sizeof(line), "%-4d %-16s %-14s %dx%d bilinear upscale of %s\n", ++index,
                   "(host)", "resample", plan.output_size.width, plan.output_size.height,
                   plan.output.str().c_str());
     text += line;
