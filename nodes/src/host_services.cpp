@@ -2,6 +2,7 @@
 // (plan, then execution) and what plugins may ask of the host read as separate things.
 #include "host_services.h"
 
+#include "hash.h"
 #include "host_image_service.h"
 
 #include <aquarelle/core/gl_context.h>
@@ -45,6 +46,7 @@ HostServices::HostServices(GlContext& context, TexturePool& pool) : context_(con
   host_.bind_targets = &HostServices::bind_targets;
   host_.draw_fullscreen = &HostServices::draw_fullscreen;
   host_.read_image = &host_read_image;
+  host_.output_kept = &HostServices::output_kept;
   empty_vao_ = gl::make_vertex_array();
   GLuint framebuffer = 0;
   glCreateFramebuffers(1, &framebuffer);  // created, not just named: DSA calls need that
@@ -135,9 +137,25 @@ int HostServices::output_image(void* data, uint32_t index, int32_t width, int32_
   } else if (format == AQ_FORMAT_RGBA8_HDR) {
     format = call->working_format;
   }
-  state.images[index] = call->host->pool_.acquire(width, height, format);
+  // Tagged with the instance and the output, so that the node can get the same texture back on
+  // its next call and be told it still holds its content (output_kept).
+  const uint64_t writer =
+      state.keeps_outputs
+          ? hash_value(hash_value(kHashSeed, reinterpret_cast<uintptr_t>(state.instance)),
+                       index + 1)
+          : 0;
+  bool kept = false;
+  state.images[index] = call->host->pool_.acquire(width, height, format, writer, &kept);
+  if (call->kept_outputs.size() <= index) call->kept_outputs.resize(index + 1, false);
+  call->kept_outputs[index] = kept && state.instance != nullptr;
   *out = state.images[index]->image;
   return AQ_OK;
+}
+
+int HostServices::output_kept(void* data, uint32_t index) {
+  const auto* call = static_cast<CallState*>(data);
+  call->state->keeps_outputs = true;
+  return index < call->kept_outputs.size() && call->kept_outputs[index] ? 1 : 0;
 }
 
 int HostServices::pass_through(void* data, uint32_t index, uint32_t input_index) {

@@ -26,6 +26,10 @@ struct NodeState {
   void* instance = nullptr;
   uint64_t key = 0;
   bool valid = false;  // outputs hold the result for `key`
+  // The node asked whether its outputs were kept (aq_host::output_kept): from then on its
+  // outputs are acquired tagged, so that it gets them back; untagged otherwise, so that other
+  // nodes' textures stay free for anyone.
+  bool keeps_outputs = false;
   std::vector<TextureRef> images;
   std::vector<const aq_scene*> scenes;
   gl::Query timer_start;  // GL_TIMESTAMP pairs: llvmpipe's GL_TIME_ELAPSED reads garbage when
@@ -57,6 +61,10 @@ struct CallState {
   // apply (null: none, the identity), and how many draws applied them.
   const std::vector<FusedStage>* epilogue = nullptr;
   int epilogue_draws = 0;
+
+  // Per output: output_image handed out the texture this instance's output had before, with
+  // its content (aq_host::output_kept).
+  std::vector<bool> kept_outputs;
 
   uint32_t stored_format(uint32_t index) const {
     return stored_formats != nullptr && index < stored_formats->size() ? (*stored_formats)[index]
@@ -91,6 +99,7 @@ class HostServices {
   static int output_image(void* data, uint32_t index, int32_t width, int32_t height,
                           uint32_t format, aq_image* out);
   static int pass_through(void* data, uint32_t index, uint32_t input_index);
+  static int output_kept(void* data, uint32_t index);
   static int output_scene(void* data, uint32_t index, const aq_scene* scene);
   static int scratch_image(void* data, int32_t width, int32_t height, uint32_t format,
                            aq_image* out);

@@ -1,6 +1,8 @@
 // TexturePool: textures keyed by (width, height, format), reused after their last reference.
 #include <aquarelle/core/texture_pool.h>
 
+#include <algorithm>
+
 namespace aq {
 
 size_t bytes_per_pixel(uint32_t format) {
@@ -71,12 +73,31 @@ TexturePool::~TexturePool() {
 }
 
 TextureRef TexturePool::acquire(int width, int height, uint32_t format) {
+  return acquire(width, height, format, 0, nullptr);
+}
+
+TextureRef TexturePool::acquire(int width, int height, uint32_t format, uint64_t writer,
+                                bool* kept) {
   Key key{width, height, format};
   std::unique_ptr<PooledTexture> texture;
   auto it = free_.find(key);
+  if (kept != nullptr) *kept = false;
   if (it != free_.end() && !it->second.empty()) {
-    texture = std::move(it->second.back());
-    it->second.pop_back();
+    auto& list = it->second;
+    auto own = writer == 0 ? list.end()
+                           : std::find_if(list.begin(), list.end(),
+                                          [writer](const auto& t) { return t->writer == writer; });
+    if (own != list.end()) {
+      if (kept != nullptr) *kept = true;
+      std::iter_swap(own, list.end() - 1);
+    } else {
+      // Leave the writers' textures to them while one nobody claims is free.
+      auto unclaimed =
+          std::find_if(list.begin(), list.end(), [](const auto& t) { return t->writer == 0; });
+      if (unclaimed != list.end()) std::iter_swap(unclaimed, list.end() - 1);
+    }
+    texture = std::move(list.back());
+    list.pop_back();
   } else {
     texture = std::make_unique<PooledTexture>();
     texture->texture = gl::make_texture();
@@ -93,6 +114,7 @@ TextureRef TexturePool::acquire(int width, int height, uint32_t format) {
     ++created_;
     bytes_ += bytes_per_pixel(format) * static_cast<size_t>(width) * height;
   }
+  texture->writer = writer;
   ++live_;
   if (live_ > peak_live_) peak_live_ = live_;
   PooledTexture* raw = texture.release();

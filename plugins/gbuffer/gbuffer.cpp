@@ -12,6 +12,7 @@
 // The background is marked explicitly (id 0, w = 0), never by a zero normal. Texture alpha
 // under a mesh's cut-off is a hole (cut-out cards).
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/gl_raii.hpp>
 #include <aquarelle/sdk/scene_gpu.hpp>
 #include <aquarelle/sdk/scene_math.hpp>
 #include <aquarelle/sdk/static_layer.hpp>
@@ -56,8 +57,10 @@ class GBuffer {
     for (uint32_t i = 0; i < kOutputCount; ++i) {
       if (!ctx.output(i, width, height, formats[i], &targets[i])) return AQ_ERROR;
     }
-    aq_image depth_buffer;
-    if (!ctx.scratch(width, height, AQ_FORMAT_DEPTH32F, &depth_buffer)) return AQ_ERROR;
+    bool outputs_kept = false;
+    const aq_image depth_buffer =
+        depth_.get(ctx.raw()->gl_generation, width, height, &outputs_kept);
+    for (uint32_t i = 0; i < kOutputCount; ++i) outputs_kept = outputs_kept && ctx.output_kept(i);
     const std::string untextured_text =
         std::string("#define AQ_GBUFFER_TEXTURED 0\n") + shaders::gbuffer_frag.text;
     const GLuint programs[2] = {
@@ -94,17 +97,24 @@ class GBuffer {
         layer_.key = key.value;
         layered = true;
       }
-      if (layered) layer_.copy_to(targets, kOutputCount, depth_buffer);
+      // With the outputs as the last call left them, the layer goes back only where that
+      // call's moving meshes were.
+      if (layered) drawn_.restore(layer_, targets, kOutputCount, depth_buffer, outputs_kept);
     }
 
     if (!ctx.bind_targets(targets, kOutputCount, &depth_buffer)) return AQ_ERROR;
     if (layered) {
       draw_meshes(frame, &unchanged, false);
     } else {
+      drawn_.invalidate();
       if (!draw_background(ctx, frame)) return AQ_ERROR;
       draw_meshes(frame, nullptr, false);
     }
     aq::unbind_textures(1);
+    if (layered) {
+      const glm::mat4 view_projection = projection * view;
+      drawn_.record(layer_, *scene, unchanged, glm::value_ptr(view_projection), width, height);
+    }
     return AQ_OK;
   }
 
@@ -186,6 +196,8 @@ class GBuffer {
   aq::SceneMeshCache meshes_;
   aq::UnchangedMeshes unchanged_;
   aq::CachedTargets layer_;
+  aq::KeptDepth depth_;
+  aq::DrawnOverLayer drawn_;
 };
 
 }  // namespace

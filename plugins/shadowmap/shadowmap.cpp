@@ -62,9 +62,11 @@ class ShadowMap {
     const int size = ctx.param_bool(kAutoSize) ? aq::scene_math::shadow_size_for_view(
                                                      fit, scene->camera, ctx.height(), max_size)
                                                : max_size;
-    aq_image depth, depth_buffer;
+    aq_image depth;
     if (!ctx.output(0, size, size, AQ_FORMAT_R32F, &depth)) return AQ_ERROR;
-    if (!ctx.scratch(size, size, AQ_FORMAT_DEPTH32F, &depth_buffer)) return AQ_ERROR;
+    bool kept = false;
+    const aq_image depth_buffer = depth_buffer_.get(ctx.raw()->gl_generation, size, size, &kept);
+    kept = kept && ctx.output_kept(0);
     GLuint program = ctx.program(shaders::shadow_vert, shaders::shadow_frag);
     if (program == 0) return AQ_ERROR;
 
@@ -101,12 +103,18 @@ class ShadowMap {
         layer_.key = key.value;
         layered = true;
       }
-      if (layered) layer_.copy_to(&depth, 1, depth_buffer);
+      // With the map as the last call left it, the layer goes back only where that call's
+      // moving casters were.
+      if (layered) drawn_.restore(layer_, &depth, 1, depth_buffer, kept);
     }
     if (!ctx.bind_targets(&depth, 1, &depth_buffer)) return AQ_ERROR;
-    if (!layered) clear_targets();
+    if (!layered) {
+      drawn_.invalidate();
+      clear_targets();
+    }
     draw_meshes(*scene, layered ? &unchanged : nullptr, false, program);
     aq::unbind_textures(1);  // the cut-out texture unit, and the program
+    if (layered) drawn_.record(layer_, *scene, unchanged, glm::value_ptr(light), size, size);
     return AQ_OK;
   }
 
@@ -141,6 +149,8 @@ class ShadowMap {
   aq::view_bounds::MeshBoxes boxes_;
   aq::UnchangedMeshes unchanged_;
   aq::CachedTargets layer_;
+  aq::KeptDepth depth_buffer_;
+  aq::DrawnOverLayer drawn_;
 };
 
 }  // namespace

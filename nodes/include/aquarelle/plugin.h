@@ -410,6 +410,11 @@ typedef struct aq_host {
   int (*read_image)(void* host_data, const char* path,
                     void (*receive)(void* user, const float* rgba, int32_t width, int32_t height),
                     void* user, char* error, size_t error_size);
+  /* Appended in ABI 1 (check struct_size): after output_image(index, ...), 1 when the texture it
+   * handed out is the very one this node instance's output `index` had on an earlier call and
+   * nobody has written it since: it still holds what the node left in it, so the node may
+   * update it in place (redraw only what changed). 0 otherwise: a texture of unknown content. */
+  int (*output_kept)(void* host_data, uint32_t index);
 } aq_host;
 
 #ifdef __cplusplus

@@ -225,6 +225,16 @@ class Context {
     const aq_input_value& value = raw_->input_lists[input].values[link];
     return value.connected != 0 ? value.scene : nullptr;
   }
+  // After output(index, ...): true when the texture holds what this instance left in output
+  // `index` on an earlier call (aq_host::output_kept); false for a texture of unknown content
+  // and from hosts that predate it.
+  bool output_kept(uint32_t index) const {
+    const aq_host* host = raw_->host;
+    if (host->struct_size < offsetof(aq_host, output_kept) + sizeof(host->output_kept) ||
+        host->output_kept == nullptr)
+      return false;
+    return host->output_kept(raw_->host_data, index) != 0;
+  }
   // Reads an image file through the host (OIIO + OCIO, working space, straight alpha, row 0 at
   // the bottom) into `rgba`; false with `error` set when it cannot (or the host is too old).
   bool read_image(const std::string& path, std::vector<float>* rgba, int* width, int* height,

@@ -23,6 +23,7 @@ using TextureRef = std::shared_ptr<PooledTexture>;
 struct PooledTexture {
   aq_image image{};
   gl::Texture texture;
+  uint64_t writer = 0;  // who acquired it last (TexturePool::acquire's `writer`); 0: anyone
 };
 
 class TexturePool {
@@ -33,6 +34,10 @@ class TexturePool {
   TexturePool& operator=(const TexturePool&) = delete;
 
   TextureRef acquire(int width, int height, uint32_t format);
+  // The same, preferring the free texture `writer` (nonzero) acquired last: `kept` says whether
+  // it got that one, which then still holds what the writer left in it (every acquisition
+  // takes the texture's writer tag, so nobody else has written it since).
+  TextureRef acquire(int width, int height, uint32_t format, uint64_t writer, bool* kept);
 
   size_t live_count() const { return live_; }  // handed out, not yet returned
   size_t free_count() const;                   // waiting in the pool

@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -43,6 +44,61 @@ struct Fnv1a {
     mix(&v, sizeof(T));
   }
 };
+
+// Pixels [x0, x1) x [y0, y1) of a target.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+// The pixels mesh `mesh` can cover when drawn with `view_projection` into a width x height
+// target: the projected box of its vertices (object space, placed by its model matrix), one
+// pixel wider on every side, clamped to the target; the whole target when the box reaches
+// behind the camera (its projection is then not bounded by the corners').
+inline PixelRect covered_pixels(const aq_mesh& mesh, const float* view_projection, int width,
+                                int height) {
+  const PixelRect all{0, 0, width, height};
+  if (mesh.vertex_count == 0 || mesh.positions == nullptr) return PixelRect{};
+  float lo[3] = {mesh.positions[0], mesh.positions[1], mesh.positions[2]};
+  float hi[3] = {lo[0], lo[1], lo[2]};
+  for (uint32_t v = 1; v < mesh.vertex_count; ++v) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], mesh.positions[3 * v + k]);
+      hi[k] = std::max(hi[k], mesh.positions[3 * v + k]);
+    }
+  }
+  // clip = view_projection · model · corner (column-major 4x4 matrices).
+  float m[16];
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) {
+      float sum = 0.0f;
+      for (int k = 0; k < 4; ++k) sum += view_projection[k * 4 + r] * mesh.model[c * 4 + k];
+      m[c * 4 + r] = sum;
+    }
+  }
+  float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+  for (int corner = 0; corner < 8; ++corner) {
+    const float p[3] = {(corner & 1) != 0 ? hi[0] : lo[0], (corner & 2) != 0 ? hi[1] : lo[1],
+                        (corner & 4) != 0 ? hi[2] : lo[2]};
+    float clip[4];
+    for (int r = 0; r < 4; ++r)
+      clip[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+    if (!(clip[3] > 1e-6f)) return all;
+    const float x = (clip[0] / clip[3] * 0.5f + 0.5f) * static_cast<float>(width);
+    const float y = (clip[1] / clip[3] * 0.5f + 0.5f) * static_cast<float>(height);
+    if (!std::isfinite(x) || !std::isfinite(y)) return all;
+    x0 = std::min(x0, x);
+    x1 = std::max(x1, x);
+    y0 = std::min(y0, y);
+    y1 = std::max(y1, y);
+  }
+  auto clamp_to = [](float v, int size) {
+    return static_cast<int>(std::clamp(v, 0.0f, static_cast<float>(size)));
+  };
+  PixelRect rect{clamp_to(std::floor(x0) - 1.0f, width), clamp_to(std::floor(y0) - 1.0f, height),
+                 clamp_to(std::ceil(x1) + 1.0f, width), clamp_to(std::ceil(y1) + 1.0f, height)};
+  if (rect.x1 <= rect.x0 || rect.y1 <= rect.y0) return PixelRect{};
+  return rect;
+}
 
 // Which meshes have the vertex data, placement, id and surface they had on the previous call.
 class UnchangedMeshes {
@@ -141,6 +197,7 @@ class CachedTargets {
     generation_ = gl_generation;
     shape_ = shape;
     key = 0;
+    ++textures_made_;
     return true;
   }
 
@@ -158,15 +215,24 @@ class CachedTargets {
 
   // Copies the cached content into the targets and depth buffer ensure() was shaped after.
   void copy_to(const aq_image* targets, uint32_t count, const aq_image& depth) const {
+    copy_rect_to(targets, count, depth, PixelRect{0, 0, depth.width, depth.height});
+  }
+  // The same for the pixels of `rect` only (targets and depth buffer of one size).
+  void copy_rect_to(const aq_image* targets, uint32_t count, const aq_image& depth,
+                    const PixelRect& rect) const {
+    const int w = rect.x1 - rect.x0, h = rect.y1 - rect.y0;
+    if (w <= 0 || h <= 0) return;
     for (uint32_t i = 0; i < std::min(count, shape_.count); ++i) {
-      glCopyImageSubData(colour_[i].get(), GL_TEXTURE_2D, 0, 0, 0, 0, targets[i].texture,
-                         GL_TEXTURE_2D, 0, 0, 0, 0, targets[i].width, targets[i].height, 1);
+      glCopyImageSubData(colour_[i].get(), GL_TEXTURE_2D, 0, rect.x0, rect.y0, 0,
+                         targets[i].texture, GL_TEXTURE_2D, 0, rect.x0, rect.y0, 0, w, h, 1);
     }
-    glCopyImageSubData(depth_.get(), GL_TEXTURE_2D, 0, 0, 0, 0, depth.texture, GL_TEXTURE_2D, 0, 0,
-                       0, 0, depth.width, depth.height, 1);
+    glCopyImageSubData(depth_.get(), GL_TEXTURE_2D, 0, rect.x0, rect.y0, 0, depth.texture,
+                       GL_TEXTURE_2D, 0, rect.x0, rect.y0, 0, w, h, 1);
   }
 
   uint64_t key = 0;  // what the cached content was drawn from; 0: nothing yet
+  // Changes whenever ensure() made new textures (whatever key they are then drawn with).
+  uint64_t textures_made() const { return textures_made_; }
 
  private:
   struct Texel {
@@ -193,10 +259,76 @@ class CachedTargets {
   }
 
   uint32_t generation_ = 0;
+  uint64_t textures_made_ = 0;
   Shape shape_;
   std::array<gl::Texture, kMaxTargets> colour_;
   gl::Texture depth_;
   gl::Framebuffer framebuffer_;
+};
+
+// A node's own depth buffer, kept between calls: with outputs the host kept (output_kept), the
+// next call redraws only what moved and needs this call's depths around it.
+class KeptDepth {
+ public:
+  // The depth buffer for a width x height target; `kept` false when it was (re)created.
+  aq_image get(uint32_t gl_generation, int width, int height, bool* kept) {
+    *kept = texture_ && generation_ == gl_generation && width_ == width && height_ == height;
+    if (!*kept) {
+      if (generation_ != gl_generation) texture_.forget();  // the old context's name
+      glTextureStorage2D(texture_.create(), 1, GL_DEPTH_COMPONENT32F, width, height);
+      generation_ = gl_generation;
+      width_ = width;
+      height_ = height;
+    }
+    return aq_image{texture_.get(), width, height, AQ_FORMAT_DEPTH32F};
+  }
+
+ private:
+  gl::Texture texture_;
+  uint32_t generation_ = 0;
+  int width_ = 0, height_ = 0;
+};
+
+// What a node's last call left in its outputs over the cached layer: which layer, and the
+// pixels its moving meshes may cover. With every output kept by the host and the same layer,
+// restoring the layer there is enough; otherwise the whole layer is copied.
+class DrawnOverLayer {
+ public:
+  // When a call draws its outputs without the layer: nothing is known about them then.
+  void invalidate() { valid_ = false; }
+
+  // Puts the layer into the targets: only where the last call's moving meshes were when the
+  // outputs are as it left them (`outputs_kept`, the host's word) over the same layer, else
+  // everywhere. Until record(), nothing is known about the outputs.
+  void restore(const CachedTargets& layer, const aq_image* targets, uint32_t count,
+               const aq_image& depth, bool outputs_kept) {
+    if (outputs_kept && valid_ && layer_key_ == layer.key &&
+        layer_textures_ == layer.textures_made()) {
+      for (const PixelRect& rect : moving_) layer.copy_rect_to(targets, count, depth, rect);
+    } else {
+      layer.copy_to(targets, count, depth);
+    }
+    valid_ = false;
+  }
+
+  // After the moving meshes (those not `unchanged`) were drawn with `view_projection`.
+  void record(const CachedTargets& layer, const aq_scene& scene, const std::vector<bool>& unchanged,
+              const float* view_projection, int width, int height) {
+    moving_.clear();
+    for (uint32_t i = 0; i < scene.mesh_count && i < unchanged.size(); ++i) {
+      if (!unchanged[i])
+        moving_.push_back(covered_pixels(scene.meshes[i], view_projection, width, height));
+    }
+    layer_key_ = layer.key;
+    layer_textures_ = layer.textures_made();
+    valid_ = true;
+  }
+
+ private:
+  bool valid_ = false;
+  uint64_t layer_key_ = 0;
+  uint64_t layer_textures_ = 0;
+  std::vector<PixelRect> moving_;
 };
 
 }  // namespace aq

@@ -1,0 +1,62 @@
+// Outputs a node gets back with their content (aq_host::output_kept, TexturePool writer tags):
+// the pool hands a writer its own texture back only when nobody acquired it since, and untagged
+// acquisitions leave claimed textures alone while another is free.
+#include <gtest/gtest.h>
+
+#include <aquarelle/core/gl_context.h>
+#include <aquarelle/core/texture_pool.h>
+
+#include <memory>
+
+namespace aq {
+namespace {
+
+class KeptOutputs : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto context = create_headless_context(GlBackend::kAuto);
+    ASSERT_TRUE(context.ok()) << context.message();
+    context_ = std::move(*context);
+    context_->activate();
+  }
+  std::unique_ptr<GlContext> context_;
+};
+
+TEST_F(KeptOutputs, AWriterGetsItsOwnTextureBackOnlyWhileNobodyTookIt) {
+  TexturePool pool;
+  bool kept = true;
+  GLuint first = 0;
+  {
+    TextureRef a = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 7, &kept);
+    EXPECT_FALSE(kept) << "a new texture holds nothing of the writer's";
+    first = a->image.texture;
+    TextureRef other = pool.acquire(16, 8, AQ_FORMAT_RGBA16F);  // someone else's, alive
+  }
+  // Both are free now; the writer's comes back to it, kept.
+  TextureRef again = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 7, &kept);
+  EXPECT_TRUE(kept);
+  EXPECT_EQ(again->image.texture, first);
+  again.reset();
+  // An untagged acquisition takes the unclaimed texture while there is one...
+  TextureRef anyone = pool.acquire(16, 8, AQ_FORMAT_RGBA16F);
+  EXPECT_NE(anyone->image.texture, first);
+  TextureRef writer = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 7, &kept);
+  EXPECT_TRUE(kept);
+  writer.reset();
+  // ...and takes the claimed one when nothing else is free: the writer then is told.
+  TextureRef thief = pool.acquire(16, 8, AQ_FORMAT_RGBA16F);
+  EXPECT_EQ(thief->image.texture, first);
+  thief.reset();
+  anyone.reset();
+  TextureRef after = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 7, &kept);
+  EXPECT_FALSE(kept) << "someone wrote it since";
+  // Another writer, size or format never gets it as kept.
+  after.reset();
+  TextureRef other_writer = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 8, &kept);
+  EXPECT_FALSE(kept);
+  TextureRef other_size = pool.acquire(16, 9, AQ_FORMAT_RGBA16F, 7, &kept);
+  EXPECT_FALSE(kept);
+}
+
+}  // namespace
+}  // namespace aq

@@ -1,0 +1,98 @@
+// The screen rectangles the g-buffer and the shadow map restore from their cached layer around
+// the meshes that moved (aquarelle/sdk/static_layer.hpp covered_pixels): a mesh's rectangle
+// holds every pixel its vertices project to and one around it, the whole target when the mesh
+// reaches behind the camera, nothing when it has no vertices or lies off the target.
+#include <gtest/gtest.h>
+
+#include <aquarelle/sdk/static_layer.hpp>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace aq {
+namespace {
+
+// A box of vertices placed by a model matrix, drawn into a 200 x 120 target.
+aq_mesh box_mesh(const std::vector<float>& positions, const glm::mat4& model) {
+  aq_mesh mesh{};
+  mesh.positions = positions.data();
+  mesh.vertex_count = static_cast<uint32_t>(positions.size() / 3);
+  std::copy(glm::value_ptr(model), glm::value_ptr(model) + 16, mesh.model);
+  return mesh;
+}
+
+TEST(CoveredPixels, EveryProjectedVertexLiesInTheRectangle) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  const int width = 200, height = 120;
+  const glm::mat4 projection = glm::perspective(glm::radians(50.0f), 200.0f / 120.0f, 0.1f, 100.0f);
+  const glm::mat4 view = glm::lookAt(glm::vec3(0, 1, 6), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
+  const glm::mat4 view_projection = projection * view;
+  int inside_tests = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    // Random points in a box and the box's corners: the corners are vertices, so the
+    // rectangle's margin around the extreme vertices is the one under test.
+    std::vector<float> positions;
+    for (int v = 0; v < 22; ++v)
+      for (int k = 0; k < 3; ++k) positions.push_back(0.8f * unit(random));
+    for (int corner = 0; corner < 8; ++corner)
+      for (int k = 0; k < 3; ++k) positions.push_back((corner >> k) & 1 ? 0.9f : -0.9f);
+    const glm::mat4 model = glm::rotate(
+        glm::translate(glm::mat4(1.0f),
+                       glm::vec3(2.5f * unit(random), unit(random), 2.0f * unit(random))),
+        3.0f * unit(random), glm::normalize(glm::vec3(unit(random), 1.0f, unit(random))));
+    const aq_mesh mesh = box_mesh(positions, model);
+    const PixelRect rect = covered_pixels(mesh, glm::value_ptr(view_projection), width, height);
+    EXPECT_LE(0, rect.x0);
+    EXPECT_LE(rect.x1, width);
+    EXPECT_LE(0, rect.y0);
+    EXPECT_LE(rect.y1, height);
+    for (int v = 0; v < 30; ++v) {
+      const glm::vec4 clip =
+          view_projection * model *
+          glm::vec4(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2], 1.0f);
+      ASSERT_GT(clip.w, 0.0f);
+      const float x = (clip.x / clip.w * 0.5f + 0.5f) * width;
+      const float y = (clip.y / clip.w * 0.5f + 0.5f) * height;
+      if (x < 0 || x >= width || y < 0 || y >= height) continue;  // off the target
+      ++inside_tests;
+      // The pixels a triangle through this vertex may light reach one pixel around it.
+      EXPECT_LE(rect.x0, std::max(0, static_cast<int>(std::floor(x)) - 1));
+      EXPECT_GE(rect.x1, std::min(width, static_cast<int>(std::ceil(x)) + 1));
+      EXPECT_LE(rect.y0, std::max(0, static_cast<int>(std::floor(y)) - 1));
+      EXPECT_GE(rect.y1, std::min(height, static_cast<int>(std::ceil(y)) + 1));
+    }
+  }
+  EXPECT_GT(inside_tests, 1000);
+}
+
+TEST(CoveredPixels, BehindTheCameraIsTheWholeTargetAndNoVerticesIsNothing) {
+  const glm::mat4 projection = glm::perspective(glm::radians(50.0f), 1.0f, 0.1f, 100.0f);
+  const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 2), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
+  const glm::mat4 view_projection = projection * view;
+  const std::vector<float> across_the_camera = {-1, -1, -1, 1, 1, 5};  // z from -1 to 5 (eye at 2)
+  const PixelRect all = covered_pixels(box_mesh(across_the_camera, glm::mat4(1.0f)),
+                                       glm::value_ptr(view_projection), 64, 32);
+  EXPECT_EQ(all.x0, 0);
+  EXPECT_EQ(all.y0, 0);
+  EXPECT_EQ(all.x1, 64);
+  EXPECT_EQ(all.y1, 32);
+  const std::vector<float> none;
+  const PixelRect empty =
+      covered_pixels(box_mesh(none, glm::mat4(1.0f)), glm::value_ptr(view_projection), 64, 32);
+  EXPECT_LE(empty.x1 - empty.x0, 0);
+  // Entirely off the target: an empty rectangle, nothing to restore.
+  const std::vector<float> far_left = {-40, -0.1f, -1, -39, 0.1f, -0.5f};
+  const PixelRect off =
+      covered_pixels(box_mesh(far_left, glm::mat4(1.0f)), glm::value_ptr(view_projection), 64, 32);
+  EXPECT_LE(off.x1 - off.x0, 0);
+}
+
+}  // namespace
+}  // namespace aq
