@@ -8,7 +8,8 @@
 //
 // The densities depend on the view, the size, the parameters and the connected images only: the
 // node keeps them while those stay (the images by the host's input keys) and copies them into
-// its output each frame instead of computing the noise again.
+// its output each frame instead of computing the noise again — or does nothing when the host
+// hands it back the output it filled last time, untouched (aq_host::output_kept).
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/sdk/gl_raii.hpp>
 
@@ -66,10 +67,14 @@ struct PigmentCanvas {
     params.seed = ctx.param_int(kSeed);
 
     std::string key = cache_key(ctx, out, canvas, params, defines);
+    // The host handed back the very texture this call's densities went into last time.
+    if (!key.empty() && ctx.output_kept(0) && drawn_key_ == key) return AQ_OK;
+    drawn_key_.clear();
     if (!key.empty() && cache_.texture && cache_.generation == ctx.raw()->gl_generation &&
         cache_.key == key) {
       glCopyImageSubData(cache_.texture.get(), GL_TEXTURE_2D, 0, 0, 0, 0, out.texture,
                          GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+      drawn_key_ = key;
       return AQ_OK;
     }
 
@@ -88,6 +93,7 @@ struct PigmentCanvas {
     aq::unbind_textures(5);
     if (!drawn) return AQ_ERROR;
     if (!key.empty()) keep(ctx, out, key);
+    drawn_key_ = key;
     return AQ_OK;
   }
 
@@ -140,6 +146,7 @@ struct PigmentCanvas {
     GLint internal_format = 0;
     std::string key;
   } cache_;
+  std::string drawn_key_;  // what the output of the last call holds (empty: unknown)
 };
 
 }  // namespace

@@ -148,7 +148,7 @@ TEST(PigmentCanvas, KeptWhileItsViewAndImagesStayRedrawnWhenEitherChanges) {
     double target_x;
     int seed;
   };
-  const Step steps[] = {{0.0, 3}, {0.0, 3}, {0.6, 3}, {0.6, 4}, {0.0, 4}, {0.0, 3}};
+  const Step steps[] = {{0.0, 3}, {0.0, 3}, {0.0, 3}, {0.6, 3}, {0.6, 3}, {0.6, 4}, {0.6, 4}, {0.0, 4}, {0.0, 3}};
   ImageF previous;
   int frame = 1;
   for (const Step& step : steps) {
