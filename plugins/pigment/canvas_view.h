@@ -15,6 +15,18 @@ namespace pigment {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// The density image inputs of `pigment` and `pigment_canvas`, in this order. Density textures
+// in [0, 1]: 8 bits a channel are enough (a density step of 1/255 moves a colour by at most
+// weight/510), so the host may store them as RGBA8 (README, "Cost").
+inline constexpr aq_port_desc kDensityPorts[3] = {
+    aq_port_desc{"turbulence", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
+                 "low-frequency density in red (0.5 = none); unconnected: fBm (Perlin)"},
+    aq_port_desc{"grain", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
+                 "high-frequency pigment dispersion in red (0.5 = none); "
+                 "unconnected: Gaussian noise"},
+    aq_port_desc{"paper", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
+                 "paper grain height in red (0.5 = none); unconnected: Worley cells"}};
+
 // The dynamic canvas follows the camera: turning by an angle moves the canvas with the scene
 // content at the image centre (1 / (2 tan(fov/2)) image heights per radian), and moving towards
 // the target zooms it by the change of log2 distance.

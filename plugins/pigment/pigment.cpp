@@ -24,15 +24,9 @@ namespace {
 
 constexpr aq_port_desc kInputs[] = {
     aq::image_port("image", "colour to modulate"),
-    // Density textures in [0, 1]: 8 bits a channel are enough (a density step of 1/255 moves
-    // a colour by at most weight/510), so the host may store them as RGBA8 (README, "Cost").
-    aq_port_desc{"turbulence", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
-                 "low-frequency density in red (0.5 = none); unconnected: fBm (Perlin)"},
-    aq_port_desc{"grain", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
-                 "high-frequency pigment dispersion in red (0.5 = none); "
-                 "unconnected: Gaussian noise"},
-    aq_port_desc{"paper", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
-                 "paper grain height in red (0.5 = none); unconnected: Worley cells"},
+    pigment::kDensityPorts[0],
+    pigment::kDensityPorts[1],
+    pigment::kDensityPorts[2],
     aq::optional_image_port("position",
                             "world position (gbuffer), w = 0 on the background; "
                             "used by object anchoring"),

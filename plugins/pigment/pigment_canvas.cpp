@@ -23,13 +23,7 @@
 namespace {
 
 constexpr aq_port_desc kInputs[] = {
-    aq_port_desc{"turbulence", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
-                 "low-frequency density in red (0.5 = none); unconnected: fBm (Perlin)"},
-    aq_port_desc{"grain", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
-                 "high-frequency pigment dispersion in red (0.5 = none); "
-                 "unconnected: Gaussian noise"},
-    aq_port_desc{"paper", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
-                 "paper grain height in red (0.5 = none); unconnected: Worley cells"},
+    pigment::kDensityPorts[0], pigment::kDensityPorts[1], pigment::kDensityPorts[2],
     aq_port_desc{"scene", AQ_PORT_SCENE, AQ_PORT_OPTIONAL,
                  "its camera drives the dynamic canvas; unconnected: a still screen canvas"}};
 constexpr aq_port_desc kOutputs[] = {aq::image_port(
