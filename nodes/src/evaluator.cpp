@@ -262,6 +262,7 @@ struct Evaluator::Impl {
     }
     state.instance = nullptr;
     state.valid = false;
+    state.writer_tag = 0;  // a new instance gets a new tag (aq_host::output_kept)
   }
   void destroy_all() {
     if (!states.empty()) context.activate();

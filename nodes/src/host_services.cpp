@@ -7,6 +7,7 @@
 
 #include <aquarelle/core/gl_context.h>
 
+#include <atomic>
 #include <cstdio>
 
 namespace aq {
@@ -137,13 +138,10 @@ int HostServices::output_image(void* data, uint32_t index, int32_t width, int32_
   } else if (format == AQ_FORMAT_RGBA8_HDR) {
     format = call->working_format;
   }
-  // Tagged with the instance and the output, so that the node can get the same texture back on
-  // its next call and be told it still holds its content (output_kept).
+  // Tagged with the instance and the output once the instance asked (output_kept), so that
+  // it gets the same texture back on its next call and is told it still holds its content.
   const uint64_t writer =
-      state.keeps_outputs
-          ? hash_value(hash_value(kHashSeed, reinterpret_cast<uintptr_t>(state.instance)),
-                       index + 1)
-          : 0;
+      state.writer_tag != 0 ? hash_value(hash_value(kHashSeed, state.writer_tag), index + 1) : 0;
   bool kept = false;
   state.images[index] = call->host->pool_.acquire(width, height, format, writer, &kept);
   if (call->kept_outputs.size() <= index) call->kept_outputs.resize(index + 1, false);
@@ -154,7 +152,10 @@ int HostServices::output_image(void* data, uint32_t index, int32_t width, int32_
 
 int HostServices::output_kept(void* data, uint32_t index) {
   const auto* call = static_cast<CallState*>(data);
-  call->state->keeps_outputs = true;
+  // A tag no other instance ever had, so that a new instance at the address of a destroyed
+  // one never gets that one's textures back as its own.
+  static std::atomic<uint64_t> next_tag{0};
+  if (call->state->writer_tag == 0) call->state->writer_tag = ++next_tag;
   return index < call->kept_outputs.size() && call->kept_outputs[index] ? 1 : 0;
 }
 

@@ -26,10 +26,10 @@ struct NodeState {
   void* instance = nullptr;
   uint64_t key = 0;
   bool valid = false;  // outputs hold the result for `key`
-  // The node asked whether its outputs were kept (aq_host::output_kept): from then on its
-  // outputs are acquired tagged, so that it gets them back; untagged otherwise, so that other
-  // nodes' textures stay free for anyone.
-  bool keeps_outputs = false;
+  // Nonzero once the node instance asked whether its outputs were kept (aq_host::output_kept):
+  // from then on its outputs are acquired with this tag (unique to the instance, never reused),
+  // so that it gets them back; untagged otherwise, so that other nodes' textures stay free.
+  uint64_t writer_tag = 0;
   std::vector<TextureRef> images;
   std::vector<const aq_scene*> scenes;
   gl::Query timer_start;  // GL_TIMESTAMP pairs: llvmpipe's GL_TIME_ELAPSED reads garbage when

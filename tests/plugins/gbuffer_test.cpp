@@ -11,6 +11,10 @@
 #include <set>
 #include <string>
 
+#include <aquarelle/core/evaluator.h>
+#include <aquarelle/core/gl_context.h>
+#include <aquarelle/core/graph_io.h>
+
 #include "support/harness.h"
 
 namespace {
@@ -250,6 +254,44 @@ TEST(GBuffer, CachedStillMeshesGiveTheTargetsDrawnFromScratch) {
     EXPECT_GT(aq::test::max_abs_diff(scratch_three, underwater_target("off", port, 4, eye, false)),
               0.0)
         << port << ": something moved between frames 3 and 4";
+  }
+}
+
+// A node instance made after another was destroyed (evaluator.clear(): the same node id, very
+// likely the same address) must not be handed its predecessor's textures as its own kept
+// outputs (aq_host::output_kept): each instance's tag is new.
+TEST(GBuffer, ANewInstanceStartsFromScratchAfterTheOldOneIsGone) {
+  auto context = aq::create_headless_context(aq::GlBackend::kAuto);
+  ASSERT_TRUE(context.ok()) << context.message();
+  aq::Evaluator evaluator(**context, aq::test::registry());
+  aq::Evaluator scratch(**context, aq::test::registry());
+  auto render = [](aq::Evaluator& e, int frame, bool cache) {
+    nlohmann::json g = {{"aquarelle", 1},
+                        {"nodes",
+                         {{"scene", {{"type", "scene"}, {"params", {{"preset", "underwater"}}}}},
+                          {"gbuf",
+                           {{"type", "gbuffer"},
+                            {"params", {{"cache_static", cache}}},
+                            {"inputs", {{"scene", "scene.scene"}}}}}}},
+                        {"output", "gbuf.normal"}};
+    auto read = aq::read_graph_text(g.dump(), aq::test::registry(), "gbuffer test");
+    EXPECT_TRUE(read.ok());
+    read.graph.settings.width = 96;
+    read.graph.settings.height = 54;
+    aq::EvalOptions options;
+    options.frame = frame;
+    auto out = e.evaluate(read.graph, options);
+    EXPECT_TRUE(out.ok()) << (out.ok() ? "" : out.message());
+    auto pixels = e.read_back(*out);
+    EXPECT_TRUE(pixels.ok());
+    return pixels.ok() ? *pixels : ImageF();
+  };
+  for (int frame = 1; frame <= 4; ++frame) {
+    if (frame == 3) evaluator.clear();  // the instance and its outputs are gone
+    const ImageF a = render(evaluator, frame, true);
+    const ImageF b = render(scratch, frame, false);
+    ASSERT_FALSE(a.empty());
+    EXPECT_EQ(aq::test::max_abs_diff(a, b), 0.0) << "frame " << frame;
   }
 }
 
