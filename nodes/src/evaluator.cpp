@@ -88,6 +88,12 @@ void fill_process_ctx(aq_process_ctx& ctx, const aq_host* host, uint32_t gl_gene
   ctx.input_keys = nullptr;
 }
 
+// The format a fused pass writes a chain's result in: 8-bit HDR where the plan stores the chain's
+// last node's output so for readers that decode it (the fused pass encodes), else `working`.
+uint32_t chain_result_format(const std::vector<uint32_t>& stored, uint32_t working) {
+  return !stored.empty() && stored[0] == AQ_FORMAT_RGBA8_HDR ? stored[0] : working;
+}
+
 // A node's parameters as the ABI passes them; `strings` owns what params[i].s points to.
 struct ParamValues {
   std::vector<aq_param_value> params;
@@ -301,10 +307,8 @@ struct Evaluator::Impl {
       return make_error(where + ": produced no output '" + producer.type->outputs[0].name +
                         "' (a plugin bug: report it to its author)");
     if (call.epilogue_draws > 0) return out;
-    const uint32_t chain_format =
-        !stored.empty() && stored[0] == AQ_FORMAT_RGBA8_HDR ? stored[0] : format;
     return fuser.run(host.shaders(), host.pool(), stages, out, out->image.width, out->image.height,
-                     chain_format);
+                     chain_result_format(stored, format));
   }
 };
 
@@ -615,13 +619,9 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       } else {
         const int width = tail_into_resample ? settings.width : chain->input->image.width;
         const int height = tail_into_resample ? settings.height : chain->input->image.height;
-        // The plan may store the chain's result as 8-bit HDR for readers that decode it.
-        const uint32_t chain_format =
-            !planned.stored_formats.empty() && planned.stored_formats[0] == AQ_FORMAT_RGBA8_HDR
-                ? planned.stored_formats[0]
-                : format;
-        fused = impl_->fuser.run(impl_->host.shaders(), impl_->host.pool(), stages, chain->input,
-                                 width, height, chain_format);
+        fused =
+            impl_->fuser.run(impl_->host.shaders(), impl_->host.pool(), stages, chain->input, width,
+                             height, chain_result_format(planned.stored_formats, format));
       }
       if (options.finish_each_node) glFinish();
       auto end = std::chrono::steady_clock::now();
