@@ -85,9 +85,12 @@ class GBuffer {
       key.mix(view);
       key.mix(projection);
       key.mix(scene->camera.far_plane);
-      key.mix(aq::scene_has_environment(*scene));
-      key.mix(scene->environment_top);
-      key.mix(scene->environment_bottom);
+      const bool environment = aq::scene_has_environment(*scene);
+      key.mix(environment);
+      if (environment) {  // the fields exist only where struct_size covers them
+        key.mix(scene->environment_top);
+        key.mix(scene->environment_bottom);
+      }
       layer_.ensure(ctx.raw()->gl_generation, targets, kOutputCount, depth_buffer);
       if (layer_.key == key.value) {
         layered = true;
