@@ -81,7 +81,7 @@ class GBuffer {
     bool layered = false;
     if (unchanged_.any() && ctx.param_bool(kCacheStatic)) {
       aq::Fnv1a key;
-      unchanged_.mix_into(key, *scene);
+      unchanged_.mix_into(key);
       key.mix(view);
       key.mix(projection);
       key.mix(scene->camera.far_plane);
@@ -91,7 +91,7 @@ class GBuffer {
         key.mix(scene->environment_top);
         key.mix(scene->environment_bottom);
       }
-      layer_.ensure(ctx.raw()->gl_generation, targets, kOutputCount, depth_buffer);
+      layer_.ensure(ctx.raw()->gl_generation, targets, kOutputCount, &depth_buffer);
       if (layer_.key == key.value) {
         layered = true;
       } else if (layer_.bind()) {
@@ -102,7 +102,7 @@ class GBuffer {
       }
       // With the outputs as the last call left them, the layer goes back only where that
       // call's moving meshes were.
-      if (layered) drawn_.restore(layer_, targets, kOutputCount, depth_buffer, outputs_kept);
+      if (layered) drawn_.restore(layer_, targets, kOutputCount, &depth_buffer, outputs_kept);
     }
 
     if (!ctx.bind_targets(targets, kOutputCount, &depth_buffer)) return AQ_ERROR;
@@ -115,8 +115,8 @@ class GBuffer {
     }
     aq::unbind_textures(1);
     if (layered) {
-      const glm::mat4 view_projection = projection * view;
-      drawn_.record(layer_, *scene, unchanged, glm::value_ptr(view_projection), width, height);
+      drawn_.record(layer_, boxes_.world_boxes(*scene), unchanged,
+                    glm::dmat4(projection) * glm::dmat4(view), width, height);
     }
     return AQ_OK;
   }
@@ -200,6 +200,7 @@ class GBuffer {
   aq::UnchangedMeshes unchanged_;
   aq::CachedTargets layer_;
   aq::KeptDepth depth_;
+  aq::view_bounds::MeshBoxes boxes_;
   aq::DrawnOverLayer drawn_;
 };
 

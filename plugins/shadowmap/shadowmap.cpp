@@ -56,9 +56,9 @@ class ShadowMap {
     const int max_size =
         std::max(16, static_cast<int>(std::lround(static_cast<double>(ctx.param_int(kSize)) *
                                                   ctx.render_scale())));
+    const std::vector<aq::view_bounds::Box>& world_boxes = boxes_.world_boxes(*scene);
     const aq::scene_math::ViewFit fit = aq::scene_math::fit_to_view(
-        *scene, boxes_.world_boxes(*scene),
-        static_cast<float>(ctx.width()) / static_cast<float>(ctx.height()));
+        *scene, world_boxes, static_cast<float>(ctx.width()) / static_cast<float>(ctx.height()));
     const int size = ctx.param_bool(kAutoSize) ? aq::scene_math::shadow_size_for_view(
                                                      fit, scene->camera, ctx.height(), max_size)
                                                : max_size;
@@ -90,11 +90,11 @@ class ShadowMap {
     bool layered = false;
     if (unchanged_.any()) {
       aq::Fnv1a key;
-      unchanged_.mix_into(key, *scene);
+      unchanged_.mix_into(key);
       key.mix(light);
       key.mix(size);
       for (Param p : {kSlopeBias, kConstantBias, kMaxBias}) key.mix(ctx.param_float(p));
-      layer_.ensure(ctx.raw()->gl_generation, &depth, 1, depth_buffer);
+      layer_.ensure(ctx.raw()->gl_generation, &depth, 1, &depth_buffer);
       if (layer_.key == key.value) {
         layered = true;
       } else if (layer_.bind()) {
@@ -105,7 +105,7 @@ class ShadowMap {
       }
       // With the map as the last call left it, the layer goes back only where that call's
       // moving casters were.
-      if (layered) drawn_.restore(layer_, &depth, 1, depth_buffer, kept);
+      if (layered) drawn_.restore(layer_, &depth, 1, &depth_buffer, kept);
     }
     if (!ctx.bind_targets(&depth, 1, &depth_buffer)) return AQ_ERROR;
     if (!layered) {
@@ -114,7 +114,7 @@ class ShadowMap {
     }
     draw_meshes(*scene, layered ? &unchanged : nullptr, false, program);
     aq::unbind_textures(1);  // the cut-out texture unit, and the program
-    if (layered) drawn_.record(layer_, *scene, unchanged, glm::value_ptr(light), size, size);
+    if (layered) drawn_.record(layer_, world_boxes, unchanged, glm::dmat4(light), size, size);
     return AQ_OK;
   }
 

@@ -18,13 +18,20 @@
 namespace aq {
 namespace {
 
-// A box of vertices placed by a model matrix, drawn into a 200 x 120 target.
-aq_mesh box_mesh(const std::vector<float>& positions, const glm::mat4& model) {
+// The rectangle the g-buffer and the shadow map restore for a mesh of `positions` placed by
+// `model`: its world box as they get it (view_bounds::MeshBoxes), projected.
+PixelRect rect_of(const std::vector<float>& positions, const glm::mat4& model,
+                  const glm::mat4& view_projection, int width, int height) {
   aq_mesh mesh{};
   mesh.positions = positions.data();
   mesh.vertex_count = static_cast<uint32_t>(positions.size() / 3);
   std::copy(glm::value_ptr(model), glm::value_ptr(model) + 16, mesh.model);
-  return mesh;
+  aq_scene scene{};
+  scene.struct_size = sizeof(aq_scene);
+  scene.meshes = &mesh;
+  scene.mesh_count = 1;
+  view_bounds::MeshBoxes boxes;
+  return covered_pixels(boxes.world_boxes(scene)[0], glm::dmat4(view_projection), width, height);
 }
 
 TEST(CoveredPixels, EveryProjectedVertexLiesInTheRectangle) {
@@ -43,12 +50,14 @@ TEST(CoveredPixels, EveryProjectedVertexLiesInTheRectangle) {
       for (int k = 0; k < 3; ++k) positions.push_back(0.8f * unit(random));
     for (int corner = 0; corner < 8; ++corner)
       for (int k = 0; k < 3; ++k) positions.push_back((corner >> k) & 1 ? 0.9f : -0.9f);
-    const glm::mat4 model = glm::rotate(
-        glm::translate(glm::mat4(1.0f),
-                       glm::vec3(2.5f * unit(random), unit(random), 2.0f * unit(random))),
-        3.0f * unit(random), glm::normalize(glm::vec3(unit(random), 1.0f, unit(random))));
-    const aq_mesh mesh = box_mesh(positions, model);
-    const PixelRect rect = covered_pixels(mesh, glm::value_ptr(view_projection), width, height);
+    // Every other mesh is only moved (its world box's corners are then vertices too), the
+    // others also turned.
+    glm::mat4 model = glm::translate(
+        glm::mat4(1.0f), glm::vec3(2.5f * unit(random), unit(random), 2.0f * unit(random)));
+    const float angle = 3.0f * unit(random);
+    const glm::vec3 axis = glm::normalize(glm::vec3(unit(random), 1.0f, unit(random)));
+    if (trial % 2 == 1) model = glm::rotate(model, angle, axis);
+    const PixelRect rect = rect_of(positions, model, view_projection, width, height);
     EXPECT_LE(0, rect.x0);
     EXPECT_LE(rect.x1, width);
     EXPECT_LE(0, rect.y0);
@@ -77,20 +86,17 @@ TEST(CoveredPixels, BehindTheCameraIsTheWholeTargetAndNoVerticesIsNothing) {
   const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 2), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
   const glm::mat4 view_projection = projection * view;
   const std::vector<float> across_the_camera = {-1, -1, -1, 1, 1, 5};  // z from -1 to 5 (eye at 2)
-  const PixelRect all = covered_pixels(box_mesh(across_the_camera, glm::mat4(1.0f)),
-                                       glm::value_ptr(view_projection), 64, 32);
+  const PixelRect all = rect_of(across_the_camera, glm::mat4(1.0f), view_projection, 64, 32);
   EXPECT_EQ(all.x0, 0);
   EXPECT_EQ(all.y0, 0);
   EXPECT_EQ(all.x1, 64);
   EXPECT_EQ(all.y1, 32);
   const std::vector<float> none;
-  const PixelRect empty =
-      covered_pixels(box_mesh(none, glm::mat4(1.0f)), glm::value_ptr(view_projection), 64, 32);
+  const PixelRect empty = rect_of(none, glm::mat4(1.0f), view_projection, 64, 32);
   EXPECT_LE(empty.x1 - empty.x0, 0);
   // Entirely off the target: an empty rectangle, nothing to restore.
   const std::vector<float> far_left = {-40, -0.1f, -1, -39, 0.1f, -0.5f};
-  const PixelRect off =
-      covered_pixels(box_mesh(far_left, glm::mat4(1.0f)), glm::value_ptr(view_projection), 64, 32);
+  const PixelRect off = rect_of(far_left, glm::mat4(1.0f), view_projection, 64, 32);
   EXPECT_LE(off.x1 - off.x0, 0);
 }
 

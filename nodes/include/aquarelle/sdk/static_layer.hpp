@@ -5,23 +5,26 @@
 // what moved over them. The depth test keeps the nearest surface whatever the order, so the
 // targets are the same as drawing everything.
 //
-//   const auto& unchanged = static_meshes_.update(scene);     // once per process() call
-//   aq::Fnv1a key; static_meshes_.mix_into(key, scene); key.mix(view); ...
-//   if (static_meshes_.any()) {
-//     if (layer_.ensure(generation, targets, n, depth) || layer_.key != key.value) {
-//       layer_.bind(); draw the background and the unchanged meshes; layer_.key = key.value;
-//     }
-//     layer_.copy_to(targets, n, depth);   // then bind the targets and draw the rest
+//   const auto& unchanged = unchanged_.update(scene);         // once per process() call
+//   aq::Fnv1a key; unchanged_.mix_into(key); key.mix(view); ...
+//   if (unchanged_.any()) {
+//     layer_.ensure(generation, targets, n, &depth);
+//     if (layer_.key != key.value && layer_.bind()) { draw the background and the unchanged
+//       meshes; layer_.key = key.value; }
+//     drawn_.restore(layer_, targets, n, &depth, outputs_kept);  // all, or where moved ones were
 //   }
+//   bind the targets, draw the meshes that moved; drawn_.record(layer_, boxes, unchanged, ...);
 //
-// Header-only; uses only plugin.h(pp), glad and gl_raii.hpp.
+// Header-only; uses plugin.h(pp), glad, glm, gl_raii.hpp and view_bounds.hpp.
 #pragma once
 
 #include <aquarelle/plugin.h>
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/sdk/gl_raii.hpp>
+#include <aquarelle/sdk/view_bounds.hpp>
 
 #include <glad/gl.h>
+#include <glm/glm.hpp>
 
 #include <algorithm>
 #include <array>
@@ -50,52 +53,31 @@ struct PixelRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
-// The pixels mesh `mesh` can cover when drawn with `view_projection` into a width x height
-// target: the projected box of its vertices (object space, placed by its model matrix), one
-// pixel wider on every side, clamped to the target; the whole target when the box reaches
-// behind the camera (its projection is then not bounded by the corners').
-inline PixelRect covered_pixels(const aq_mesh& mesh, const float* view_projection, int width,
-                                int height) {
+// The pixels a mesh whose world box is `box` (view_bounds::MeshBoxes) can cover when drawn with
+// `view_projection` into a width x height target: the box's corners projected, one pixel wider
+// on every side, clamped to the target; the whole target when the box reaches behind the camera
+// (its projection is then not bounded by the corners'), nothing for an empty box.
+inline PixelRect covered_pixels(const view_bounds::Box& box, const glm::dmat4& view_projection,
+                                int width, int height) {
   const PixelRect all{0, 0, width, height};
-  if (mesh.vertex_count == 0 || mesh.positions == nullptr) return PixelRect{};
-  float lo[3] = {mesh.positions[0], mesh.positions[1], mesh.positions[2]};
-  float hi[3] = {lo[0], lo[1], lo[2]};
-  for (uint32_t v = 1; v < mesh.vertex_count; ++v) {
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], mesh.positions[3 * v + k]);
-      hi[k] = std::max(hi[k], mesh.positions[3 * v + k]);
-    }
-  }
-  // clip = view_projection · model · corner (column-major 4x4 matrices).
-  float m[16];
-  for (int c = 0; c < 4; ++c) {
-    for (int r = 0; r < 4; ++r) {
-      float sum = 0.0f;
-      for (int k = 0; k < 4; ++k) sum += view_projection[k * 4 + r] * mesh.model[c * 4 + k];
-      m[c * 4 + r] = sum;
-    }
-  }
-  float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+  if (box.empty()) return PixelRect{};
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
   for (int corner = 0; corner < 8; ++corner) {
-    const float p[3] = {(corner & 1) != 0 ? hi[0] : lo[0], (corner & 2) != 0 ? hi[1] : lo[1],
-                        (corner & 4) != 0 ? hi[2] : lo[2]};
-    float clip[4];
-    for (int r = 0; r < 4; ++r)
-      clip[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
-    if (!(clip[3] > 1e-6f)) return all;
-    const float x = (clip[0] / clip[3] * 0.5f + 0.5f) * static_cast<float>(width);
-    const float y = (clip[1] / clip[3] * 0.5f + 0.5f) * static_cast<float>(height);
+    const glm::dvec4 clip = view_projection * glm::dvec4(box.corner(corner), 1.0);
+    if (!(clip.w > 1e-9)) return all;
+    const double x = (clip.x / clip.w * 0.5 + 0.5) * width;
+    const double y = (clip.y / clip.w * 0.5 + 0.5) * height;
     if (!std::isfinite(x) || !std::isfinite(y)) return all;
     x0 = std::min(x0, x);
     x1 = std::max(x1, x);
     y0 = std::min(y0, y);
     y1 = std::max(y1, y);
   }
-  auto clamp_to = [](float v, int size) {
-    return static_cast<int>(std::clamp(v, 0.0f, static_cast<float>(size)));
+  auto clamp_to = [](double v, int size) {
+    return static_cast<int>(std::clamp(v, 0.0, static_cast<double>(size)));
   };
-  PixelRect rect{clamp_to(std::floor(x0) - 1.0f, width), clamp_to(std::floor(y0) - 1.0f, height),
-                 clamp_to(std::ceil(x1) + 1.0f, width), clamp_to(std::ceil(y1) + 1.0f, height)};
+  PixelRect rect{clamp_to(std::floor(x0) - 1.0, width), clamp_to(std::floor(y0) - 1.0, height),
+                 clamp_to(std::ceil(x1) + 1.0, width), clamp_to(std::ceil(y1) + 1.0, height)};
   if (rect.x1 <= rect.x0 || rect.y1 <= rect.y0) return PixelRect{};
   return rect;
 }
@@ -116,14 +98,14 @@ class UnchangedMeshes {
   bool any() const {
     return std::find(unchanged_.begin(), unchanged_.end(), true) != unchanged_.end();
   }
-  const std::vector<bool>& flags() const { return unchanged_; }
 
-  // Everything the unchanged meshes look like, for the key of a layer drawn from them.
-  void mix_into(Fnv1a& key, const aq_scene& scene) const {
-    for (uint32_t i = 0; i < scene.mesh_count && i < unchanged_.size(); ++i) {
+  // Everything the unchanged meshes look like (as update() saw them), for the key of a layer
+  // drawn from them.
+  void mix_into(Fnv1a& key) const {
+    for (uint32_t i = 0; i < unchanged_.size(); ++i) {
       if (!unchanged_[i]) continue;
+      const State& state = previous_[i];
       key.mix(i);
-      const State state = state_of(scene, i);
       key.mix(state.revision);
       key.mix(state.model);
       key.mix(state.object_id);
@@ -161,8 +143,8 @@ class UnchangedMeshes {
   std::vector<bool> unchanged_;
 };
 
-// Textures shaped like a node's targets (each target's size and GL format) and its depth
-// buffer, with a framebuffer over them, owned by the node between frames.
+// Textures shaped like a node's targets (each target's size and GL format) and, if it has one,
+// its depth buffer, with a framebuffer over them, owned by the node between frames.
 class CachedTargets {
  public:
   static constexpr uint32_t kMaxTargets = 8;
@@ -170,11 +152,11 @@ class CachedTargets {
   // (Re)creates the textures when the context, a size or a format changed. Returns true when
   // it did, so whatever they held is gone (key is reset to 0).
   bool ensure(uint32_t gl_generation, const aq_image* targets, uint32_t count,
-              const aq_image& depth) {
+              const aq_image* depth) {
     Shape shape;
     shape.count = std::min(count, kMaxTargets);
     for (uint32_t i = 0; i < shape.count; ++i) shape.targets[i] = describe(targets[i]);
-    shape.depth = describe(depth);
+    if (depth != nullptr) shape.depth = describe(*depth);
     if (gl_generation == generation_ && shape == shape_) return false;
     if (gl_generation != generation_) {
       for (auto& texture : colour_) texture.forget();  // names of an old context mean nothing
@@ -191,9 +173,13 @@ class CachedTargets {
     }
     for (uint32_t i = shape.count; i < kMaxTargets; ++i) colour_[i].reset();
     glNamedFramebufferDrawBuffers(framebuffer, static_cast<GLsizei>(shape.count), buffers);
-    glTextureStorage2D(depth_.create(), 1, shape.depth.internal_format, shape.depth.width,
-                       shape.depth.height);
-    glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+    if (depth != nullptr) {
+      glTextureStorage2D(depth_.create(), 1, shape.depth.internal_format, shape.depth.width,
+                         shape.depth.height);
+      glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+    } else {
+      depth_.reset();
+    }
     generation_ = gl_generation;
     shape_ = shape;
     key = 0;
@@ -214,11 +200,11 @@ class CachedTargets {
   }
 
   // Copies the cached content into the targets and depth buffer ensure() was shaped after.
-  void copy_to(const aq_image* targets, uint32_t count, const aq_image& depth) const {
-    copy_rect_to(targets, count, depth, PixelRect{0, 0, depth.width, depth.height});
+  void copy_to(const aq_image* targets, uint32_t count, const aq_image* depth) const {
+    copy_rect_to(targets, count, depth, PixelRect{0, 0, targets[0].width, targets[0].height});
   }
   // The same for the pixels of `rect` only (targets and depth buffer of one size).
-  void copy_rect_to(const aq_image* targets, uint32_t count, const aq_image& depth,
+  void copy_rect_to(const aq_image* targets, uint32_t count, const aq_image* depth,
                     const PixelRect& rect) const {
     const int w = rect.x1 - rect.x0, h = rect.y1 - rect.y0;
     if (w <= 0 || h <= 0) return;
@@ -226,8 +212,10 @@ class CachedTargets {
       glCopyImageSubData(colour_[i].get(), GL_TEXTURE_2D, 0, rect.x0, rect.y0, 0,
                          targets[i].texture, GL_TEXTURE_2D, 0, rect.x0, rect.y0, 0, w, h, 1);
     }
-    glCopyImageSubData(depth_.get(), GL_TEXTURE_2D, 0, rect.x0, rect.y0, 0, depth.texture,
-                       GL_TEXTURE_2D, 0, rect.x0, rect.y0, 0, w, h, 1);
+    if (depth != nullptr && depth_) {
+      glCopyImageSubData(depth_.get(), GL_TEXTURE_2D, 0, rect.x0, rect.y0, 0, depth->texture,
+                         GL_TEXTURE_2D, 0, rect.x0, rect.y0, 0, w, h, 1);
+    }
   }
 
   uint64_t key = 0;  // what the cached content was drawn from; 0: nothing yet
@@ -301,7 +289,7 @@ class DrawnOverLayer {
   // outputs are as it left them (`outputs_kept`, the host's word) over the same layer, else
   // everywhere. Until record(), nothing is known about the outputs.
   void restore(const CachedTargets& layer, const aq_image* targets, uint32_t count,
-               const aq_image& depth, bool outputs_kept) {
+               const aq_image* depth, bool outputs_kept) {
     if (outputs_kept && valid_ && layer_key_ == layer.key &&
         layer_textures_ == layer.textures_made()) {
       for (const PixelRect& rect : moving_) layer.copy_rect_to(targets, count, depth, rect);
@@ -311,13 +299,15 @@ class DrawnOverLayer {
     valid_ = false;
   }
 
-  // After the moving meshes (those not `unchanged`) were drawn with `view_projection`.
-  void record(const CachedTargets& layer, const aq_scene& scene, const std::vector<bool>& unchanged,
-              const float* view_projection, int width, int height) {
+  // After the moving meshes (those not `unchanged`) were drawn with `view_projection`;
+  // `world_boxes` are the scene's meshes' (view_bounds::MeshBoxes).
+  void record(const CachedTargets& layer, const std::vector<view_bounds::Box>& world_boxes,
+              const std::vector<bool>& unchanged, const glm::dmat4& view_projection, int width,
+              int height) {
     moving_.clear();
-    for (uint32_t i = 0; i < scene.mesh_count && i < unchanged.size(); ++i) {
+    for (size_t i = 0; i < world_boxes.size() && i < unchanged.size(); ++i) {
       if (!unchanged[i])
-        moving_.push_back(covered_pixels(scene.meshes[i], view_projection, width, height));
+        moving_.push_back(covered_pixels(world_boxes[i], view_projection, width, height));
     }
     layer_key_ = layer.key;
     layer_textures_ = layer.textures_made();
