@@ -17,8 +17,8 @@
 #include <cstdio>
 #include <string>
 
-#include "canvas_view.h"
 #include "pigment_shaders.h"
+#include "pigment_shared.h"
 
 namespace {
 
@@ -52,19 +52,18 @@ constexpr aq_param_desc kParams[] = {
     aq::enum_param("anchoring", "screen|object", 0,
                    "screen: a dynamic canvas following the camera; object: turbulence and grain "
                    "fixed on the geometry (needs `position`)"),
-    aq::float_param("turbulence_weight", 0.3, 0.0, 4.0,
-                    "d = 1 + weight · n for the low-frequency turbulence; 0 disables it"),
+    pigment::kWeightParams[0],
     aq::float_param("turbulence_frequency", 3.0, 0.01, 1000.0,
                     "procedural turbulence cells per image height (object: per world_scale)"),
-    aq::float_param("grain_weight", 0.2, 0.0, 4.0, "weight of the pigment dispersion"),
+    pigment::kWeightParams[1],
     aq::float_param("grain_frequency", 360.0, 0.01, 10000.0,
                     "procedural dispersion cells per image height (object: per world_scale)"),
-    aq::float_param("paper_weight", 0.2, 0.0, 4.0, "weight of the paper grain"),
+    pigment::kWeightParams[2],
     aq::float_param("paper_frequency", 100.0, 0.01, 10000.0,
                     "procedural paper cells per image height (always on the canvas)"),
     aq::float_param("world_scale", 1.0, 0.001, 1e6, "object anchoring: world units per unit", 0.0,
                     "log"),
-    aq::int_param("seed", 0, 0, 1 << 20, "independent procedural textures per seed"),
+    pigment::kSeedParam,
     aq::bool_param("cache_canvas", true,
                    "screen anchoring: keep the procedural densities of the view in a texture "
                    "while the camera stays (same image, the noise computed once); off: computed "

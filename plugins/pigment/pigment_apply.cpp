@@ -10,6 +10,7 @@
 #include <string>
 
 #include "pigment_shaders.h"
+#include "pigment_shared.h"
 
 namespace {
 
@@ -24,11 +25,8 @@ constexpr aq_port_desc kOutputs[] = {
     aq::image_port("image", "colour with pigment density", AQ_PORT_HDR8)};
 enum Input : uint32_t { kImage, kDensity };
 enum Param : uint32_t { kTurbulenceWeight, kGrainWeight, kPaperWeight };
-constexpr aq_param_desc kParams[] = {
-    aq::float_param("turbulence_weight", 0.3, 0.0, 4.0,
-                    "d = 1 + weight · n for the low-frequency turbulence; 0 disables it"),
-    aq::float_param("grain_weight", 0.2, 0.0, 4.0, "weight of the pigment dispersion"),
-    aq::float_param("paper_weight", 0.2, 0.0, 4.0, "weight of the paper grain")};
+constexpr aq_param_desc kParams[] = {pigment::kWeightParams[0], pigment::kWeightParams[1],
+                                     pigment::kWeightParams[2]};
 
 struct PigmentApply {
   int process(aq::Context& ctx) {

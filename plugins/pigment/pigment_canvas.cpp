@@ -11,14 +11,14 @@
 // its output each frame instead of computing the noise again — or does nothing when the host
 // hands it back the output it filled last time, untouched (aq_host::output_kept).
 #include <aquarelle/plugin.hpp>
-#include <aquarelle/sdk/gl_raii.hpp>
+#include <aquarelle/sdk/static_layer.hpp>
 
 #include <array>
 #include <cstdio>
 #include <string>
 
-#include "canvas_view.h"
 #include "pigment_shaders.h"
+#include "pigment_shared.h"
 
 namespace {
 
@@ -37,7 +37,7 @@ constexpr aq_param_desc kParams[] = {
                     "procedural dispersion cells per image height"),
     aq::float_param("paper_frequency", 100.0, 0.01, 10000.0,
                     "procedural paper cells per image height"),
-    aq::int_param("seed", 0, 0, 1 << 20, "independent procedural textures per seed"),
+    pigment::kSeedParam,
     aq::bool_param("cache", true,
                    "keep the densities while the view, size, parameters and connected images "
                    "stay (the same image; off: computed every frame)")};
@@ -60,43 +60,51 @@ struct PigmentCanvas {
                           static_cast<float>(ctx.param_float(kPaperFrequency))};
     params.seed = ctx.param_int(kSeed);
 
-    std::string key = cache_key(ctx, out, canvas, params, defines);
+    // 0: the densities cannot be kept (cache off, an input of unknown content).
+    const uint64_t key = cache_key(ctx, out, canvas, params, defines);
     // The host handed back the very texture this call's densities went into last time.
-    if (!key.empty() && ctx.output_kept(0) && drawn_key_ == key) return AQ_OK;
-    drawn_key_.clear();
-    if (!key.empty() && cache_.texture && cache_.generation == ctx.raw()->gl_generation &&
-        cache_.key == key) {
-      glCopyImageSubData(cache_.texture.get(), GL_TEXTURE_2D, 0, 0, 0, 0, out.texture,
-                         GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
-      drawn_key_ = key;
-      return AQ_OK;
-    }
-
-    const std::string text = defines + shaders::pigment_frag.text;
-    const GLuint program =
-        ctx.program(aq_shader_source{shaders::pigment_frag.name, text.c_str(), nullptr});
-    if (program == 0) return AQ_ERROR;
+    if (key != 0 && ctx.output_kept(0) && drawn_ == key) return AQ_OK;
+    drawn_ = 0;
     aq_image stand_in;  // names a complete texture for the samplers pass 1 does not read
     if (!ctx.scratch(1, 1, AQ_FORMAT_RGBA8, &stand_in)) return AQ_ERROR;
-    glUseProgram(program);
-    pigment::set_canvas_uniforms(program, params, static_cast<double>(width) / height, canvas);
-    pigment::bind_density_textures(ctx, program, kTurbulence, stand_in.texture);
-    aq::bind_texture(program, "u_image", 0, stand_in);
-    aq::bind_texture(program, "u_position", 4, stand_in);
+    const std::string text = defines + shaders::pigment_frag.text;
+    const aq_shader_source fragment{shaders::pigment_frag.name, text.c_str(), nullptr};
+    // Binds the program and what pass 1 reads; the caller binds the target and draws.
+    auto prepare = [&]() -> bool {
+      const GLuint program = ctx.program(fragment);
+      if (program == 0) return false;
+      glUseProgram(program);
+      pigment::set_canvas_uniforms(program, params, static_cast<double>(width) / height, canvas);
+      pigment::bind_density_textures(ctx, program, kTurbulence, stand_in.texture);
+      aq::bind_texture(program, "u_image", 0, stand_in);
+      aq::bind_texture(program, "u_position", 4, stand_in);
+      return true;
+    };
+    if (key != 0) kept_.ensure(ctx.raw()->gl_generation, &out, 1, nullptr);
+    if (key != 0 && kept_.key != key && kept_.bind()) {
+      if (!prepare()) return AQ_ERROR;
+      ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+      aq::unbind_textures(5);
+      kept_.key = key;
+    }
+    if (key != 0 && kept_.key == key) {
+      kept_.copy_to(&out, 1, nullptr);
+      drawn_ = key;
+      return AQ_OK;
+    }
+    // Not kept (cache off, an input of unknown content): straight into the output.
+    if (!prepare()) return AQ_ERROR;
     const bool drawn = ctx.draw(out);
     aq::unbind_textures(5);
-    if (!drawn) return AQ_ERROR;
-    if (!key.empty()) keep(ctx, out, key);
-    drawn_key_ = key;
-    return AQ_OK;
+    return drawn ? AQ_OK : AQ_ERROR;
   }
 
  private:
-  // Everything the densities depend on; empty when they cannot be kept (cache off, or a
+  // A hash of everything the densities depend on; 0 when they cannot be kept (cache off, or a
   // connected image whose content the host does not identify).
-  static std::string cache_key(aq::Context& ctx, const aq_image& out, const pigment::Canvas& canvas,
-                               const pigment::DensityParams& params, const std::string& defines) {
-    if (!ctx.param_bool(kCache)) return {};
+  static uint64_t cache_key(aq::Context& ctx, const aq_image& out, const pigment::Canvas& canvas,
+                            const pigment::DensityParams& params, const std::string& defines) {
+    if (!ctx.param_bool(kCache)) return 0;
     char view[320];
     std::snprintf(view, sizeof(view), "%dx%d f%u %a %a %a %a %a %a %lld|", out.width, out.height,
                   out.format, canvas.pan_x, canvas.pan_y, canvas.zoom,
@@ -107,40 +115,16 @@ struct PigmentCanvas {
     for (uint32_t i = 0; i < 3; ++i) {
       if (!ctx.connected(kTurbulence + i)) continue;
       const uint64_t input = ctx.input_key(kTurbulence + i);
-      if (input == 0) return {};
+      if (input == 0) return 0;
       key += std::to_string(i) + ":" + std::to_string(input) + "|";
     }
-    return key;
+    aq::Fnv1a hashed;
+    hashed.mix(key.data(), key.size());
+    return hashed.value != 0 ? hashed.value : 1;
   }
 
-  // Copies the output into the kept texture (same GL format, so the copy is exact).
-  void keep(aq::Context& ctx, const aq_image& out, const std::string& key) {
-    GLint internal_format = 0;
-    glGetTextureLevelParameteriv(out.texture, 0, GL_TEXTURE_INTERNAL_FORMAT, &internal_format);
-    const uint32_t generation = ctx.raw()->gl_generation;
-    if (cache_.generation != generation) cache_.texture.forget();  // the old context's name
-    if (!cache_.texture || cache_.width != out.width || cache_.height != out.height ||
-        cache_.internal_format != internal_format) {
-      glTextureStorage2D(cache_.texture.create(), 1, static_cast<GLenum>(internal_format),
-                         out.width, out.height);
-      cache_.width = out.width;
-      cache_.height = out.height;
-      cache_.internal_format = internal_format;
-    }
-    glCopyImageSubData(out.texture, GL_TEXTURE_2D, 0, 0, 0, 0, cache_.texture.get(), GL_TEXTURE_2D,
-                       0, 0, 0, 0, out.width, out.height, 1);
-    cache_.generation = generation;
-    cache_.key = key;
-  }
-
-  struct Kept {
-    aq::gl::Texture texture;
-    uint32_t generation = 0;
-    int width = 0, height = 0;
-    GLint internal_format = 0;
-    std::string key;
-  } cache_;
-  std::string drawn_key_;  // what the output of the last call holds (empty: unknown)
+  aq::CachedTargets kept_;  // the densities of the key kept_.key
+  uint64_t drawn_ = 0;      // the key of what the last call's output holds (0: unknown)
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
-// The dynamic canvas of screen anchoring (Cunzi et al. 2003), shared by `pigment` and
-// `pigment_canvas`: the view's pan and zoom from the camera, the uniforms of pigment.frag that
-// the canvas densities depend on, and the density textures' samplers.
+// What the pigment plugin's three nodes share: the dynamic canvas of screen anchoring (Cunzi et
+// al. 2003; `pigment` and `pigment_canvas`): the view's pan and zoom from the camera, the
+// uniforms of pigment.frag that the canvas densities depend on and the density textures'
+// samplers; and the descriptions of the ports and parameters they have in common.
 #pragma once
 
 #include <aquarelle/plugin.hpp>
@@ -18,6 +19,16 @@ constexpr double kPi = 3.14159265358979323846;
 // The density image inputs of `pigment` and `pigment_canvas`, in this order. Density textures
 // in [0, 1]: 8 bits a channel are enough (a density step of 1/255 moves a colour by at most
 // weight/510), so the host may store them as RGBA8 (README, "Cost").
+// The density weights of `pigment` and `pigment_apply` (turbulence, grain, paper), and the
+// procedural textures' seed of `pigment` and `pigment_canvas`.
+inline constexpr aq_param_desc kWeightParams[3] = {
+    aq::float_param("turbulence_weight", 0.3, 0.0, 4.0,
+                    "d = 1 + weight · n for the low-frequency turbulence; 0 disables it"),
+    aq::float_param("grain_weight", 0.2, 0.0, 4.0, "weight of the pigment dispersion"),
+    aq::float_param("paper_weight", 0.2, 0.0, 4.0, "weight of the paper grain")};
+inline constexpr aq_param_desc kSeedParam =
+    aq::int_param("seed", 0, 0, 1 << 20, "independent procedural textures per seed");
+
 inline constexpr aq_port_desc kDensityPorts[3] = {
     aq_port_desc{"turbulence", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
                  "low-frequency density in red (0.5 = none); unconnected: fBm (Perlin)"},
