@@ -181,21 +181,8 @@ TEST(EpilogueFusion, EdgeRunsInsideTheWobbleAndInsideAFusedChain) {
 // The flagship's order: pigment_apply (its density bound by the host) joins edge in the wobble's
 // draw; fused equals unfused within 1e-6 in float, and the canvas runs as a node of its own.
 TEST(EpilogueFusion, PigmentApplyJoinsEdgeInsideTheWobble) {
-  const std::string graph = R"({
-    "aquarelle": 1,
-    "nodes": {
-      "input": {"type": "image_input", "params": {"name": "image"}},
-      "cells": {"type": "noise", "params": {"type": "worley", "scale": 8, "seed": 3}},
-      "canvas": {"type": "pigment_canvas", "params": {"grain_frequency": 32.0}},
-      "wobble": {"type": "wobble", "params": {"strength": 6.0}, "inputs": {"image": "input.image"}},
-      "edge": {"type": "edge", "params": {"threshold": 0.05, "softness": 0.2, "factor": 0.5},
-               "inputs": {"image": "wobble.image", "source": "cells.image"}},
-      "pigment": {"type": "pigment_apply", "params": {"turbulence_weight": 0.8},
-                  "inputs": {"image": "edge.image", "density": "canvas.density"}},
-      "tint": {"type": "tint", "params": {"amount": 0.1}, "inputs": {"image": "pigment.image"}}
-    },
-    "output": "tint.image"
-  })";
+  const std::string graph = wobble_edge_pigment_graph(
+      {{"turbulence_weight", 0.8}}, "tint", {{"type", "tint"}, {"params", {{"amount", 0.1}}}});
   const Plan plan = plan_of(graph);
   const PlannedPass* pass = plan.pass_of("tint");
   ASSERT_NE(pass, nullptr);

@@ -271,27 +271,18 @@ TEST(Hdr8, BlurDecodesEveryTap) {
 // edge and pigment_apply as its epilogue and encodes the result; in a proxy render the host's
 // fused pass (edge and pigment_apply) encodes it. Either way the blur decodes every tap: within
 // twice the bound of the brightest texel, as for a blur alone.
-const char* kFlagshipChain = R"({
-  "aquarelle": 1,
-  "nodes": {
-    "input": {"type": "image_input", "params": {"name": "image"}},
-    "cells": {"type": "noise", "params": {"type": "worley", "scale": 8, "seed": 3}},
-    "canvas": {"type": "pigment_canvas", "params": {"grain_frequency": 32.0}},
-    "wobble": {"type": "wobble", "params": {"strength": 6.0}, "inputs": {"image": "input.image"}},
-    "edge": {"type": "edge", "params": {"threshold": 0.05, "softness": 0.2, "factor": 0.5},
-             "inputs": {"image": "wobble.image", "source": "cells.image"}},
-    "pigment": {"type": "pigment_apply",
-                "inputs": {"image": "edge.image", "density": "canvas.density"}},
-    "blur": {"type": "blur", "params": {"sigma": 2.0, "depth_weight": 0.5, "radial_weight": 0.35},
-             "inputs": {"image": "pigment.image"}}
-  },
-  "output": "blur.image"
-})";
+std::string flagship_chain() {
+  return wobble_edge_pigment_graph(
+      nlohmann::json::object(), "blur",
+      {{"type", "blur"},
+       {"params", {{"sigma", 2.0}, {"depth_weight", 0.5}, {"radial_weight", 0.35}}}});
+}
 
 TEST(Hdr8, TheEpilogueAndTheFusedPassEncodeWhatTheyWrite) {
   const ImageF light = hdr_image(64, 48, false);
+  const std::string graph = flagship_chain();
   for (const char* quality : {"final", "preview"}) {
-    ReadResult read = read_graph_text(kFlagshipChain, registry(), "flagship chain");
+    ReadResult read = read_graph_text(graph, registry(), "flagship chain");
     read.graph.settings.quality = quality;
     const Plan plan = plan_of(read, "half");
     EXPECT_EQ(stored(plan, "pigment"), uint32_t{AQ_FORMAT_RGBA8_HDR}) << quality;
@@ -299,8 +290,8 @@ TEST(Hdr8, TheEpilogueAndTheFusedPassEncodeWhatTheyWrite) {
     ASSERT_NE(pass, nullptr);
     EXPECT_EQ(pass->epilogue, std::string(quality) == "final") << quality;
     EXPECT_GE(pass->chain.size(), 2u) << quality;
-    auto on = render(kFlagshipChain, light, true, true, quality);
-    auto off = render(kFlagshipChain, light, false, true, quality);
+    auto on = render(graph.c_str(), light, true, true, quality);
+    auto off = render(graph.c_str(), light, false, true, quality);
     ASSERT_TRUE(on.ok()) << on.message();
     ASSERT_TRUE(off.ok()) << off.message();
     const Comparison result = compare(*on, *off);

@@ -13,7 +13,6 @@
 
 #include <aquarelle/core/evaluator.h>
 #include <aquarelle/core/gl_context.h>
-#include <aquarelle/core/graph_io.h>
 
 #include "support/harness.h"
 
@@ -274,16 +273,11 @@ TEST(GBuffer, ANewInstanceStartsFromScratchAfterTheOldOneIsGone) {
                             {"params", {{"cache_static", cache}}},
                             {"inputs", {{"scene", "scene.scene"}}}}}}},
                         {"output", "gbuf.normal"}};
-    auto read = aq::read_graph_text(g.dump(), aq::test::registry(), "gbuffer test");
-    EXPECT_TRUE(read.ok());
-    read.graph.settings.width = 96;
-    read.graph.settings.height = 54;
-    aq::EvalOptions options;
-    options.frame = frame;
-    auto out = e.evaluate(read.graph, options);
-    EXPECT_TRUE(out.ok()) << (out.ok() ? "" : out.message());
-    auto pixels = e.read_back(*out);
-    EXPECT_TRUE(pixels.ok());
+    auto pixels = aq::test::evaluate_text(e, g.dump(), frame, [](aq::Graph& graph) {
+      graph.settings.width = 96;
+      graph.settings.height = 54;
+    });
+    EXPECT_TRUE(pixels.ok()) << pixels.message();
     return pixels.ok() ? *pixels : ImageF();
   };
   for (int frame = 1; frame <= 4; ++frame) {

@@ -6,7 +6,6 @@
 
 #include <aquarelle/core/evaluator.h>
 #include <aquarelle/core/gl_context.h>
-#include <aquarelle/core/graph_io.h>
 
 #include "aquarelle/reference/pigment.h"
 #include "support/harness.h"
@@ -129,26 +128,22 @@ TEST(PigmentCanvas, KeptWhileItsViewAndImagesStayRedrawnWhenEitherChanges) {
   aq::Evaluator kept(**context, aq::test::registry());
   aq::Evaluator fresh(**context, aq::test::registry());
   auto render = [&](aq::Evaluator& evaluator, double target_x, int seed, bool cache, int frame) {
-    auto read = aq::read_graph_text(scene_canvas_graph(target_x, seed), aq::test::registry(),
-                                    "canvas test");
-    EXPECT_TRUE(read.ok());
-    read.graph.settings.width = 64;
-    read.graph.settings.height = 48;
-    read.graph.settings.precision = "float";
-    read.graph.nodes["canvas"].params["cache"] = cache;
-    aq::EvalOptions options;
-    options.frame = frame;
-    auto out = evaluator.evaluate(read.graph, options);
-    EXPECT_TRUE(out.ok()) << (out.ok() ? "" : out.message());
-    auto pixels = evaluator.read_back(*out);
-    EXPECT_TRUE(pixels.ok());
+    auto pixels = aq::test::evaluate_text(evaluator, scene_canvas_graph(target_x, seed), frame,
+                                          [cache](aq::Graph& graph) {
+                                            graph.settings.width = 64;
+                                            graph.settings.height = 48;
+                                            graph.settings.precision = "float";
+                                            graph.nodes["canvas"].params["cache"] = cache;
+                                          });
+    EXPECT_TRUE(pixels.ok()) << pixels.message();
     return pixels.ok() ? *pixels : ImageF();
   };
   struct Step {
     double target_x;
     int seed;
   };
-  const Step steps[] = {{0.0, 3}, {0.0, 3}, {0.0, 3}, {0.6, 3}, {0.6, 3}, {0.6, 4}, {0.6, 4}, {0.0, 4}, {0.0, 3}};
+  const Step steps[] = {{0.0, 3}, {0.0, 3}, {0.0, 3}, {0.6, 3}, {0.6, 3},
+                        {0.6, 4}, {0.6, 4}, {0.0, 4}, {0.0, 3}};
   ImageF previous;
   int frame = 1;
   for (const Step& step : steps) {

@@ -281,17 +281,14 @@ TEST(Pigment, CachedCanvasEqualsTheCanvasComputedEachFrame) {
   aq::Evaluator cached(**context, aq::test::registry());
   aq::Evaluator fresh(**context, aq::test::registry());
   auto render = [&](aq::Evaluator& evaluator, double angle, bool cache, int frame) {
-    auto read = aq::read_graph_text(canvas_graph(angle), aq::test::registry(), "pigment test");
-    EXPECT_TRUE(read.ok());
-    read.graph.settings.precision = "float";
-    read.graph.nodes["pigment"].params["cache_canvas"] = cache;
-    aq::EvalOptions options;
-    options.frame = frame;
-    options.images = &images;
-    auto out = evaluator.evaluate(read.graph, options);
-    EXPECT_TRUE(out.ok()) << (out.ok() ? "" : out.message());
-    auto pixels = evaluator.read_back(*out);
-    EXPECT_TRUE(pixels.ok());
+    auto pixels = aq::test::evaluate_text(
+        evaluator, canvas_graph(angle), frame,
+        [cache](aq::Graph& graph) {
+          graph.settings.precision = "float";
+          graph.nodes["pigment"].params["cache_canvas"] = cache;
+        },
+        &images);
+    EXPECT_TRUE(pixels.ok()) << pixels.message();
     return pixels.ok() ? *pixels : ImageF();
   };
   int frame = 1;

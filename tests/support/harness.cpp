@@ -236,6 +236,46 @@ ImageF gradient_image(int width, int height) {
   return image;
 }
 
+Result<ImageF> evaluate_text(Evaluator& evaluator, const std::string& json_text, int frame,
+                             const std::function<void(Graph&)>& adjust,
+                             const std::map<std::string, ImageF>* images) {
+  ReadResult read = read_graph_text(json_text, registry(), "test graph");
+  if (!read.ok()) return make_error(format_problems(read.problems));
+  if (adjust) adjust(read.graph);
+  EvalOptions options;
+  options.frame = frame;
+  options.images = images;
+  auto out = evaluator.evaluate(read.graph, options);
+  if (!out.ok()) return out.error();
+  return evaluator.read_back(*out);
+}
+
+std::string wobble_edge_pigment_graph(const nlohmann::json& pigment_params,
+                                      const std::string& tail_id, nlohmann::json tail) {
+  tail["inputs"]["image"] = "pigment.image";
+  nlohmann::json graph = {
+      {"aquarelle", 1},
+      {"nodes",
+       {{"input", {{"type", "image_input"}, {"params", {{"name", "image"}}}}},
+        {"cells", {{"type", "noise"}, {"params", {{"type", "worley"}, {"scale", 8}, {"seed", 3}}}}},
+        {"canvas", {{"type", "pigment_canvas"}, {"params", {{"grain_frequency", 32.0}}}}},
+        {"wobble",
+         {{"type", "wobble"},
+          {"params", {{"strength", 6.0}}},
+          {"inputs", {{"image", "input.image"}}}}},
+        {"edge",
+         {{"type", "edge"},
+          {"params", {{"threshold", 0.05}, {"softness", 0.2}, {"factor", 0.5}}},
+          {"inputs", {{"image", "wobble.image"}, {"source", "cells.image"}}}}},
+        {"pigment",
+         {{"type", "pigment_apply"},
+          {"params", pigment_params},
+          {"inputs", {{"image", "edge.image"}, {"density", "canvas.density"}}}}},
+        {tail_id, tail}}},
+      {"output", tail_id + ".image"}};
+  return graph.dump();
+}
+
 std::pair<NodeType, std::string> describe_node(const aq_port_desc* input,
                                                const aq_port_desc* output, uint32_t flags,
                                                const aq_pointwise_desc* pointwise) {

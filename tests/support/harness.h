@@ -16,9 +16,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
+
+namespace aq {
+class Evaluator;
+}
 
 namespace aq::test {
 
@@ -66,6 +71,19 @@ ImageF gradient_image(int width, int height);  // r = x, g = y, b = 1 - x, a = 1
 ImageF random_image(int width, int height, unsigned seed, float lo = 0.0f, float hi = 1.0f);
 ImageF constant_image(int width, int height, float r, float g, float b, float a = 1.0f);
 ImageF checker_image(int width, int height, int cell);
+
+// Evaluates a graph given as JSON text at `frame` with an evaluator of the test's own (node
+// instances and what they keep stay between calls, unlike render_graph's), after `adjust` may
+// change the graph read (settings, parameters), and reads the output back.
+Result<ImageF> evaluate_text(Evaluator& evaluator, const std::string& json_text, int frame,
+                             const std::function<void(Graph&)>& adjust = {},
+                             const std::map<std::string, ImageF>* images = nullptr);
+
+// The flagship's chain on the image input "image": wobble → edge (detecting on Worley cells) →
+// pigment_apply (density from a pigment_canvas, `pigment_params`) → the node `tail_id`
+// (`tail`, a node whose `image` input the chain feeds), which is the output.
+std::string wobble_edge_pigment_graph(const nlohmann::json& pigment_params,
+                                      const std::string& tail_id, nlohmann::json tail);
 
 // Path of a file in the source tree (e.g. "graphs/tint.json").
 std::string source_path(const std::string& relative);
