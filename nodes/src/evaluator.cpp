@@ -36,6 +36,7 @@ struct FusedChain {
     std::vector<aq_input_value> inputs;
     std::vector<TextureRef> input_refs;  // held: extra inputs are read when the chain runs
     std::vector<uint64_t> input_keys;
+    std::vector<DamageSource> sources;
     CallState call;
     aq_process_ctx ctx{};
   };
@@ -49,6 +50,7 @@ struct FusedChain {
     std::vector<aq_input_value> inputs;
     std::vector<TextureRef> input_refs;  // held: nothing reuses them before the node runs
     std::vector<uint64_t> input_keys;
+    std::vector<DamageSource> sources;
     std::vector<std::vector<aq_input_value>> links;
     std::vector<aq_input_list> lists;
     CallState call;
@@ -165,6 +167,7 @@ struct GatheredInputs {
   std::vector<aq_input_value> values;
   std::vector<uint64_t> keys;      // per input (aq_process_ctx::input_keys); 0 unconnected
   std::vector<TextureRef> images;  // per input; empty for scenes and unconnected inputs
+  std::vector<DamageSource> sources;  // per input (aq_host::input_damage)
   // Every link of each input, for nodes with an AQ_PORT_MULTI port (ctx.input_lists); empty
   // otherwise. `lists` points into `links` (and into `values` for single-link inputs).
   std::vector<std::vector<aq_input_value>> links;
@@ -179,6 +182,7 @@ Result<GatheredInputs> gather_inputs(const std::string& id, const Node& node, co
   gathered.values.resize(type.inputs.size());
   gathered.keys.assign(type.inputs.size(), 0);
   gathered.images.resize(type.inputs.size());
+  gathered.sources.resize(type.inputs.size());
   for (size_t i = 0; i < type.inputs.size(); ++i) {
     const PortInfo& port = type.inputs[i];
     aq_input_value& in = gathered.values[i];
@@ -228,6 +232,7 @@ Result<GatheredInputs> gather_inputs(const std::string& id, const Node& node, co
     *key = hash_value(*key, source.key);
     *key = hash_string(*key, link->second.port);
     gathered.keys[i] = hash_string(hash_value(kHashSeed, source.key), link->second.port);
+    gathered.sources[i] = DamageSource{&source, static_cast<uint32_t>(index), link->second.port};
     in.connected = 1;
     if (port.type == AQ_PORT_IMAGE) {
       gathered.images[i] = source.images[index];
@@ -249,6 +254,30 @@ Result<GatheredInputs> gather_inputs(const std::string& id, const Node& node, co
   return gathered;
 }
 
+// Where a fused chain's stages may change its result through their other inputs (each read
+// within the stage's reach, aq_pointwise_desc::reach) or their own parameters: what the
+// producer must redraw besides its own damage (aq_host::epilogue_damage).
+Region epilogue_damage_of(const FusedChain& chain, int width, int height) {
+  Region damage;
+  for (const auto& stage : chain.stages) {
+    const NodeState& state = *stage->call.state;
+    if (!state.seen || state.seen_self_key != stage->call.self_key) return Region::everything();
+    const aq_pointwise_desc& desc = *stage->type->fusable;
+    const bool has_reach = desc.struct_size >= offsetof(aq_pointwise_desc, reach) + sizeof(desc.reach);
+    const int reach = has_reach ? desc.reach : -1;
+    for (uint32_t k = 1; k < stage->inputs.size(); ++k) {
+      if (stage->inputs[k].connected == 0) continue;
+      const aq_image& side = stage->inputs[k].image;
+      const bool same_pixels = side.width == width && side.height == height;
+      const Region changed = input_damage_of(stage->call, k);
+      if (changed.empty()) continue;
+      if (reach < 0 || changed.all() || !same_pixels) return Region::everything();
+      damage.add(changed.dilated(reach, reach, width, height));
+    }
+  }
+  return damage;
+}
+
 }  // namespace
 
 struct Evaluator::Impl {
@@ -261,6 +290,10 @@ struct Evaluator::Impl {
   ~Impl() { destroy_all(); }
 
   void destroy_state(NodeState& state) {
+    if (state.type != nullptr) {
+      for (uint32_t o = 0; o < state.type->outputs.size(); ++o)
+        host.pool().unclaim(output_writer(state, o));
+    }
     state.images.clear();
     state.scenes.clear();
     if (state.instance != nullptr && state.type != nullptr && state.type->desc != nullptr) {
@@ -268,6 +301,7 @@ struct Evaluator::Impl {
     }
     state.instance = nullptr;
     state.valid = false;
+    state.seen = false;
     state.writer_tag = 0;  // a new instance gets a new tag (aq_host::output_kept)
   }
   void destroy_all() {
@@ -290,6 +324,7 @@ struct Evaluator::Impl {
     call.epilogue = &stages;
     call.epilogue_draws = 0;
     call.error.clear();
+    begin_damage_call(call, producer.type->outputs.size());
     for (auto& image : state.images) image.reset();
     for (auto& scene : state.scenes) scene = nullptr;
     const int status = producer.type->desc->process(state.instance, &producer.ctx);
@@ -499,17 +534,24 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       }
     }
     std::vector<aq_param_value>& params = param_values.params;
+    uint64_t self_key = key;  // without the inputs (damage tracking)
     auto gathered = gather_inputs(id, node, *type, impl_->states, &key);
     if (!gathered.ok()) return gathered.error();
     std::vector<aq_input_value>& inputs = gathered->values;
     std::vector<TextureRef>& input_refs = gathered->images;
-    key = hash_value(key, settings.width);
-    key = hash_value(key, settings.height);
-    key = hash_value(key, format);
-    key = hash_value(key, quality_index(settings.quality));
-    if (type->time_dependent()) key = hash_value(key, options.frame);
-    for (uint32_t stored : planned.stored_formats) key = hash_value(key, stored);
-    key = builtin_key(*type, params, options, key);
+    // Which inputs are connected is the node's own business too: a node reads (and asks the
+    // damage of) only those it has.
+    for (const aq_input_value& value : inputs) self_key = hash_value(self_key, value.connected);
+    for (uint64_t* k : {&key, &self_key}) {
+      *k = hash_value(*k, settings.width);
+      *k = hash_value(*k, settings.height);
+      *k = hash_value(*k, format);
+      *k = hash_value(*k, quality_index(settings.quality));
+      if (type->time_dependent()) *k = hash_value(*k, options.frame);
+      for (uint32_t stored : planned.stored_formats) *k = hash_value(*k, stored);
+      *k = builtin_key(*type, params, options, *k);
+    }
+    state.self_key = self_key;
 
     // Fusion: a deferred node only records its stage; the node reading it runs the chain.
     std::shared_ptr<FusedChain> chain;
@@ -558,6 +600,10 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       if (!producer.lists.empty()) producer.ctx.input_lists = producer.lists.data();
       producer.input_keys = gathered->keys;
       producer.ctx.input_keys = producer.input_keys.data();
+      producer.sources = gathered->sources;
+      producer.call.sources = &producer.sources;
+      producer.call.input_keys = &producer.input_keys;
+      producer.call.self_key = self_key;
     } else if (is_deferred ||
                ((chain || tail_into_resample) && !(state.valid && state.key == key))) {
       if (!chain) {
@@ -589,6 +635,10 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
                        stage->params, settings, format, time, options.frame, working);
       stage->input_keys = gathered->keys;
       stage->ctx.input_keys = stage->input_keys.data();
+      stage->sources = gathered->sources;
+      stage->call.sources = &stage->sources;
+      stage->call.input_keys = &stage->input_keys;
+      stage->call.self_key = self_key;
       chain->stages.push_back(std::move(stage));
     }
     if (is_deferred) {
@@ -614,7 +664,14 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
         stages.push_back(std::move(fused_stage));
       }
       Result<TextureRef> fused = make_error("no fused pass ran");
+      const uint64_t previous_key = state.key;
       if (chain->producer) {
+        chain->producer->call.epilogue_damage =
+            epilogue_damage_of(*chain, working.width, working.height);
+        // What the producer's kept output holds depends on the epilogue it applied.
+        uint64_t& producer_key = chain->producer->call.self_key;
+        producer_key = hash_string(producer_key, "epilogue");
+        for (const auto& stage : chain->stages) producer_key = hash_string(producer_key, stage->call.node_id);
         fused = impl_->run_producer(*chain->producer, stages, planned.stored_formats, format);
       } else {
         const int width = tail_into_resample ? settings.width : chain->input->image.width;
@@ -637,6 +694,9 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       }
       if (!fused.ok() || !errors.empty()) {
         state.valid = false;
+        state.seen = false;  // what a failed call left in kept outputs is unknown
+        if (chain->producer) chain->producer->state->seen = false;
+        for (auto& stage : chain->stages) stage->call.state->seen = false;
         return make_error(errors.empty() ? "node '" + id + "' (" + type->name +
                                                "), fused pass: " + fused.message()
                                          : errors.substr(0, errors.size() - 1));
@@ -645,9 +705,27 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       state.images[0] = *fused;
       state.key = key;
       state.valid = true;
+      // What each stage saw; the chain's result changed where its producer redrew.
+      for (auto& stage : chain->stages) {
+        NodeState& stage_state = *stage->call.state;
+        finish_damage_call(stage_state, stage->call, stage_state.key, working.width,
+                           working.height);
+      }
+      CallState result_call;
+      if (chain->producer) {
+        FusedChain::Producer& producer = *chain->producer;
+        finish_damage_call(*producer.state, producer.call, producer.state->key, working.width,
+                           working.height);
+        if (!producer.call.declared_damage.empty())
+          result_call.declared_damage.push_back(producer.call.declared_damage[0]);
+      }
+      result_call.input_keys = &state.seen_input_keys;
+      result_call.self_key = state.seen_self_key;
+      finish_damage_call(state, result_call, previous_key, working.width, working.height);
       NodeTiming timing{id, type->name, 0,
                         std::chrono::duration<double, std::milli>(end - start).count(), false};
       if (options.measure_gpu_time) timing.gpu_ms = state.marked_gpu_ms();
+      timing.redrawn = state.redrawn;
       timings_.push_back(timing);
     } else {
       CallState call;
@@ -657,6 +735,11 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       call.input_refs = &input_refs;
       call.stored_formats = &planned.stored_formats;
       call.working_format = format;
+      call.sources = &gathered->sources;
+      call.input_keys = &gathered->keys;
+      call.self_key = self_key;
+      begin_damage_call(call, type->outputs.size());
+      const uint64_t previous_key = state.key;
       aq_process_ctx ctx{};
       fill_process_ctx(ctx, host, context_.generation(), call, inputs, params, settings, format,
                        time, options.frame, working);
@@ -694,6 +777,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       ++run_counts_[id];
       if (status != AQ_OK || !call.error.empty()) {
         state.valid = false;
+        state.seen = false;
         for (auto& image : state.images) image.reset();
         return make_error("node '" + id + "' (" + type->name +
                           "): " + (call.error.empty() ? "failed without a message" : call.error));
@@ -719,6 +803,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
         if (!decoded.ok()) return make_error("node '" + id + "': " + decoded.error().message);
         state.images[o] = *decoded;
       }
+      finish_damage_call(state, call, previous_key, working.width, working.height);
+      timings_.back().redrawn = state.redrawn;
       state.key = key;
       state.valid = true;
     }

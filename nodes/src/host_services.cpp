@@ -48,6 +48,12 @@ HostServices::HostServices(GlContext& context, TexturePool& pool) : context_(con
   host_.draw_fullscreen = &HostServices::draw_fullscreen;
   host_.read_image = &host_read_image;
   host_.output_kept = &HostServices::output_kept;
+  host_.input_damage = &HostServices::input_damage;
+  host_.epilogue_damage = &HostServices::epilogue_damage;
+  host_.set_output_damage = &HostServices::set_output_damage;
+  host_.set_draw_region = &HostServices::set_draw_region;
+  host_.set_output_bounds = &HostServices::set_output_bounds;
+  host_.input_bounds = &HostServices::input_bounds;
   empty_vao_ = gl::make_vertex_array();
   GLuint framebuffer = 0;
   glCreateFramebuffers(1, &framebuffer);  // created, not just named: DSA calls need that
@@ -140,14 +146,17 @@ int HostServices::output_image(void* data, uint32_t index, int32_t width, int32_
   }
   // Tagged with the instance and the output once the instance asked (output_kept), so that
   // it gets the same texture back on its next call and is told it still holds its content.
-  const uint64_t writer =
-      state.writer_tag != 0 ? hash_value(hash_value(kHashSeed, state.writer_tag), index + 1) : 0;
+  const uint64_t writer = output_writer(state, index);
   bool kept = false;
   state.images[index] = call->host->pool_.acquire(width, height, format, writer, &kept);
   if (call->kept_outputs.size() <= index) call->kept_outputs.resize(index + 1, false);
   call->kept_outputs[index] = kept && state.instance != nullptr;
   *out = state.images[index]->image;
   return AQ_OK;
+}
+
+uint64_t output_writer(const NodeState& state, uint32_t index) {
+  return state.writer_tag != 0 ? hash_value(hash_value(kHashSeed, state.writer_tag), index + 1) : 0;
 }
 
 int HostServices::output_kept(void* data, uint32_t index) {
@@ -235,8 +244,145 @@ void HostServices::draw_fullscreen(void* data) {
   auto* call = static_cast<CallState*>(data);
   if (call->epilogue != nullptr && !call->epilogue->empty() && !apply_epilogue(call)) return;
   glBindVertexArray(call->host->empty_vao_.get());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  if (call->draw_region.all()) {
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  } else {
+    // llvmpipe bins a scissored triangle only into the tiles the scissor box touches.
+    glEnable(GL_SCISSOR_TEST);
+    for (const PixelRect& r : call->draw_region.rects()) {
+      glScissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glDisable(GL_SCISSOR_TEST);
+  }
   glBindVertexArray(0);
+}
+
+namespace {
+
+int write_rects(const Region& region, aq_rect* rects, uint32_t capacity) {
+  if (region.all() || region.rects().size() > capacity) return -1;
+  for (size_t i = 0; i < region.rects().size(); ++i) {
+    const PixelRect& r = region.rects()[i];
+    rects[i] = aq_rect{r.x0, r.y0, r.x1, r.y1};
+  }
+  return static_cast<int>(region.rects().size());
+}
+
+Region region_of(const aq_rect* rects, uint32_t count) {
+  Region region;
+  for (uint32_t i = 0; i < count; ++i)
+    region.add(PixelRect{rects[i].x0, rects[i].y0, rects[i].x1, rects[i].y1});
+  return region;
+}
+
+}  // namespace
+
+Region input_damage_of(const CallState& call, uint32_t index) {
+  const NodeState& self = *call.state;
+  if (!self.seen || self.seen_self_key != call.self_key || call.input_keys == nullptr ||
+      call.sources == nullptr || index >= call.input_keys->size() ||
+      index >= call.sources->size() || index >= self.seen_input_keys.size())
+    return Region::everything();
+  const uint64_t now = (*call.input_keys)[index];
+  const uint64_t seen = self.seen_input_keys[index];
+  if (now == 0) return Region::everything();
+  if (now == seen) return Region();
+  // The source ran since: its damage tells where, if it is relative to what this node saw.
+  const DamageSource& source = (*call.sources)[index];
+  if (source.state == nullptr || source.output >= source.state->output_damage.size())
+    return Region::everything();
+  if (hash_string(hash_value(kHashSeed, source.state->previous_key), source.port) != seen)
+    return Region::everything();
+  return source.state->output_damage[source.output];
+}
+
+void begin_damage_call(CallState& call, size_t output_count) {
+  call.draw_region = Region::everything();
+  call.declared_damage.assign(output_count, std::nullopt);
+  call.declared_bounds.assign(output_count, std::nullopt);
+}
+
+void finish_damage_call(NodeState& state, const CallState& call, uint64_t previous_key, int width,
+                        int height) {
+  state.seen = true;
+  state.seen_self_key = call.self_key;
+  state.seen_input_keys = call.input_keys != nullptr ? *call.input_keys : std::vector<uint64_t>();
+  state.previous_key = previous_key;
+  state.output_damage.assign(state.images.size(), Region::everything());
+  state.output_bounds.assign(state.images.size(), Region::everything());
+  for (size_t o = 0; o < state.output_bounds.size() && o < call.declared_bounds.size(); ++o) {
+    if (call.declared_bounds[o]) state.output_bounds[o] = *call.declared_bounds[o];
+  }
+  int64_t redrawn = 0, total = 0;
+  for (size_t o = 0; o < state.output_damage.size(); ++o) {
+    if (o < call.declared_damage.size() && call.declared_damage[o])
+      state.output_damage[o] = *call.declared_damage[o];
+    const TextureRef& image = state.images[o];
+    const int w = image ? image->image.width : width;
+    const int h = image ? image->image.height : height;
+    redrawn += state.output_damage[o].area(w, h);
+    total += int64_t{w} * h;
+  }
+  state.redrawn = total > 0 ? static_cast<double>(redrawn) / static_cast<double>(total) : 1.0;
+}
+
+int HostServices::input_damage(void* data, uint32_t index, aq_rect* rects, uint32_t capacity) {
+  const auto* call = static_cast<const CallState*>(data);
+  return write_rects(input_damage_of(*call, index), rects, capacity);
+}
+
+int HostServices::epilogue_damage(void* data, aq_rect* rects, uint32_t capacity) {
+  const auto* call = static_cast<const CallState*>(data);
+  if (call->epilogue == nullptr || call->epilogue->empty()) return 0;
+  return write_rects(call->epilogue_damage, rects, capacity);
+}
+
+int HostServices::set_output_damage(void* data, uint32_t index, const aq_rect* rects,
+                                    uint32_t count) {
+  auto* call = static_cast<CallState*>(data);
+  if (index >= call->declared_damage.size() || index >= call->kept_outputs.size() ||
+      !call->kept_outputs[index]) {
+    fail_call(*call, "set_output_damage: output " + std::to_string(index) +
+                         " was not kept (output_kept is 0): it changed everywhere; redraw it all "
+                         "and declare nothing (a plugin bug: report it to its author)");
+    return AQ_ERROR;
+  }
+  Region region = region_of(rects, count);
+  if (index == 0 && call->epilogue != nullptr && !call->epilogue->empty() &&
+      !region.covers(call->epilogue_damage)) {
+    fail_call(*call,
+              "set_output_damage: output 0 runs a fused epilogue whose inputs changed outside the "
+              "declared rects; add epilogue_damage to them (a plugin bug: report it to its "
+              "author)");
+    return AQ_ERROR;
+  }
+  call->declared_damage[index] = std::move(region);
+  return AQ_OK;
+}
+
+int HostServices::set_output_bounds(void* data, uint32_t index, const aq_rect* rects,
+                                    uint32_t count) {
+  auto* call = static_cast<CallState*>(data);
+  if (index >= call->declared_bounds.size()) {
+    fail_call(*call, "set_output_bounds: no output with index " + std::to_string(index));
+    return AQ_ERROR;
+  }
+  call->declared_bounds[index] = region_of(rects, count);
+  return AQ_OK;
+}
+
+int HostServices::input_bounds(void* data, uint32_t index, aq_rect* rects, uint32_t capacity) {
+  const auto* call = static_cast<const CallState*>(data);
+  if (call->sources == nullptr || index >= call->sources->size()) return -1;
+  const DamageSource& source = (*call->sources)[index];
+  if (source.state == nullptr || source.output >= source.state->output_bounds.size()) return -1;
+  return write_rects(source.state->output_bounds[source.output], rects, capacity);
+}
+
+void HostServices::set_draw_region(void* data, const aq_rect* rects, uint32_t count) {
+  auto* call = static_cast<CallState*>(data);
+  call->draw_region = rects == nullptr ? Region::everything() : region_of(rects, count);
 }
 
 // A draw whose program calls aq_epilogue (its aq_epilogue_size uniform is live) gets the

@@ -8,7 +8,9 @@
 #include <aquarelle/core/registry.h>
 #include <aquarelle/core/texture_pool.h>
 #include <aquarelle/plugin.h>
+#include <aquarelle/sdk/region.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,23 @@ struct NodeState {
   uint64_t writer_tag = 0;
   std::vector<TextureRef> images;
   std::vector<const aq_scene*> scenes;
+
+  // Damage tracking (aq_host::input_damage). `self_key` is `key` without the inputs: type,
+  // parameters, size, format, quality and the frame when time-dependent.
+  uint64_t self_key = 0;
+  // What the node saw on its last successful call: its own key and its inputs' keys.
+  bool seen = false;
+  uint64_t seen_self_key = 0;
+  std::vector<uint64_t> seen_input_keys;
+  // Where each output changed on that call, from what it held under `previous_key` (the key
+  // before the call); all() where the node said nothing (aq_host::set_output_damage).
+  uint64_t previous_key = 0;
+  std::vector<Region> output_damage;
+  // Per output, where it may hold anything but its background (aq_host::set_output_bounds).
+  std::vector<Region> output_bounds;
+  // Share of the outputs' pixels that call redrew (1 when it said nothing), for --stats.
+  double redrawn = 1.0;
+
   gl::Query timer_start;  // GL_TIMESTAMP pairs: llvmpipe's GL_TIME_ELAPSED reads garbage when
   gl::Query timer_end;    // a query spans shader compilation, timestamps do not
   BuiltinState builtin;
@@ -43,6 +62,14 @@ struct NodeState {
 };
 
 class HostServices;
+
+// The output that feeds an input, for the damage an input saw (null state: a list of links or
+// nothing connected).
+struct DamageSource {
+  const NodeState* state = nullptr;
+  uint32_t output = 0;
+  std::string port;
+};
 
 // One node's call into the host: passed to the plugin as aq_process_ctx::host_data.
 struct CallState {
@@ -65,6 +92,17 @@ struct CallState {
   // Per output: output_image handed out the texture this instance's output had before, with
   // its content (aq_host::output_kept).
   std::vector<bool> kept_outputs;
+
+  // Damage tracking: per input its source and key now; the node's own key now.
+  const std::vector<DamageSource>* sources = nullptr;
+  const std::vector<uint64_t>* input_keys = nullptr;
+  uint64_t self_key = 0;
+  // With an epilogue: what its stages' other inputs or parameters changed (evaluator).
+  Region epilogue_damage;
+  // draw_fullscreen's rects (aq_host::set_draw_region) and what set_output_damage declared.
+  Region draw_region = Region::everything();
+  std::vector<std::optional<Region>> declared_damage;
+  std::vector<std::optional<Region>> declared_bounds;
 
   uint32_t stored_format(uint32_t index) const {
     return stored_formats != nullptr && index < stored_formats->size() ? (*stored_formats)[index]
@@ -106,6 +144,12 @@ class HostServices {
   static int bind_targets(void* data, const aq_image* colors, uint32_t count,
                           const aq_image* depth);
   static void draw_fullscreen(void* data);
+  static int input_damage(void* data, uint32_t index, aq_rect* rects, uint32_t capacity);
+  static int epilogue_damage(void* data, aq_rect* rects, uint32_t capacity);
+  static int set_output_damage(void* data, uint32_t index, const aq_rect* rects, uint32_t count);
+  static void set_draw_region(void* data, const aq_rect* rects, uint32_t count);
+  static int set_output_bounds(void* data, uint32_t index, const aq_rect* rects, uint32_t count);
+  static int input_bounds(void* data, uint32_t index, aq_rect* rects, uint32_t capacity);
 
   GlContext& context_;
   TexturePool& pool_;
@@ -116,7 +160,20 @@ class HostServices {
   aq_host host_{};
 };
 
+// The pool writer tag of a node's output (TexturePool::acquire), 0 until it asked output_kept.
+uint64_t output_writer(const NodeState& state, uint32_t index);
+
 // Records a host error for the call (as host->fail does).
 void fail_call(CallState& call, const std::string& message);
+
+// Where input `index` of the call's node may differ from what it held on the node's last
+// successful call (aq_host::input_damage): all() when not known.
+Region input_damage_of(const CallState& call, uint32_t index);
+
+// Before a call: nothing declared, the whole target drawn. After a successful one: what the node
+// saw and where its outputs changed (`previous_key`: the node's key before the call).
+void begin_damage_call(CallState& call, size_t output_count);
+void finish_damage_call(NodeState& state, const CallState& call, uint64_t previous_key, int width,
+                        int height);
 
 }  // namespace aq

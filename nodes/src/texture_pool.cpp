@@ -80,22 +80,31 @@ TextureRef TexturePool::acquire(int width, int height, uint32_t format, uint64_t
                                 bool* kept) {
   Key key{width, height, format};
   std::unique_ptr<PooledTexture> texture;
-  auto it = free_.find(key);
   if (kept != nullptr) *kept = false;
-  if (it != free_.end() && !it->second.empty()) {
+  auto claimed = [this](const PooledTexture& t) {
+    auto claim = claims_.find(t.writer);
+    return t.writer != 0 && claim != claims_.end() && claim->second == t.serial;
+  };
+  auto it = free_.find(key);
+  std::vector<std::unique_ptr<PooledTexture>>::iterator pick;
+  bool found = false;
+  if (it != free_.end()) {
     auto& list = it->second;
-    auto own = writer == 0 ? list.end()
-                           : std::find_if(list.begin(), list.end(),
-                                          [writer](const auto& t) { return t->writer == writer; });
-    if (own != list.end()) {
+    // The writer's own claim first; else one nobody claims (a writer's texture is kept for it).
+    pick = writer == 0 ? list.end()
+                       : std::find_if(list.begin(), list.end(), [&](const auto& t) {
+                           return t->writer == writer && claimed(*t);
+                         });
+    if (pick != list.end()) {
       if (kept != nullptr) *kept = true;
-      std::iter_swap(own, list.end() - 1);
     } else {
-      // Leave the writers' textures to them while one nobody claims is free.
-      auto unclaimed =
-          std::find_if(list.begin(), list.end(), [](const auto& t) { return t->writer == 0; });
-      if (unclaimed != list.end()) std::iter_swap(unclaimed, list.end() - 1);
+      pick = std::find_if(list.begin(), list.end(), [&](const auto& t) { return !claimed(*t); });
     }
+    found = pick != list.end();
+  }
+  if (found) {
+    auto& list = it->second;
+    std::iter_swap(pick, list.end() - 1);
     texture = std::move(list.back());
     list.pop_back();
   } else {
@@ -115,6 +124,8 @@ TextureRef TexturePool::acquire(int width, int height, uint32_t format, uint64_t
     bytes_ += bytes_per_pixel(format) * static_cast<size_t>(width) * height;
   }
   texture->writer = writer;
+  texture->serial = ++serial_;
+  if (writer != 0) claims_[writer] = texture->serial;  // an older texture of it is anyone's now
   ++live_;
   if (live_ > peak_live_) peak_live_ = live_;
   PooledTexture* raw = texture.release();
@@ -133,6 +144,10 @@ void TexturePool::give_back(PooledTexture* texture) {
   --live_;
   const aq_image& image = texture->image;
   free_[Key{image.width, image.height, image.format}].emplace_back(texture);
+}
+
+void TexturePool::unclaim(uint64_t writer) {
+  if (writer != 0) claims_.erase(writer);
 }
 
 size_t TexturePool::free_count() const {

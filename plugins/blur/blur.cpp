@@ -126,6 +126,8 @@ std::string depth_define(const aq::Context& ctx, const aq_image& in) {
 
 struct Blur {
   std::string source;  // the last composed shader text (the host compiles it at once)
+  // The output pixels this call redraws (damage tracking; direct method only, else all).
+  aq::Region damage_ = aq::Region::everything();
 
   int process(aq::Context& ctx) {
     aq_image in = ctx.input_image(0);
@@ -142,11 +144,18 @@ struct Blur {
 
     aq_image out;
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+    const bool direct =
+        ctx.param_enum(kMethod) != kStrided && !uniform && max_sigma <= kDirectMaxSigma;
+    damage_ = direct ? direct_damage(ctx, in, out, direct_radius(max_sigma))
+                     : aq::Region::everything();
     if (in.format == AQ_FORMAT_RGBA8_HDR && !reads_encoded(ctx, uniform, max_sigma)) {
       aq_image decoded;
+      ctx.set_draw_region(damage_.dilated(direct_radius(max_sigma), direct_radius(max_sigma),
+                                          in.width, in.height));
       if (!decode(ctx, in, &decoded)) return AQ_ERROR;
       in = decoded;
     }
+    ctx.set_draw_region(damage_);
     bool ok = false;
     if (ctx.param_enum(kMethod) == kStrided) {
       ok = strided(ctx, in, out, sigma);
@@ -160,7 +169,28 @@ struct Blur {
       ok = variable_gaussian(ctx, in, out, sigma, max_sigma);
     }
     aq::unbind_textures(16);
-    return ok ? AQ_OK : AQ_ERROR;
+    return ok && ctx.set_output_damage(0, damage_) ? AQ_OK : AQ_ERROR;
+  }
+
+  // Damage tracking for the direct kernels (each output pixel reads the image and the depth
+  // within `radius`, the radial term is fixed): with the output kept, the pixels within
+  // `radius` of a changed image or depth pixel, and those the epilogue's inputs changed.
+  static aq::Region direct_damage(const aq::Context& ctx, const aq_image& in, const aq_image& out,
+                                  int radius) {
+    if (!ctx.output_kept(0) || in.width != out.width || in.height != out.height)
+      return aq::Region::everything();
+    aq::Region changed = ctx.input_damage(0);
+    if (ctx.connected(1)) {
+      const aq_image depth = ctx.input_image(1);
+      const aq::Region depth_changed = ctx.input_damage(1);
+      const bool same_pixels = depth.width == in.width && depth.height == in.height;
+      changed.add(same_pixels || depth_changed.empty() ? depth_changed
+                                                       : aq::Region::everything());
+    }
+    aq::Region damage = changed.dilated(radius, radius, out.width, out.height);
+    damage.add(ctx.epilogue_damage());
+    if (!ctx.set_draw_region(damage)) return aq::Region::everything();
+    return damage;
   }
 
   // Intermediate textures are float in both precisions: RGBA16F ones were no faster on
@@ -272,6 +302,9 @@ struct Blur {
       set_strength_uniforms(ctx, program, in);
       aq::bind_texture(program, "u_image", 0, axis == 0 ? in : rows);
       aq::set_float(program, "u_sigma", sigma);
+      // The rows pass covers the rows the columns pass reads around the damaged pixels.
+      ctx.set_draw_region(axis == 0 ? damage_.dilated(0, radius, out.width, out.height)
+                                    : damage_);
       if (!ctx.draw(axis == 0 ? rows : out)) return false;
     }
     return true;

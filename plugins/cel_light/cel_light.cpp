@@ -10,6 +10,7 @@
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/sdk/gl_raii.hpp>
 #include <aquarelle/sdk/scene_math.hpp>
+#include <aquarelle/sdk/static_layer.hpp>  // Fnv1a
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -85,6 +86,7 @@ struct CelLight {
   aq::gl::Sampler repeating;
   aq::view_bounds::MeshBoxes boxes;
   uint32_t sampler_generation = 0;
+  uint64_t lighting_key_ = 0;  // the scene's part of the uniforms on the last call
 
   int process(aq::Context& ctx) {
     const aq_scene* scene = ctx.input_scene(kScene);
@@ -161,11 +163,47 @@ struct CelLight {
     aq::set_int(program, "u_levels", static_cast<int>(ctx.param_int(kLevels)));
     aq::set_vec3(program, "u_background", ctx.param_vec3(kBackground));
     aq::set_int(program, "u_environment", ctx.param_bool(kEnvironment) ? 1 : 0);
+
+    aq::Fnv1a lighting;
+    lighting.mix(light);
+    lighting.mix(direction);
+    lighting.mix(scene->light.color);
+    lighting.mix(scene->light.ambient);
+    lighting.mix(scene->water_height);
+    lighting.mix(aq::scene_caustic_tile(*scene));
+    aq::Region damage = damaged(ctx, targets[0], lighting.value != lighting_key_);
+    lighting_key_ = lighting.value;
+    if (!ctx.set_draw_region(damage)) damage = aq::Region::everything();
+
     const bool bound = ctx.bind_targets(targets, 2);
     if (bound) ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
     glBindSampler(5, 0);
     aq::unbind_textures(6);
-    return bound ? AQ_OK : AQ_ERROR;
+    return bound && ctx.set_output_damage(0, damage) && ctx.set_output_damage(1, damage)
+               ? AQ_OK
+               : AQ_ERROR;
+  }
+
+  // Damage tracking: the pixels whose light can differ from the kept outputs'. A pixel reads
+  // the g-buffer at itself; the shadow map, the caustics and the scene's light only where a
+  // surface is (the background is the parameter's colour or the g-buffer's albedo), so a change
+  // of those reaches only the id input's bounds (where the g-buffer drew meshes), not the open
+  // water.
+  aq::Region damaged(const aq::Context& ctx, const aq_image& target, bool lighting_changed) {
+    if (!ctx.output_kept(0) || !ctx.output_kept(1)) return aq::Region::everything();
+    aq::Region damage;
+    for (uint32_t input : {kPosition, kNormal, kAlbedo, kId}) {
+      const aq_image image = ctx.input_image(input);
+      if (image.width != target.width || image.height != target.height)
+        return aq::Region::everything();
+      damage.add(ctx.input_damage(input));
+    }
+    bool surfaces_changed = lighting_changed;
+    for (uint32_t input : {kShadow, kCaustics})
+      surfaces_changed =
+          surfaces_changed || (ctx.connected(input) && !ctx.input_damage(input).empty());
+    if (surfaces_changed) damage.add(ctx.input_bounds(kId));
+    return damage;
   }
 };
 

@@ -71,5 +71,5 @@ struct Edge {
 AQ_POINTWISE_NODE(kEdgeNode, Edge, "edge", "Watercolor",
                   "Edge darkening: Laplacian or Sobel edges (optionally of an effect-free "
                   "`source`) scale the HSV value by `factor` through a smooth threshold.",
-                  kInputs, kOutputs, kParams, shaders::edge_glsl);
+                  kInputs, kOutputs, kParams, shaders::edge_glsl, 1);
 AQ_PLUGIN("edge", "1.0", &kEdgeNode)

@@ -79,6 +79,9 @@ class GBuffer {
     // included); only what moved (the fish, the swaying seaweed) is drawn each frame.
     const std::vector<bool>& unchanged = unchanged_.update(*scene);
     bool layered = false;
+    // Damage tracking: where the outputs may differ from what they held (the last and this
+    // call's moving meshes over the kept layer; everything otherwise).
+    aq::Region damage = aq::Region::everything();
     if (unchanged_.any() && ctx.param_bool(kCacheStatic)) {
       aq::Fnv1a key;
       unchanged_.mix_into(key);
@@ -102,7 +105,8 @@ class GBuffer {
       }
       // With the outputs as the last call left them, the layer goes back only where that
       // call's moving meshes were.
-      if (layered) drawn_.restore(layer_, targets, kOutputCount, &depth_buffer, outputs_kept);
+      if (layered)
+        damage = drawn_.restore(layer_, targets, kOutputCount, &depth_buffer, outputs_kept);
     }
 
     if (!ctx.bind_targets(targets, kOutputCount, &depth_buffer)) return AQ_ERROR;
@@ -117,6 +121,17 @@ class GBuffer {
     if (layered) {
       drawn_.record(layer_, boxes_.world_boxes(*scene), unchanged,
                     glm::dmat4(projection) * glm::dmat4(view), width, height);
+      for (const aq::PixelRect& rect : drawn_.moving()) damage.add(rect);
+    }
+    // Outside the meshes' projected boxes every target holds the background (id 0): the light
+    // needs to redraw only inside them when the shadow map or the caustics change.
+    aq::Region bounds;
+    const glm::dmat4 view_projection = glm::dmat4(projection) * glm::dmat4(view);
+    for (const aq::view_bounds::Box& box : boxes_.world_boxes(*scene))
+      bounds.add(aq::covered_pixels(box, view_projection, width, height));
+    for (uint32_t i = 0; i < kOutputCount; ++i) {
+      if (!ctx.set_output_bounds(i, bounds)) return AQ_ERROR;
+      if (outputs_kept && !ctx.set_output_damage(i, damage)) return AQ_ERROR;
     }
     return AQ_OK;
   }

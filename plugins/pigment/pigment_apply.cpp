@@ -73,7 +73,7 @@ struct PigmentApply {
 AQ_POINTWISE_NODE(kPigmentApplyNode, PigmentApply, "pigment_apply", "Watercolor",
                   "Applies the pigment densities of a `pigment_canvas` (turbulence, dispersion, "
                   "paper) to an image: C' = C(1 − (1 − C)(d − 1)); fused into the pass before it.",
-                  kInputs, kOutputs, kParams, shaders::pigment_apply_glsl);
+                  kInputs, kOutputs, kParams, shaders::pigment_apply_glsl, 0);
 
 const aq_node_desc* pigment_apply_node_desc() {
   return &kPigmentApplyNode;

@@ -63,7 +63,9 @@ struct PigmentCanvas {
     // 0: the densities cannot be kept (cache off, an input of unknown content).
     const uint64_t key = cache_key(ctx, out, canvas, params, defines);
     // The host handed back the very texture this call's densities went into last time.
-    if (key != 0 && ctx.output_kept(0) && drawn_ == key) return AQ_OK;
+    // Nothing changed in it then (damage tracking: its readers redraw nothing for it).
+    if (key != 0 && ctx.output_kept(0) && drawn_ == key)
+      return ctx.set_output_damage(0, aq::Region()) ? AQ_OK : AQ_ERROR;
     drawn_ = 0;
     aq_image stand_in;  // names a complete texture for the samplers pass 1 does not read
     if (!ctx.scratch(1, 1, AQ_FORMAT_RGBA8, &stand_in)) return AQ_ERROR;

@@ -45,5 +45,5 @@ struct Tint {
 
 AQ_POINTWISE_NODE(kTintNode, Tint, "tint", "Color",
                   "Mixes the image towards a water colour: mix(colour, tint, amount).", kInputs,
-                  kOutputs, kParams, shaders::tint_glsl);
+                  kOutputs, kParams, shaders::tint_glsl, 0);
 AQ_PLUGIN("tint", "1.0", &kTintNode)

@@ -74,5 +74,5 @@ struct Vignette {
 
 AQ_POINTWISE_NODE(kVignetteNode, Vignette, "vignette", "Color",
                   "Darkens the image towards its corners (aspect-correct radial ramp).", kInputs,
-                  kOutputs, kParams, shaders::vignette_glsl);
+                  kOutputs, kParams, shaders::vignette_glsl, 0);
 AQ_PLUGIN("vignette", "1.0", &kVignetteNode)

@@ -72,10 +72,35 @@ struct Wobble {
     // shader), so a proxy render whose paper shrank with the working size (P·scale) needs
     // strength·scale² to move the image as far as the full-size render does.
     const double paper_scale = paper.width == ctx.width() ? ctx.render_scale() : 1.0;
-    aq::set_float(program, "u_strength", strength * paper_scale * paper_scale);
+    const double shift = strength * paper_scale * paper_scale;
+    aq::set_float(program, "u_strength", shift);
+    // Damage tracking: with the output kept, only pixels whose lookup can reach a changed pixel
+    // of the image (the shift is at most shift/paper pixels of uv with the slope clamped to 1,
+    // one more pixel for the bilinear blend), or whose paper or epilogue changed, are redrawn.
+    aq::Region damage = aq::Region::everything();
+    if (ctx.output_kept(0) && in.width == out.width && in.height == out.height) {
+      const int reach_x = static_cast<int>(std::ceil(shift * out.width / paper.width)) + 1;
+      const int reach_y = static_cast<int>(std::ceil(shift * out.height / paper.height)) + 1;
+      damage = ctx.input_damage(kImage).dilated(reach_x, reach_y, out.width, out.height);
+      const uint32_t paper_port = precomputed ? kGradient : kPaper;
+      if (ctx.connected(paper_port)) {
+        const aq_image read = ctx.input_image(paper_port);
+        const aq::Region changed = ctx.input_damage(paper_port);
+        const bool same_pixels = read.width == out.width && read.height == out.height;
+        // The gradient is read at the pixel; the height four reads around it (one paper pixel).
+        damage.add(same_pixels || changed.empty()
+                       ? changed.dilated(precomputed ? 0 : 1, precomputed ? 0 : 1, out.width,
+                                         out.height)
+                       : aq::Region::everything());
+      }
+      damage.add(ctx.epilogue_damage());
+    }
+    if (!ctx.set_draw_region(damage)) damage = aq::Region::everything();
+    // Drawn even when nothing changed: an empty region draws nothing, but the host learns that
+    // the draw applies the epilogue (else it would run the fused nodes as a pass of their own).
     const bool drawn = ctx.draw(out);
     aq::unbind_textures(2);
-    return drawn ? AQ_OK : AQ_ERROR;
+    return drawn && ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
   }
 
   // The procedural paper is `paper_resolution` lines high and as wide as the image's aspect

@@ -233,7 +233,7 @@ TEST(EpilogueFusion, OnlyANonPointwiseImageProducerMayTakeAnEpilogue) {
   static const aq_port_desc scene[] = {{"scene", AQ_PORT_SCENE, 0, "s"}};
   static const aq_pointwise_desc function = {
       sizeof(aq_pointwise_desc), "f.glsl", "vec4 AQ_APPLY(vec4 c, vec2 p, vec2 s) { return c; }",
-      [](void*, aq_process_ctx*, uint32_t, const char*) { return int{AQ_OK}; }};
+      [](void*, aq_process_ctx*, uint32_t, const char*) { return int{AQ_OK}; }, 0};
   auto [accepted, none] = describe_node(image, image, AQ_NODE_EPILOGUE);
   ASSERT_FALSE(accepted.name.empty()) << none;
   EXPECT_TRUE(accepted.takes_epilogue());

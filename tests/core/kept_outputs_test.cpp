@@ -43,19 +43,48 @@ TEST_F(KeptOutputs, AWriterGetsItsOwnTextureBackOnlyWhileNobodyTookIt) {
   TextureRef writer = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 7, &kept);
   EXPECT_TRUE(kept);
   writer.reset();
-  // ...and takes the claimed one when nothing else is free: the writer then is told.
-  TextureRef thief = pool.acquire(16, 8, AQ_FORMAT_RGBA16F);
-  EXPECT_EQ(thief->image.texture, first);
-  thief.reset();
+  // ...and, when nothing else is free, a new one: the claimed texture stays the writer's.
+  TextureRef newcomer = pool.acquire(16, 8, AQ_FORMAT_RGBA16F);
+  EXPECT_NE(newcomer->image.texture, first);
+  EXPECT_NE(newcomer->image.texture, anyone->image.texture);
+  newcomer.reset();
   anyone.reset();
   TextureRef after = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 7, &kept);
-  EXPECT_FALSE(kept) << "someone wrote it since";
+  EXPECT_TRUE(kept);
+  EXPECT_EQ(after->image.texture, first);
   // Another writer, size or format never gets it as kept.
   after.reset();
   TextureRef other_writer = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 8, &kept);
   EXPECT_FALSE(kept);
   TextureRef other_size = pool.acquire(16, 9, AQ_FORMAT_RGBA16F, 7, &kept);
   EXPECT_FALSE(kept);
+}
+
+// A writer that acquired while its texture was still held (a reader kept the last frame) claims
+// the new one: the older texture, returned later, holds an older call's content and is never
+// handed back as kept; and a writer that is gone (unclaim) leaves its texture to anyone.
+TEST_F(KeptOutputs, OnlyTheWritersLastTextureIsKeptAndUnclaimFreesIt) {
+  TexturePool pool;
+  bool kept = true;
+  TextureRef older = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 7, &kept);
+  const GLuint older_name = older->image.texture;
+  TextureRef newer = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 7, &kept);  // `older` still held
+  const GLuint newer_name = newer->image.texture;
+  EXPECT_FALSE(kept);
+  newer.reset();
+  older.reset();
+  TextureRef back = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 7, &kept);
+  EXPECT_TRUE(kept);
+  EXPECT_EQ(back->image.texture, newer_name);
+  TextureRef anyone = pool.acquire(16, 8, AQ_FORMAT_RGBA16F);
+  EXPECT_EQ(anyone->image.texture, older_name) << "the older one is nobody's claim any more";
+  back.reset();
+  anyone.reset();
+  pool.unclaim(7);
+  const size_t made = pool.created_count();
+  TextureRef a = pool.acquire(16, 8, AQ_FORMAT_RGBA16F);
+  TextureRef b = pool.acquire(16, 8, AQ_FORMAT_RGBA16F);
+  EXPECT_EQ(pool.created_count(), made) << "the unclaimed texture is reused";
 }
 
 }  // namespace

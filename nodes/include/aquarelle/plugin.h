@@ -93,6 +93,12 @@ typedef enum aq_format {
 
 typedef enum aq_precision { AQ_PRECISION_HALF = 0, AQ_PRECISION_FLOAT = 1 } aq_precision;
 
+/* Appended in ABI 1: pixels [x0, x1) x [y0, y1) of an image, GL convention (row 0 at the
+ * bottom): a part of an image that changed (aq_host::input_damage) or is drawn. */
+typedef struct aq_rect {
+  int32_t x0, y0, x1, y1;
+} aq_rect;
+
 typedef struct aq_image {
   uint32_t texture; /* GL texture name, GL_TEXTURE_2D, clamp-to-edge, linear filter */
   int32_t width;
@@ -261,6 +267,11 @@ typedef struct aq_pointwise_desc {
   const char* glsl;
   int (*set_uniforms)(void* instance, struct aq_process_ctx* ctx, uint32_t program,
                       const char* prefix);
+  /* Appended in ABI 1 (read only when struct_size covers it): how far from the pixel, in
+   * pixels, the function reads its other inputs (edge's 3x3 source: 1; 0 when it reads them at
+   * the pixel only); -1 (and a desc without the field): anywhere. The host uses it to know which
+   * pixels of a fused chain a change of those inputs reaches (aq_host::epilogue_damage). */
+  int32_t reach;
 } aq_pointwise_desc;
 
 typedef struct aq_node_desc {
@@ -415,6 +426,36 @@ typedef struct aq_host {
    * nobody has written it since: it still holds what the node left in it, so the node may
    * update it in place (redraw only what changed). 0 otherwise: a texture of unknown content. */
   int (*output_kept)(void* host_data, uint32_t index);
+  /* Appended in ABI 1 (check struct_size), damage tracking: a node whose outputs are kept
+   * (output_kept) redraws only the pixels whose value can differ from what it left there.
+   *
+   * input_damage: where image input `input_index` may differ from what it held when this node
+   * instance last ran: writes up to `capacity` disjoint rects and returns their count; 0: the
+   * input did not change; -1: it may have changed anywhere (its writer did not say where, this
+   * node's own parameters, size, format or time changed, it never ran, a scene input changed,
+   * or more than `capacity` rects). */
+  int (*input_damage)(void* host_data, uint32_t input_index, aq_rect* rects, uint32_t capacity);
+  /* epilogue_damage: for a node running a fused epilogue (AQ_NODE_EPILOGUE), the pixels of
+   * output 0 whose epilogue result may differ because the fused nodes' other inputs or
+   * parameters changed; counts as input_damage. 0 without an epilogue. */
+  int (*epilogue_damage)(void* host_data, aq_rect* rects, uint32_t capacity);
+  /* set_output_damage: this call changed kept output `index` only inside these rects (every
+   * other pixel holds what the node left there on its last call, and equals what drawing it
+   * anew would give). Without it, the output counts as changed everywhere. For output 0 of a
+   * node running an epilogue the rects must cover epilogue_damage's. Returns AQ_ERROR (after
+   * failing the call) for an output that was not kept. */
+  int (*set_output_damage)(void* host_data, uint32_t index, const aq_rect* rects, uint32_t count);
+  /* set_draw_region: draw_fullscreen covers only these rects of the bound targets (scissored)
+   * until the next set_draw_region or the end of process(); count 0: nothing; rects NULL: the
+   * whole target again. */
+  void (*set_draw_region)(void* host_data, const aq_rect* rects, uint32_t count);
+  /* set_output_bounds: every pixel of output `index` outside these rects holds the output's
+   * background (the value of a pixel nothing was drawn into: the g-buffer's id 0), as Nuke's
+   * bounding box says. input_bounds: the rects the writer of image input `input_index` declared
+   * for what it holds now; -1 when it declared none (anything may be anywhere) or more than
+   * `capacity`. */
+  int (*set_output_bounds)(void* host_data, uint32_t index, const aq_rect* rects, uint32_t count);
+  int (*input_bounds)(void* host_data, uint32_t input_index, aq_rect* rects, uint32_t capacity);
 } aq_host;
 
 #ifdef __cplusplus

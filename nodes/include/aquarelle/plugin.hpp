@@ -18,6 +18,7 @@
 #include <glad/gl.h>
 
 #include <aquarelle/plugin.h>
+#include <aquarelle/sdk/region.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -235,6 +236,65 @@ class Context {
       return false;
     return host->output_kept(raw_->host_data, index) != 0;
   }
+  // Damage tracking (aq_host::input_damage): where image input `input` may differ from what it
+  // held on this instance's last call; everything from a host that predates it.
+  Region input_damage(uint32_t input) const {
+    if (!has_host_call(offsetof(aq_host, input_damage), raw_->host->input_damage != nullptr))
+      return Region::everything();
+    return damage_from([&](aq_rect* rects, uint32_t capacity) {
+      return raw_->host->input_damage(raw_->host_data, input, rects, capacity);
+    });
+  }
+  // With a fused epilogue: the pixels its other inputs or parameters changed (nothing without).
+  Region epilogue_damage() const {
+    if (!has_host_call(offsetof(aq_host, epilogue_damage), raw_->host->epilogue_damage != nullptr))
+      return Region::everything();
+    return damage_from([&](aq_rect* rects, uint32_t capacity) {
+      return raw_->host->epilogue_damage(raw_->host_data, rects, capacity);
+    });
+  }
+  // This call changed kept output `index` only in `region` (nothing is said for all()).
+  bool set_output_damage(uint32_t index, const Region& region) const {
+    if (region.all() ||
+        !has_host_call(offsetof(aq_host, set_output_damage), raw_->host->set_output_damage != nullptr))
+      return true;
+    const std::vector<aq_rect> rects = to_rects(region);
+    return raw_->host->set_output_damage(raw_->host_data, index, rects.data(),
+                                         static_cast<uint32_t>(rects.size())) == AQ_OK;
+  }
+  // Where image input `input` may hold anything but its background (aq_host::input_bounds);
+  // everything when its writer did not say.
+  Region input_bounds(uint32_t input) const {
+    if (!has_host_call(offsetof(aq_host, input_bounds), raw_->host->input_bounds != nullptr))
+      return Region::everything();
+    return damage_from([&](aq_rect* rects, uint32_t capacity) {
+      return raw_->host->input_bounds(raw_->host_data, input, rects, capacity);
+    });
+  }
+  // Output `index` holds its background outside `region` (nothing is said for all()).
+  bool set_output_bounds(uint32_t index, const Region& region) const {
+    if (region.all() ||
+        !has_host_call(offsetof(aq_host, set_output_bounds), raw_->host->set_output_bounds != nullptr))
+      return true;
+    const std::vector<aq_rect> rects = to_rects(region);
+    return raw_->host->set_output_bounds(raw_->host_data, index, rects.data(),
+                                         static_cast<uint32_t>(rects.size())) == AQ_OK;
+  }
+  // draw() and draw_fullscreen cover only `region` until the next call (all(): everything).
+  // False from a host that predates it: then draw everything and declare no damage.
+  bool set_draw_region(const Region& region) const {
+    if (!has_host_call(offsetof(aq_host, set_draw_region), raw_->host->set_draw_region != nullptr))
+      return region.all();
+    if (region.all()) {
+      raw_->host->set_draw_region(raw_->host_data, nullptr, 0);
+    } else {
+      std::vector<aq_rect> rects = to_rects(region);
+      aq_rect none{};  // an empty region still passes rects: NULL would mean everything
+      raw_->host->set_draw_region(raw_->host_data, rects.empty() ? &none : rects.data(),
+                                  static_cast<uint32_t>(rects.size()));
+    }
+    return true;
+  }
   // Reads an image file through the host (OIIO + OCIO, working space, straight alpha, row 0 at
   // the bottom) into `rgba`; false with `error` set when it cannot (or the host is too old).
   bool read_image(const std::string& path, std::vector<float>* rgba, int* width, int* height,
@@ -317,6 +377,24 @@ class Context {
   }
 
  private:
+  bool has_host_call(size_t offset, bool set) const {
+    return raw_->host->struct_size >= offset + sizeof(void*) && set;
+  }
+  template <typename Query>
+  static Region damage_from(Query query) {
+    std::vector<aq_rect> rects(Region::kMaxRects);
+    const int count = query(rects.data(), static_cast<uint32_t>(rects.size()));
+    if (count < 0) return Region::everything();
+    Region region;
+    for (int i = 0; i < count; ++i)
+      region.add(PixelRect{rects[i].x0, rects[i].y0, rects[i].x1, rects[i].y1});
+    return region;
+  }
+  static std::vector<aq_rect> to_rects(const Region& region) {
+    std::vector<aq_rect> rects;
+    for (const PixelRect& r : region.rects()) rects.push_back(aq_rect{r.x0, r.y0, r.x1, r.y1});
+    return rects;
+  }
   bool has_input_keys() const {
     return raw_->struct_size >= offsetof(aq_process_ctx, input_keys) + sizeof(void*) &&
            raw_->input_keys != nullptr;
@@ -448,12 +526,13 @@ constexpr uint32_t count_of(const T (&)[N]) {
                                     nullptr}
 
 // Same, for a pointwise node the host may fuse: `glsl` is the aq_shader_source of its
-// per-pixel function (see aq_pointwise_desc) and NodeClass has set_uniforms (PointwiseAdapter).
+// per-pixel function (see aq_pointwise_desc), `reach` how far from the pixel it reads its other
+// inputs (-1: anywhere) and NodeClass has set_uniforms (PointwiseAdapter).
 #define AQ_POINTWISE_NODE(NAME, NodeClass, type_name, category, description, inputs, outputs, \
-                          params, glsl)                                                       \
+                          params, glsl, reach)                                                \
   static const aq_pointwise_desc NAME##_pointwise = {                                         \
       sizeof(aq_pointwise_desc), (glsl).name, (glsl).text,                                    \
-      &aq::PointwiseAdapter<NodeClass>::set_uniforms};                                        \
+      &aq::PointwiseAdapter<NodeClass>::set_uniforms, (reach)};                               \
   static const aq_node_desc NAME = {sizeof(aq_node_desc),                                     \
                                     type_name,                                                \
                                     category,                                                 \

@@ -59,6 +59,10 @@ void main() {
 #endif
   // A NaN or infinite paper would throw the lookup anywhere: keep the pixel in place instead.
   if (any(isnan(gradient)) || any(isinf(gradient))) gradient = vec2(0.0);
+  // A paper's heights lie in [0, 1], so its slope per paper pixel is at most 1 (0.5 for the
+  // central difference): the clamp only bounds a foreign image's, and with it how far a lookup
+  // moves, which is what a change of the image can reach (wobble.cpp, damage tracking).
+  gradient = clamp(gradient, vec2(-1.0), vec2(1.0));
   // aq_epilogue: the pointwise nodes after the wobble (edge) when the host fuses them.
   o_color = aq_epilogue(image_at(v_uv + u_strength * gradient * step_uv));
 #if AQ_WOBBLE_ENCODE_HDR8

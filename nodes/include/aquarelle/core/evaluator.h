@@ -34,6 +34,9 @@ struct NodeTiming {
   double cpu_ms = 0;    // wall time of process()
   bool cached = false;  // reused from the previous evaluation, not run
   bool fused = false;   // ran inside the pass of the node reading it (pointwise fusion)
+  // Share of its outputs' pixels the run redrew: below 1 when the node redrew only what changed
+  // (damage tracking, aq_host::set_output_damage).
+  double redrawn = 1.0;
 };
 
 struct EvalOptions {

@@ -24,6 +24,7 @@ struct PooledTexture {
   aq_image image{};
   gl::Texture texture;
   uint64_t writer = 0;  // who acquired it last (TexturePool::acquire's `writer`); 0: anyone
+  uint64_t serial = 0;  // which acquisition handed it out (the pool's count)
 };
 
 class TexturePool {
@@ -35,9 +36,13 @@ class TexturePool {
 
   TextureRef acquire(int width, int height, uint32_t format);
   // The same, preferring the free texture `writer` (nonzero) acquired last: `kept` says whether
-  // it got that one, which then still holds what the writer left in it (every acquisition
-  // takes the texture's writer tag, so nobody else has written it since).
+  // it got that one, which then still holds what the writer left in it on its last acquisition
+  // (every acquisition takes the texture's writer tag, so nobody else has written it since).
+  // The texture a writer acquired last is its claim: nobody else takes it, a new texture is made
+  // instead, until the writer acquires another or gives its claims up (unclaim).
   TextureRef acquire(int width, int height, uint32_t format, uint64_t writer, bool* kept);
+  // The writer is gone (its node was deleted): its texture is anyone's again.
+  void unclaim(uint64_t writer);
 
   size_t live_count() const { return live_; }  // handed out, not yet returned
   size_t free_count() const;                   // waiting in the pool
@@ -52,6 +57,8 @@ class TexturePool {
   using Key = std::tuple<int, int, uint32_t>;
   void give_back(PooledTexture* texture);
   std::map<Key, std::vector<std::unique_ptr<PooledTexture>>> free_;
+  std::map<uint64_t, uint64_t> claims_;  // writer -> serial of the texture it acquired last
+  uint64_t serial_ = 0;
   size_t live_ = 0;
   size_t peak_live_ = 0;
   size_t created_ = 0;

@@ -21,6 +21,7 @@
 #include <aquarelle/plugin.h>
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/sdk/gl_raii.hpp>
+#include <aquarelle/sdk/region.hpp>
 #include <aquarelle/sdk/view_bounds.hpp>
 
 #include <glad/gl.h>
@@ -48,22 +49,28 @@ struct Fnv1a {
   }
 };
 
-// Pixels [x0, x1) x [y0, y1) of a target.
-struct PixelRect {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-};
-
 // The pixels a mesh whose world box is `box` (view_bounds::MeshBoxes) can cover when drawn with
 // `view_projection` into a width x height target: the box's corners projected, one pixel wider
-// on every side, clamped to the target; the whole target when the box reaches behind the camera
-// (its projection is then not bounded by the corners'), nothing for an empty box.
+// on every side, clamped to the target; nothing for an empty box or one wholly outside the view.
+// A box reaching behind the camera (the sand under it) is first clipped to the view frustum,
+// whose every point projects (its projection is not bounded by the corners').
 inline PixelRect covered_pixels(const view_bounds::Box& box, const glm::dmat4& view_projection,
                                 int width, int height) {
   const PixelRect all{0, 0, width, height};
   if (box.empty()) return PixelRect{};
+  std::vector<glm::dvec3> points;
+  for (int corner = 0; corner < 8; ++corner) points.push_back(box.corner(corner));
+  for (const glm::dvec3& p : points) {
+    if (!((view_projection * glm::dvec4(p, 1.0)).w > 1e-9)) {
+      const auto frustum = view_bounds::frustum_planes(view_projection);
+      points = view_bounds::clip_box(box, frustum);
+      if (points.empty()) return PixelRect{};
+      break;
+    }
+  }
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::dvec4 clip = view_projection * glm::dvec4(box.corner(corner), 1.0);
+  for (const glm::dvec3& p : points) {
+    const glm::dvec4 clip = view_projection * glm::dvec4(p, 1.0);
     if (!(clip.w > 1e-9)) return all;
     const double x = (clip.x / clip.w * 0.5 + 0.5) * width;
     const double y = (clip.y / clip.w * 0.5 + 0.5) * height;
@@ -287,17 +294,28 @@ class DrawnOverLayer {
 
   // Puts the layer into the targets: only where the last call's moving meshes were when the
   // outputs are as it left them (`outputs_kept`, the host's word) over the same layer, else
-  // everywhere. Until record(), nothing is known about the outputs.
-  void restore(const CachedTargets& layer, const aq_image* targets, uint32_t count,
-               const aq_image* depth, bool outputs_kept) {
+  // everywhere. Until record(), nothing is known about the outputs. Returns the pixels that may
+  // now differ from what the outputs held (those rects, or everything): with what record() adds,
+  // the outputs' damage (aq_host::set_output_damage).
+  Region restore(const CachedTargets& layer, const aq_image* targets, uint32_t count,
+                 const aq_image* depth, bool outputs_kept) {
+    Region changed;
     if (outputs_kept && valid_ && layer_key_ == layer.key &&
         layer_textures_ == layer.textures_made()) {
-      for (const PixelRect& rect : moving_) layer.copy_rect_to(targets, count, depth, rect);
+      for (const PixelRect& rect : moving_) {
+        layer.copy_rect_to(targets, count, depth, rect);
+        changed.add(rect);
+      }
     } else {
       layer.copy_to(targets, count, depth);
+      changed = Region::everything();
     }
     valid_ = false;
+    return changed;
   }
+
+  // The pixels record() found the moving meshes may cover.
+  const std::vector<PixelRect>& moving() const { return moving_; }
 
   // After the moving meshes (those not `unchanged`) were drawn with `view_projection`;
   // `world_boxes` are the scene's meshes' (view_bounds::MeshBoxes).

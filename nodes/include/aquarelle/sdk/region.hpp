@@ -1,0 +1,171 @@
+// A set of pixels as disjoint rectangles: what changed in an image since a node last read it,
+// and what a node redraws (damage tracking, aq_host::input_damage). Nuke and Natron carry a
+// region of definition per image for the same reason: in an animation most of a frame is what
+// it was, and a pass scissored to the part that changed costs that part.
+//
+//   aq::Region damage = ctx.input_damage(0).dilated(radius, radius, width, height);
+//   damage.add(ctx.epilogue_damage());
+//   ctx.set_draw_region(damage);  // draw_fullscreen now covers only these rects
+//   ... draw ...
+//   ctx.set_output_damage(0, damage);
+//
+// Header-only, no GL: the host uses it too.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace aq {
+
+// Pixels [x0, x1) x [y0, y1) of a target, row 0 at the bottom (GL).
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  int64_t area() const { return empty() ? 0 : int64_t{x1 - x0} * (y1 - y0); }
+  bool operator==(const PixelRect&) const = default;
+};
+
+class Region {
+ public:
+  // More rects than this are coarsened (32-pixel grid, then the bounding box): every rect is a
+  // draw, and a few more pixels cost less than many draws.
+  static constexpr size_t kMaxRects = 64;
+
+  static Region everything() {
+    Region region;
+    region.all_ = true;
+    return region;
+  }
+  static Region of(const PixelRect& rect) {
+    Region region;
+    region.add(rect);
+    return region;
+  }
+
+  bool all() const { return all_; }
+  bool empty() const { return !all_ && rects_.empty(); }
+  // Disjoint, sorted by row band; meaningless when all().
+  const std::vector<PixelRect>& rects() const { return rects_; }
+
+  void add(const PixelRect& rect) {
+    if (all_ || rect.empty()) return;
+    rects_.push_back(rect);
+    normalize();
+  }
+  void add(const Region& other) {
+    if (all_) return;
+    if (other.all_) {
+      *this = everything();
+      return;
+    }
+    rects_.insert(rects_.end(), other.rects_.begin(), other.rects_.end());
+    normalize();
+  }
+
+  // Every pixel within `rx` columns and `ry` rows of the region (a filter's reach), clipped to
+  // a width x height image.
+  Region dilated(int rx, int ry, int width, int height) const {
+    if (all_) return *this;
+    Region out;
+    for (const PixelRect& r : rects_) {
+      out.rects_.push_back(PixelRect{std::max(r.x0 - rx, 0), std::max(r.y0 - ry, 0),
+                                     std::min(r.x1 + rx, width), std::min(r.y1 + ry, height)});
+    }
+    out.normalize();
+    return out;
+  }
+
+  // Pixels counted once; `width` x `height` for all().
+  int64_t area(int width, int height) const {
+    if (all_) return int64_t{width} * height;
+    int64_t sum = 0;
+    for (const PixelRect& r : rects_) sum += r.area();
+    return sum;
+  }
+
+  // Whether every pixel of `other` is in this region.
+  bool covers(const Region& other) const {
+    if (all_ || other.empty()) return true;
+    if (other.all_) return false;
+    Region both = *this;
+    both.add(other);
+    return both.area(0, 0) == area(0, 0);
+  }
+
+ private:
+  // Rewrites the rects as the disjoint union: the rows are cut into bands at every rect's top
+  // and bottom, each band's column intervals merged, and equal neighbouring bands joined.
+  void normalize() {
+    rects_.erase(std::remove_if(rects_.begin(), rects_.end(),
+                                [](const PixelRect& r) { return r.empty(); }),
+                 rects_.end());
+    if (rects_.size() <= 1) return;
+    std::vector<int> edges;
+    for (const PixelRect& r : rects_) {
+      edges.push_back(r.y0);
+      edges.push_back(r.y1);
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    struct Band {
+      int y0, y1;
+      std::vector<std::pair<int, int>> spans;
+    };
+    std::vector<Band> bands;
+    for (size_t b = 0; b + 1 < edges.size(); ++b) {
+      Band band{edges[b], edges[b + 1], {}};
+      for (const PixelRect& r : rects_) {
+        if (r.y0 <= band.y0 && r.y1 >= band.y1) band.spans.emplace_back(r.x0, r.x1);
+      }
+      if (band.spans.empty()) continue;
+      std::sort(band.spans.begin(), band.spans.end());
+      std::vector<std::pair<int, int>> merged;
+      for (const auto& span : band.spans) {
+        if (!merged.empty() && span.first <= merged.back().second) {
+          merged.back().second = std::max(merged.back().second, span.second);
+        } else {
+          merged.push_back(span);
+        }
+      }
+      band.spans = std::move(merged);
+      if (!bands.empty() && bands.back().y1 == band.y0 && bands.back().spans == band.spans) {
+        bands.back().y1 = band.y1;
+      } else {
+        bands.push_back(std::move(band));
+      }
+    }
+    rects_.clear();
+    for (const Band& band : bands) {
+      for (const auto& [x0, x1] : band.spans) rects_.push_back(PixelRect{x0, band.y0, x1, band.y1});
+    }
+    if (rects_.size() > kMaxRects && !coarsening_) coarsen();
+  }
+
+  void coarsen() {
+    constexpr int kGrid = 32;
+    auto down = [](int v) { return v >= 0 ? v / kGrid * kGrid : -((-v + kGrid - 1) / kGrid) * kGrid; };
+    auto up = [&](int v) { return -down(-v); };
+    PixelRect box = rects_[0];
+    for (const PixelRect& r : rects_) {
+      box = PixelRect{std::min(box.x0, r.x0), std::min(box.y0, r.y0), std::max(box.x1, r.x1),
+                      std::max(box.y1, r.y1)};
+    }
+    // Out to the grid, but not past the exact rects' bounding box (nor so the image).
+    for (PixelRect& r : rects_) {
+      r = PixelRect{std::max(down(r.x0), box.x0), std::max(down(r.y0), box.y0),
+                    std::min(up(r.x1), box.x1), std::min(up(r.y1), box.y1)};
+    }
+    coarsening_ = true;
+    normalize();
+    coarsening_ = false;
+    if (rects_.size() > kMaxRects) rects_.assign(1, box);
+  }
+
+  bool all_ = false;
+  bool coarsening_ = false;
+  std::vector<PixelRect> rects_;
+};
+
+}  // namespace aq
