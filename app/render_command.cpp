@@ -341,10 +341,14 @@ int run_render(int argc, char** argv) {
       if (inserted) {
         order.push_back(timing.node);
         it->second.first.gpu_ms = it->second.first.cpu_ms = 0;
+        it->second.first.redrawn = 0;
       }
       it->second.first.gpu_ms += timing.gpu_ms;
       it->second.first.cpu_ms += timing.cpu_ms;
-      if (!timing.cached && !timing.fused) ++it->second.second;
+      if (!timing.cached && !timing.fused) {
+        ++it->second.second;
+        it->second.first.redrawn += timing.redrawn;
+      }
       if (timing.fused) it->second.first.fused = true;
     }
     double seconds =
@@ -369,7 +373,10 @@ int run_render(int argc, char** argv) {
   }
   if (stats) {
     int frames_run = std::max(1, written);
-    std::printf("%-16s %-12s %10s %10s %6s\n", "node", "type", "gpu ms", "cpu ms", "runs");
+    // redrawn: the share of its outputs' pixels a run redrew on average (damage tracking: a node
+    // whose outputs were kept redraws only what changed).
+    std::printf("%-16s %-12s %10s %10s %6s %8s\n", "node", "type", "gpu ms", "cpu ms", "runs",
+                "redrawn");
     double gpu_total = 0, cpu_total = 0;
     for (const auto& id : order) {
       const auto& [timing, runs] = totals[id];
@@ -377,8 +384,11 @@ int run_render(int argc, char** argv) {
         std::printf("%-16s %-12s %28s\n", id.c_str(), timing.type.c_str(), "fused into its reader");
         continue;
       }
-      std::printf("%-16s %-12s %10.2f %10.2f %6d\n", id.c_str(), timing.type.c_str(),
-                  timing.gpu_ms / frames_run, timing.cpu_ms / frames_run, runs);
+      char redrawn[16] = "-";
+      if (runs > 0 && timing.redrawn >= 0)
+        std::snprintf(redrawn, sizeof(redrawn), "%.0f%%", 100.0 * timing.redrawn / runs);
+      std::printf("%-16s %-12s %10.2f %10.2f %6d %8s\n", id.c_str(), timing.type.c_str(),
+                  timing.gpu_ms / frames_run, timing.cpu_ms / frames_run, runs, redrawn);
       gpu_total += timing.gpu_ms / frames_run;
       cpu_total += timing.cpu_ms / frames_run;
     }

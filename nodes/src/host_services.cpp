@@ -270,9 +270,11 @@ int write_rects(const Region& region, aq_rect* rects, uint32_t capacity) {
 }
 
 Region region_of(const aq_rect* rects, uint32_t count) {
-  Region region;
+  std::vector<PixelRect> pixels;
   for (uint32_t i = 0; i < count; ++i)
-    region.add(PixelRect{rects[i].x0, rects[i].y0, rects[i].x1, rects[i].y1});
+    pixels.push_back(PixelRect{rects[i].x0, rects[i].y0, rects[i].x1, rects[i].y1});
+  Region region;
+  region.add(pixels);
   return region;
 }
 
@@ -319,12 +321,13 @@ void finish_damage_call(NodeState& state, const CallState& call, uint64_t previo
     if (o < call.declared_damage.size() && call.declared_damage[o])
       state.output_damage[o] = *call.declared_damage[o];
     const TextureRef& image = state.images[o];
-    const int w = image ? image->image.width : width;
-    const int h = image ? image->image.height : height;
-    redrawn += state.output_damage[o].area(w, h);
-    total += int64_t{w} * h;
+    if (!image) continue;  // a scene
+    redrawn += state.output_damage[o].area(image->image.width, image->image.height);
+    total += int64_t{image->image.width} * image->image.height;
   }
-  state.redrawn = total > 0 ? static_cast<double>(redrawn) / static_cast<double>(total) : 1.0;
+  (void)width;
+  (void)height;
+  state.redrawn = total > 0 ? static_cast<double>(redrawn) / static_cast<double>(total) : -1.0;
 }
 
 int HostServices::input_damage(void* data, uint32_t index, aq_rect* rects, uint32_t capacity) {

@@ -48,7 +48,8 @@ struct NodeState {
   std::vector<Region> output_damage;
   // Per output, where it may hold anything but its background (aq_host::set_output_bounds).
   std::vector<Region> output_bounds;
-  // Share of the outputs' pixels that call redrew (1 when it said nothing), for --stats.
+  // Share of the outputs' pixels that call redrew (1 when it said nothing; -1 without image
+  // outputs), for --stats.
   double redrawn = 1.0;
 
   gl::Query timer_start;  // GL_TIMESTAMP pairs: llvmpipe's GL_TIME_ELAPSED reads garbage when

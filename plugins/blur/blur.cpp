@@ -126,8 +126,10 @@ std::string depth_define(const aq::Context& ctx, const aq_image& in) {
 
 struct Blur {
   std::string source;  // the last composed shader text (the host compiles it at once)
-  // The output pixels this call redraws (damage tracking; direct method only, else all).
+  // The output pixels that may change (damage tracking; direct method only, else all), and
+  // what is drawn for them.
   aq::Region damage_ = aq::Region::everything();
+  aq::Region drawn_ = aq::Region::everything();
 
   int process(aq::Context& ctx) {
     aq_image in = ctx.input_image(0);
@@ -148,14 +150,16 @@ struct Blur {
         ctx.param_enum(kMethod) != kStrided && !uniform && max_sigma <= kDirectMaxSigma;
     damage_ = direct ? direct_damage(ctx, in, out, direct_radius(max_sigma))
                      : aq::Region::everything();
+    drawn_ = damage_.for_drawing();
     if (in.format == AQ_FORMAT_RGBA8_HDR && !reads_encoded(ctx, uniform, max_sigma)) {
       aq_image decoded;
-      ctx.set_draw_region(damage_.dilated(direct_radius(max_sigma), direct_radius(max_sigma),
-                                          in.width, in.height));
+      ctx.set_draw_region(
+          drawn_.dilated(direct_radius(max_sigma), direct_radius(max_sigma), in.width, in.height)
+              .for_drawing());
       if (!decode(ctx, in, &decoded)) return AQ_ERROR;
       in = decoded;
     }
-    ctx.set_draw_region(damage_);
+    ctx.set_draw_region(drawn_);
     bool ok = false;
     if (ctx.param_enum(kMethod) == kStrided) {
       ok = strided(ctx, in, out, sigma);
@@ -189,7 +193,7 @@ struct Blur {
     }
     aq::Region damage = changed.dilated(radius, radius, out.width, out.height);
     damage.add(ctx.epilogue_damage());
-    if (!ctx.set_draw_region(damage)) return aq::Region::everything();
+    if (!ctx.set_draw_region(aq::Region::everything())) return aq::Region::everything();
     return damage;
   }
 
@@ -303,8 +307,8 @@ struct Blur {
       aq::bind_texture(program, "u_image", 0, axis == 0 ? in : rows);
       aq::set_float(program, "u_sigma", sigma);
       // The rows pass covers the rows the columns pass reads around the damaged pixels.
-      ctx.set_draw_region(axis == 0 ? damage_.dilated(0, radius, out.width, out.height)
-                                    : damage_);
+      ctx.set_draw_region(
+          axis == 0 ? drawn_.dilated(0, radius, out.width, out.height).for_drawing() : drawn_);
       if (!ctx.draw(axis == 0 ? rows : out)) return false;
     }
     return true;

@@ -173,7 +173,7 @@ struct CelLight {
     lighting.mix(aq::scene_caustic_tile(*scene));
     aq::Region damage = damaged(ctx, targets[0], lighting.value != lighting_key_);
     lighting_key_ = lighting.value;
-    if (!ctx.set_draw_region(damage)) damage = aq::Region::everything();
+    if (!ctx.set_draw_region(damage.for_drawing())) damage = aq::Region::everything();
 
     const bool bound = ctx.bind_targets(targets, 2);
     if (bound) ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);

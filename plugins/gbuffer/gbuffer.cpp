@@ -121,14 +121,16 @@ class GBuffer {
     if (layered) {
       drawn_.record(layer_, boxes_.world_boxes(*scene), unchanged,
                     glm::dmat4(projection) * glm::dmat4(view), width, height);
-      for (const aq::PixelRect& rect : drawn_.moving()) damage.add(rect);
+      damage.add(drawn_.moving());
     }
     // Outside the meshes' projected boxes every target holds the background (id 0): the light
     // needs to redraw only inside them when the shadow map or the caustics change.
     aq::Region bounds;
     const glm::dmat4 view_projection = glm::dmat4(projection) * glm::dmat4(view);
+    std::vector<aq::PixelRect> covered;
     for (const aq::view_bounds::Box& box : boxes_.world_boxes(*scene))
-      bounds.add(aq::covered_pixels(box, view_projection, width, height));
+      covered.push_back(aq::covered_pixels(box, view_projection, width, height));
+    bounds.add(covered);
     for (uint32_t i = 0; i < kOutputCount; ++i) {
       if (!ctx.set_output_bounds(i, bounds)) return AQ_ERROR;
       if (outputs_kept && !ctx.set_output_damage(i, damage)) return AQ_ERROR;

@@ -95,7 +95,7 @@ struct Wobble {
       }
       damage.add(ctx.epilogue_damage());
     }
-    if (!ctx.set_draw_region(damage)) damage = aq::Region::everything();
+    if (!ctx.set_draw_region(damage.for_drawing())) damage = aq::Region::everything();
     // Drawn even when nothing changed: an empty region draws nothing, but the host learns that
     // the draw applies the epilogue (else it would run the fused nodes as a pass of their own).
     const bool drawn = ctx.draw(out);

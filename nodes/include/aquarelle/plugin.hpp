@@ -385,9 +385,11 @@ class Context {
     std::vector<aq_rect> rects(Region::kMaxRects);
     const int count = query(rects.data(), static_cast<uint32_t>(rects.size()));
     if (count < 0) return Region::everything();
-    Region region;
+    std::vector<PixelRect> pixels;
     for (int i = 0; i < count; ++i)
-      region.add(PixelRect{rects[i].x0, rects[i].y0, rects[i].x1, rects[i].y1});
+      pixels.push_back(PixelRect{rects[i].x0, rects[i].y0, rects[i].x1, rects[i].y1});
+    Region region;
+    region.add(pixels);
     return region;
   }
   static std::vector<aq_rect> to_rects(const Region& region) {

@@ -35,7 +35,7 @@ struct NodeTiming {
   bool cached = false;  // reused from the previous evaluation, not run
   bool fused = false;   // ran inside the pass of the node reading it (pointwise fusion)
   // Share of its outputs' pixels the run redrew: below 1 when the node redrew only what changed
-  // (damage tracking, aq_host::set_output_damage).
+  // (damage tracking, aq_host::set_output_damage); negative for a node without image outputs.
   double redrawn = 1.0;
 };
 

@@ -135,8 +135,9 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader) {
   if (ctx.output_kept(0) && in.width == out.width && in.height == out.height)
     damage = ctx.input_damage(0).dilated(radius, radius, out.width, out.height);
   if (damage.empty()) return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
-  if (!ctx.set_draw_region(damage.dilated(0, radius, out.width, out.height)))
-    damage = Region::everything();
+  Region drawn = damage.for_drawing();
+  if (!ctx.set_draw_region(drawn.dilated(0, radius, out.width, out.height).for_drawing()))
+    damage = drawn = Region::everything();
   const bool out_hdr8 = out.format == AQ_FORMAT_RGBA8_HDR;
   const std::string rows_text = variant_text(shader, 0, plan, luminance, in_hdr8, in_hdr8);
   const std::string columns_text = variant_text(shader, 1, plan, luminance, in_hdr8, out_hdr8);
@@ -162,10 +163,10 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader) {
     glBindTexture(GL_TEXTURE_2D, spans[i].texture);
   }
   glUniform1iv(glGetUniformLocation(columns, "u_spans"), plan.span_count, units.data());
-  ctx.set_draw_region(damage);
-  const bool drawn = ctx.draw(out);
+  ctx.set_draw_region(drawn);
+  const bool ok = ctx.draw(out);
   aq::unbind_textures(kMaxSpans);
-  return drawn && ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
+  return ok && ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
 }
 
 }  // namespace aq::morphology

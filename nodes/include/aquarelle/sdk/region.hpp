@@ -29,9 +29,11 @@ struct PixelRect {
 
 class Region {
  public:
-  // More rects than this are coarsened (32-pixel grid, then the bounding box): every rect is a
-  // draw, and a few more pixels cost less than many draws.
-  static constexpr size_t kMaxRects = 64;
+  // More rects than this are coarsened (out to a 16, 32, 64 ... pixel grid).
+  static constexpr size_t kMaxRects = 1024;
+  // What a node draws: every rect is a draw (a scissored triangle), and past a few dozen a few
+  // more pixels in fewer rects cost less (for_drawing).
+  static constexpr size_t kMaxDrawRects = 64;
 
   static Region everything() {
     Region region;
@@ -52,6 +54,12 @@ class Region {
   void add(const PixelRect& rect) {
     if (all_ || rect.empty()) return;
     rects_.push_back(rect);
+    normalize();
+  }
+  // Many at once: one normalisation instead of one per rect.
+  void add(const std::vector<PixelRect>& rects) {
+    if (all_) return;
+    rects_.insert(rects_.end(), rects.begin(), rects.end());
     normalize();
   }
   void add(const Region& other) {
@@ -77,6 +85,15 @@ class Region {
     return out;
   }
 
+  // The region with at most kMaxDrawRects rects, grown where needed: what to draw for it. A
+  // node derives the regions of its earlier passes from this one, and declares the exact
+  // damage (the added pixels are drawn with the values they had).
+  Region for_drawing() const {
+    Region out = *this;
+    if (!out.all_ && out.rects_.size() > kMaxDrawRects) out.coarsen(kMaxDrawRects);
+    return out;
+  }
+
   // Pixels counted once; `width` x `height` for all().
   int64_t area(int width, int height) const {
     if (all_) return int64_t{width} * height;
@@ -96,7 +113,8 @@ class Region {
 
  private:
   // Rewrites the rects as the disjoint union: the rows are cut into bands at every rect's top
-  // and bottom, each band's column intervals merged, and equal neighbouring bands joined.
+  // and bottom, each band's column intervals (of the rects spanning it) merged, and equal
+  // neighbouring bands joined.
   void normalize() {
     rects_.erase(std::remove_if(rects_.begin(), rects_.end(),
                                 [](const PixelRect& r) { return r.empty(); }),
@@ -109,17 +127,23 @@ class Region {
     }
     std::sort(edges.begin(), edges.end());
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    std::sort(rects_.begin(), rects_.end(),
+              [](const PixelRect& a, const PixelRect& b) { return a.y0 < b.y0; });
     struct Band {
       int y0, y1;
       std::vector<std::pair<int, int>> spans;
     };
     std::vector<Band> bands;
+    std::vector<const PixelRect*> active;
+    size_t next = 0;
     for (size_t b = 0; b + 1 < edges.size(); ++b) {
       Band band{edges[b], edges[b + 1], {}};
-      for (const PixelRect& r : rects_) {
-        if (r.y0 <= band.y0 && r.y1 >= band.y1) band.spans.emplace_back(r.x0, r.x1);
-      }
-      if (band.spans.empty()) continue;
+      while (next < rects_.size() && rects_[next].y0 <= band.y0) active.push_back(&rects_[next++]);
+      active.erase(std::remove_if(active.begin(), active.end(),
+                                  [&](const PixelRect* r) { return r->y1 <= band.y0; }),
+                   active.end());
+      if (active.empty()) continue;
+      for (const PixelRect* r : active) band.spans.emplace_back(r->x0, r->x1);
       std::sort(band.spans.begin(), band.spans.end());
       std::vector<std::pair<int, int>> merged;
       for (const auto& span : band.spans) {
@@ -136,31 +160,40 @@ class Region {
         bands.push_back(std::move(band));
       }
     }
-    rects_.clear();
+    std::vector<PixelRect> out;
     for (const Band& band : bands) {
-      for (const auto& [x0, x1] : band.spans) rects_.push_back(PixelRect{x0, band.y0, x1, band.y1});
+      for (const auto& [x0, x1] : band.spans) out.push_back(PixelRect{x0, band.y0, x1, band.y1});
     }
-    if (rects_.size() > kMaxRects && !coarsening_) coarsen();
+    rects_ = std::move(out);
+    if (rects_.size() > kMaxRects && !coarsening_) coarsen(kMaxRects);
   }
 
-  void coarsen() {
-    constexpr int kGrid = 32;
-    auto down = [](int v) { return v >= 0 ? v / kGrid * kGrid : -((-v + kGrid - 1) / kGrid) * kGrid; };
-    auto up = [&](int v) { return -down(-v); };
+  // Out to a grid of 16, 32, 64 ... pixels (not past the exact rects' bounding box) until few
+  // enough rects remain: a few more pixels drawn, never fewer.
+  void coarsen(size_t max_rects) {
     PixelRect box = rects_[0];
     for (const PixelRect& r : rects_) {
       box = PixelRect{std::min(box.x0, r.x0), std::min(box.y0, r.y0), std::max(box.x1, r.x1),
                       std::max(box.y1, r.y1)};
     }
-    // Out to the grid, but not past the exact rects' bounding box (nor so the image).
-    for (PixelRect& r : rects_) {
-      r = PixelRect{std::max(down(r.x0), box.x0), std::max(down(r.y0), box.y0),
-                    std::min(up(r.x1), box.x1), std::min(up(r.y1), box.y1)};
+    const std::vector<PixelRect> exact = rects_;
+    for (int grid = 16;; grid *= 2) {
+      auto down = [grid](int v) { return v >= 0 ? v / grid * grid : -((-v + grid - 1) / grid) * grid; };
+      auto up = [&](int v) { return -down(-v); };
+      rects_.clear();
+      for (const PixelRect& r : exact) {
+        rects_.push_back(PixelRect{std::max(down(r.x0), box.x0), std::max(down(r.y0), box.y0),
+                                   std::min(up(r.x1), box.x1), std::min(up(r.y1), box.y1)});
+      }
+      coarsening_ = true;
+      normalize();
+      coarsening_ = false;
+      if (rects_.size() <= max_rects) return;
+      if (grid > std::max(box.x1 - box.x0, box.y1 - box.y0)) {
+        rects_.assign(1, box);
+        return;
+      }
     }
-    coarsening_ = true;
-    normalize();
-    coarsening_ = false;
-    if (rects_.size() > kMaxRects) rects_.assign(1, box);
   }
 
   bool all_ = false;

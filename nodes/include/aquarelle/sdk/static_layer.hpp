@@ -302,10 +302,8 @@ class DrawnOverLayer {
     Region changed;
     if (outputs_kept && valid_ && layer_key_ == layer.key &&
         layer_textures_ == layer.textures_made()) {
-      for (const PixelRect& rect : moving_) {
-        layer.copy_rect_to(targets, count, depth, rect);
-        changed.add(rect);
-      }
+      for (const PixelRect& rect : moving_) layer.copy_rect_to(targets, count, depth, rect);
+      changed.add(moving_);
     } else {
       layer.copy_to(targets, count, depth);
       changed = Region::everything();
