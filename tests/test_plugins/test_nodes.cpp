@@ -1,6 +1,11 @@
 // Test node types: `test_add` (optional image in, adds `offset`), `test_fail` (always reports
-// an error), `test_bad_shader` (a shader that does not compile), `test_time` (time-dependent).
+// an error), `test_bad_shader` (a shader that does not compile), `test_time` (time-dependent),
+// `test_square` (a square moving with the frame, redrawn only where it was and is: damage
+// tracking).
 #include <aquarelle/plugin.hpp>
+
+#include <optional>
+#include <utility>
 
 #include "test_nodes_shaders.h"
 
@@ -8,6 +13,7 @@ namespace {
 
 constexpr aq_port_desc kImageIn[] = {aq::optional_image_port("image", "input")};
 constexpr aq_port_desc kImageOut[] = {aq::image_port("image", "output")};
+constexpr aq_param_desc kSquareParams[] = {aq::int_param("size", 6, 1, 64, "side in pixels")};
 constexpr aq_param_desc kAddParams[] = {
     aq::float_param("offset", 0.0, -10.0, 10.0, "added to rgb")};
 
@@ -50,6 +56,36 @@ struct BadShader {
   }
 };
 
+// A `size`-pixel square at x = 4 + 5 * frame over a gradient. With its output kept it redraws only
+// the square's last and new place and says so (aq_host::set_output_damage).
+struct Square {
+  int process(aq::Context& ctx) {
+    aq_image out;
+    if (!ctx.output(0, ctx.width(), ctx.height(), ctx.working_format(), &out)) return AQ_ERROR;
+    const int x0 = 4 + 5 * ctx.frame(), y0 = out.height / 3;
+    const int side = static_cast<int>(ctx.param_int(0));
+    const aq::PixelRect now{x0, y0, x0 + side, y0 + side};
+    aq::Region damage = aq::Region::everything();
+    if (ctx.output_kept(0) && drawn_ && size_ == std::make_pair(out.width, out.height)) {
+      damage = aq::Region::of(*drawn_);
+      damage.add(now);
+      damage = damage.dilated(0, 0, out.width, out.height);  // clipped to the image
+    }
+    GLuint program = ctx.program(shaders::test_square_frag);
+    if (program == 0) return AQ_ERROR;
+    glUseProgram(program);
+    glUniform4f(glGetUniformLocation(program, "u_square"), static_cast<float>(now.x0),
+                static_cast<float>(now.y0), static_cast<float>(now.x1), static_cast<float>(now.y1));
+    if (!ctx.set_draw_region(damage)) damage = aq::Region::everything();
+    if (!ctx.draw(out)) return AQ_ERROR;
+    drawn_ = now;
+    size_ = {out.width, out.height};
+    return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
+  }
+  std::optional<aq::PixelRect> drawn_;
+  std::pair<int, int> size_{0, 0};
+};
+
 }  // namespace
 
 AQ_NODE(kAdd, Add, "test_add", "Test", "adds offset", AQ_NODE_POINTWISE, kImageIn, kImageOut,
@@ -59,4 +95,6 @@ AQ_NODE(kTime, TimeAdd, "test_time", "Test", "adds offset + time", AQ_NODE_TIME_
 AQ_NODE_NO_PARAMS(kFail, Fail, "test_fail", "Test", "always fails", 0, kImageIn, kImageOut);
 AQ_NODE_NO_PARAMS(kBad, BadShader, "test_bad_shader", "Test", "shader error", 0, kImageIn,
                   kImageOut);
-AQ_PLUGIN("test_nodes", "1.0", &kAdd, &kTime, &kFail, &kBad)
+AQ_SOURCE_NODE(kSquare, Square, "test_square", "Test", "a square moving with the frame",
+               AQ_NODE_TIME_DEPENDENT, kImageOut, kSquareParams);
+AQ_PLUGIN("test_nodes", "1.0", &kAdd, &kTime, &kFail, &kBad, &kSquare)

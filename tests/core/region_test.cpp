@@ -1,0 +1,128 @@
+// aq::Region (sdk/region.hpp), the pixel sets of damage tracking, against sets of pixels kept
+// one by one: the union stays disjoint and holds exactly the pixels added; dilation and
+// coverage are the pixel-wise ones; coarsening only ever adds pixels.
+#include <aquarelle/sdk/region.hpp>
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+namespace {
+
+constexpr int kW = 64, kH = 48;
+
+using Pixels = std::vector<bool>;
+
+Pixels pixels_of(const aq::Region& region) {
+  Pixels set(kW * kH, false);
+  if (region.all()) return Pixels(kW * kH, true);
+  for (const aq::PixelRect& r : region.rects()) {
+    for (int y = r.y0; y < r.y1; ++y)
+      for (int x = r.x0; x < r.x1; ++x) set[y * kW + x] = true;
+  }
+  return set;
+}
+
+int64_t overlap_count(const aq::Region& region) {
+  std::vector<int> hits(kW * kH, 0);
+  int64_t twice = 0;
+  for (const aq::PixelRect& r : region.rects()) {
+    for (int y = r.y0; y < r.y1; ++y)
+      for (int x = r.x0; x < r.x1; ++x) twice += ++hits[y * kW + x] > 1 ? 1 : 0;
+  }
+  return twice;
+}
+
+std::vector<aq::PixelRect> random_rects(std::mt19937& rng, int count, int max_side) {
+  std::uniform_int_distribution<int> x(0, kW - 1), y(0, kH - 1), side(1, max_side);
+  std::vector<aq::PixelRect> rects;
+  for (int i = 0; i < count; ++i) {
+    const int x0 = x(rng), y0 = y(rng);
+    rects.push_back(aq::PixelRect{x0, y0, std::min(kW, x0 + side(rng)), std::min(kH, y0 + side(rng))});
+  }
+  return rects;
+}
+
+TEST(Region, TheUnionIsDisjointAndHoldsExactlyThePixelsAdded) {
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 50; ++trial) {
+    const auto rects = random_rects(rng, 1 + trial % 20, 20);
+    Pixels expected(kW * kH, false);
+    for (const aq::PixelRect& r : rects) {
+      for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) expected[y * kW + x] = true;
+    }
+    aq::Region one_by_one, at_once;
+    for (const aq::PixelRect& r : rects) one_by_one.add(r);
+    at_once.add(rects);
+    EXPECT_EQ(pixels_of(one_by_one), expected);
+    EXPECT_EQ(pixels_of(at_once), expected);
+    EXPECT_EQ(overlap_count(at_once), 0) << "rects overlap: pixels would be drawn twice";
+    int64_t count = 0;
+    for (bool p : expected) count += p ? 1 : 0;
+    EXPECT_EQ(at_once.area(kW, kH), count);
+  }
+}
+
+TEST(Region, DilationIsThePixelwiseOneClippedToTheImage) {
+  std::mt19937 rng(6);
+  for (int trial = 0; trial < 20; ++trial) {
+    aq::Region region;
+    region.add(random_rects(rng, 4, 10));
+    const int rx = trial % 4, ry = (trial / 4) % 3;
+    const Pixels before = pixels_of(region);
+    Pixels expected(kW * kH, false);
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        for (int dy = -ry; dy <= ry; ++dy)
+          for (int dx = -rx; dx <= rx; ++dx) {
+            const int sx = x + dx, sy = y + dy;
+            if (sx >= 0 && sx < kW && sy >= 0 && sy < kH && before[sy * kW + sx])
+              expected[y * kW + x] = true;
+          }
+      }
+    EXPECT_EQ(pixels_of(region.dilated(rx, ry, kW, kH)), expected) << rx << " " << ry;
+  }
+}
+
+TEST(Region, CoversAndEverything) {
+  aq::Region small = aq::Region::of(aq::PixelRect{2, 2, 6, 6});
+  aq::Region big = aq::Region::of(aq::PixelRect{0, 0, 10, 10});
+  EXPECT_TRUE(big.covers(small));
+  EXPECT_FALSE(small.covers(big));
+  EXPECT_TRUE(small.covers(aq::Region()));
+  EXPECT_FALSE(big.covers(aq::Region::everything()));
+  aq::Region all = aq::Region::everything();
+  all.add(small);
+  EXPECT_TRUE(all.all());
+  small.add(aq::Region::everything());
+  EXPECT_TRUE(small.all());
+  EXPECT_TRUE(aq::Region().empty());
+  EXPECT_FALSE(aq::Region::everything().empty());
+}
+
+// Past kMaxRects (storage) and kMaxDrawRects (for_drawing) the region grows to a coarser grid:
+// more pixels, never fewer, and no more rects than the limit.
+TEST(Region, CoarseningOnlyAddsPixels) {
+  std::mt19937 rng(7);
+  std::vector<aq::PixelRect> specks;
+  std::uniform_int_distribution<int> x(0, 4095), y(0, 2047);
+  for (int i = 0; i < 3000; ++i) {
+    const int x0 = x(rng), y0 = y(rng);
+    specks.push_back(aq::PixelRect{x0, y0, x0 + 1, y0 + 1});
+  }
+  aq::Region region;
+  region.add(specks);
+  ASSERT_FALSE(region.all());
+  EXPECT_LE(region.rects().size(), aq::Region::kMaxRects);
+  const aq::Region drawn = region.for_drawing();
+  EXPECT_LE(drawn.rects().size(), aq::Region::kMaxDrawRects);
+  EXPECT_TRUE(drawn.covers(region));
+  for (const aq::PixelRect& s : specks) EXPECT_TRUE(region.covers(aq::Region::of(s)));
+  // A few rects are left as they are.
+  aq::Region few = aq::Region::of(aq::PixelRect{1, 1, 3, 3});
+  few.add(aq::PixelRect{10, 10, 12, 12});
+  EXPECT_EQ(few.for_drawing().area(kW, kH), 8);
+}
+
+}  // namespace
