@@ -1,7 +1,8 @@
 // The screen rectangles the g-buffer and the shadow map restore from their cached layer around
 // the meshes that moved (aquarelle/sdk/static_layer.hpp covered_pixels): a mesh's rectangle
-// holds every pixel its vertices project to and one around it, the whole target when the mesh
-// reaches behind the camera, nothing when it has no vertices or lies off the target.
+// holds every pixel its vertices project to and one around it, what its box clipped to the view
+// frustum projects to when the mesh reaches behind the camera (the sand under it), nothing when
+// it has no vertices or lies off the target.
 #include <gtest/gtest.h>
 
 #include <aquarelle/sdk/static_layer.hpp>
@@ -81,7 +82,38 @@ TEST(CoveredPixels, EveryProjectedVertexLiesInTheRectangle) {
   EXPECT_GT(inside_tests, 1000);
 }
 
-TEST(CoveredPixels, BehindTheCameraIsTheWholeTargetAndNoVerticesIsNothing) {
+// A floor reaching under and behind the camera: its box clipped to the frustum covers the lower
+// part of the view, every point of it in view projects into the rectangle, and the upper part
+// of the target stays out (the damage tracking of the light redraws the floor, not the water).
+TEST(CoveredPixels, ABoxBehindTheCameraIsClippedToTheView) {
+  const int width = 96, height = 64;
+  const glm::mat4 projection = glm::perspective(glm::radians(50.0f), 1.5f, 0.1f, 100.0f);
+  const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 2), glm::vec3(0, -0.3f, 0), glm::vec3(0, 1, 0));
+  const glm::mat4 view_projection = projection * view;
+  const std::vector<float> floor = {-3, -1.2f, -6, 3, -1.0f, 8};  // z to 8: behind the eye
+  const PixelRect rect = rect_of(floor, glm::mat4(1.0f), view_projection, width, height);
+  EXPECT_LT(rect.y1, height) << "the floor's rectangle reaches the top of the view";
+  EXPECT_GT(rect.y1 - rect.y0, 0);
+  std::mt19937 random(9);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  int seen = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const glm::vec4 p(-3 + 6 * unit(random), -1.2f + 0.2f * unit(random), -6 + 14 * unit(random), 1);
+    const glm::vec4 clip = view_projection * p;
+    if (clip.w <= 0.1f) continue;
+    const float x = (clip.x / clip.w * 0.5f + 0.5f) * width;
+    const float y = (clip.y / clip.w * 0.5f + 0.5f) * height;
+    if (x < 0 || x >= width || y < 0 || y >= height) continue;
+    ++seen;
+    EXPECT_LE(rect.x0, static_cast<int>(std::floor(x)));
+    EXPECT_GT(rect.x1, static_cast<int>(std::floor(x)));
+    EXPECT_LE(rect.y0, static_cast<int>(std::floor(y)));
+    EXPECT_GT(rect.y1, static_cast<int>(std::floor(y)));
+  }
+  EXPECT_GT(seen, 1000);
+}
+
+TEST(CoveredPixels, AcrossTheWholeViewIsTheWholeTargetAndNoVerticesIsNothing) {
   const glm::mat4 projection = glm::perspective(glm::radians(50.0f), 1.0f, 0.1f, 100.0f);
   const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 2), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
   const glm::mat4 view_projection = projection * view;
