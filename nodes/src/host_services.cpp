@@ -153,6 +153,8 @@ int HostServices::output_image(void* data, uint32_t index, int32_t width, int32_
   state.images[index] = call->host->pool_.acquire(width, height, format, writer, &kept);
   if (call->kept_outputs.size() <= index) call->kept_outputs.resize(index + 1, false);
   call->kept_outputs[index] = kept && state.instance != nullptr;
+  if (call->acquired_outputs.size() <= index) call->acquired_outputs.resize(index + 1, false);
+  call->acquired_outputs[index] = true;
   *out = state.images[index]->image;
   return AQ_OK;
 }
@@ -162,11 +164,20 @@ uint64_t output_writer(const NodeState& state, uint32_t index) {
 }
 
 int HostServices::output_kept(void* data, uint32_t index) {
-  const auto* call = static_cast<CallState*>(data);
+  auto* call = static_cast<CallState*>(data);
   // A tag no other instance ever had, so that a new instance at the address of a destroyed
   // one never gets that one's textures back as its own.
   static std::atomic<uint64_t> next_tag{0};
-  if (call->state->writer_tag == 0) call->state->writer_tag = ++next_tag;
+  NodeState& state = *call->state;
+  if (state.writer_tag == 0) {
+    state.writer_tag = ++next_tag;
+    // The outputs this call already has become the instance's, so that its next call gets
+    // them back (the ones it acquires from now on are tagged as they are handed out).
+    for (uint32_t o = 0; o < state.images.size() && o < call->acquired_outputs.size(); ++o) {
+      if (call->acquired_outputs[o] && state.images[o])
+        call->host->pool_.claim(*state.images[o], output_writer(state, o));
+    }
+  }
   return index < call->kept_outputs.size() && call->kept_outputs[index] ? 1 : 0;
 }
 
@@ -179,6 +190,7 @@ int HostServices::pass_through(void* data, uint32_t index, uint32_t input_index)
     return AQ_ERROR;
   }
   state.images[index] = (*call->input_refs)[input_index];
+  if (index < call->acquired_outputs.size()) call->acquired_outputs[index] = false;
   return AQ_OK;
 }
 
@@ -269,15 +281,6 @@ int write_rects(const Region& region, aq_rect* rects, uint32_t capacity) {
     rects[i] = aq_rect{r.x0, r.y0, r.x1, r.y1};
   }
   return static_cast<int>(region.rects().size());
-}
-
-Region region_of(const aq_rect* rects, uint32_t count) {
-  std::vector<PixelRect> pixels;
-  for (uint32_t i = 0; i < count; ++i)
-    pixels.push_back(PixelRect{rects[i].x0, rects[i].y0, rects[i].x1, rects[i].y1});
-  Region region;
-  region.add(pixels);
-  return region;
 }
 
 }  // namespace

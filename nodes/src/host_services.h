@@ -93,6 +93,8 @@ struct CallState {
   // Per output: output_image handed out the texture this instance's output had before, with
   // its content (aq_host::output_kept).
   std::vector<bool> kept_outputs;
+  // Per output: output_image handed it out in this call (not a pass-through of an input).
+  std::vector<bool> acquired_outputs;
 
   // Damage tracking: per input its source and key now; the node's own key now.
   const std::vector<DamageSource>* sources = nullptr;

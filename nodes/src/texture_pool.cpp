@@ -146,6 +146,12 @@ void TexturePool::give_back(PooledTexture* texture) {
   free_[Key{image.width, image.height, image.format}].emplace_back(texture);
 }
 
+void TexturePool::claim(PooledTexture& texture, uint64_t writer) {
+  if (writer == 0) return;
+  texture.writer = writer;
+  claims_[writer] = texture.serial;
+}
+
 void TexturePool::unclaim(uint64_t writer) {
   if (writer != 0) claims_.erase(writer);
 }

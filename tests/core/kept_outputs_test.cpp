@@ -87,5 +87,21 @@ TEST_F(KeptOutputs, OnlyTheWritersLastTextureIsKeptAndUnclaimFreesIt) {
   EXPECT_EQ(pool.created_count(), made) << "the unclaimed texture is reused";
 }
 
+// A node that asks to keep its outputs only after acquiring them (its first call) claims them
+// then: its second call gets them back, kept.
+TEST_F(KeptOutputs, AClaimAfterTheAcquisitionKeepsTheTextureForTheWriter) {
+  TexturePool pool;
+  bool kept = false;
+  TextureRef first = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 0, &kept);
+  const GLuint name = first->image.texture;
+  pool.claim(*first, 9);
+  first.reset();
+  TextureRef anyone = pool.acquire(16, 8, AQ_FORMAT_RGBA16F);
+  EXPECT_NE(anyone->image.texture, name) << "a claimed texture went to someone else";
+  TextureRef second = pool.acquire(16, 8, AQ_FORMAT_RGBA16F, 9, &kept);
+  EXPECT_TRUE(kept);
+  EXPECT_EQ(second->image.texture, name);
+}
+
 }  // namespace
 }  // namespace aq

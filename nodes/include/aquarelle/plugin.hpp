@@ -258,7 +258,7 @@ class Context {
     if (region.all() ||
         !has_host_call(offsetof(aq_host, set_output_damage), raw_->host->set_output_damage != nullptr))
       return true;
-    const std::vector<aq_rect> rects = to_rects(region);
+    const std::vector<aq_rect> rects = rects_of(region);
     return raw_->host->set_output_damage(raw_->host_data, index, rects.data(),
                                          static_cast<uint32_t>(rects.size())) == AQ_OK;
   }
@@ -276,7 +276,7 @@ class Context {
     if (region.all() ||
         !has_host_call(offsetof(aq_host, set_output_bounds), raw_->host->set_output_bounds != nullptr))
       return true;
-    const std::vector<aq_rect> rects = to_rects(region);
+    const std::vector<aq_rect> rects = rects_of(region);
     return raw_->host->set_output_bounds(raw_->host_data, index, rects.data(),
                                          static_cast<uint32_t>(rects.size())) == AQ_OK;
   }
@@ -288,7 +288,7 @@ class Context {
     if (region.all()) {
       raw_->host->set_draw_region(raw_->host_data, nullptr, 0);
     } else {
-      std::vector<aq_rect> rects = to_rects(region);
+      std::vector<aq_rect> rects = rects_of(region);
       aq_rect none{};  // an empty region still passes rects: NULL would mean everything
       raw_->host->set_draw_region(raw_->host_data, rects.empty() ? &none : rects.data(),
                                   static_cast<uint32_t>(rects.size()));
@@ -385,17 +385,7 @@ class Context {
     std::vector<aq_rect> rects(Region::kMaxRects);
     const int count = query(rects.data(), static_cast<uint32_t>(rects.size()));
     if (count < 0) return Region::everything();
-    std::vector<PixelRect> pixels;
-    for (int i = 0; i < count; ++i)
-      pixels.push_back(PixelRect{rects[i].x0, rects[i].y0, rects[i].x1, rects[i].y1});
-    Region region;
-    region.add(pixels);
-    return region;
-  }
-  static std::vector<aq_rect> to_rects(const Region& region) {
-    std::vector<aq_rect> rects;
-    for (const PixelRect& r : region.rects()) rects.push_back(aq_rect{r.x0, r.y0, r.x1, r.y1});
-    return rects;
+    return region_of(rects.data(), static_cast<size_t>(count));
   }
   bool has_input_keys() const {
     return raw_->struct_size >= offsetof(aq_process_ctx, input_keys) + sizeof(void*) &&

@@ -43,6 +43,9 @@ class TexturePool {
   TextureRef acquire(int width, int height, uint32_t format, uint64_t writer, bool* kept);
   // The writer is gone (its node was deleted): its texture is anyone's again.
   void unclaim(uint64_t writer);
+  // Makes a texture handed out untagged `writer`'s claim, as if acquired with that tag (a node
+  // asks to keep its outputs after it acquired them, on its first call).
+  void claim(PooledTexture& texture, uint64_t writer);
 
   size_t live_count() const { return live_; }  // handed out, not yet returned
   size_t free_count() const;                   // waiting in the pool

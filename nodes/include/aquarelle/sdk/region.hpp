@@ -12,6 +12,8 @@
 // Header-only, no GL: the host uses it too.
 #pragma once
 
+#include <aquarelle/plugin.h>
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -200,5 +202,20 @@ class Region {
   bool coarsening_ = false;
   std::vector<PixelRect> rects_;
 };
+
+// The ABI's rects (aq_host::input_damage, set_output_damage ...) and back.
+inline Region region_of(const aq_rect* rects, size_t count) {
+  std::vector<PixelRect> pixels;
+  for (size_t i = 0; i < count; ++i)
+    pixels.push_back(PixelRect{rects[i].x0, rects[i].y0, rects[i].x1, rects[i].y1});
+  Region region;
+  region.add(pixels);
+  return region;
+}
+inline std::vector<aq_rect> rects_of(const Region& region) {
+  std::vector<aq_rect> rects;
+  for (const PixelRect& r : region.rects()) rects.push_back(aq_rect{r.x0, r.y0, r.x1, r.y1});
+  return rects;
+}
 
 }  // namespace aq
