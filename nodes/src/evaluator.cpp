@@ -165,8 +165,8 @@ ParamValues convert_params(const Node& node, const NodeType& type,
 // A node's inputs as the ABI passes them, and the textures behind its image inputs.
 struct GatheredInputs {
   std::vector<aq_input_value> values;
-  std::vector<uint64_t> keys;      // per input (aq_process_ctx::input_keys); 0 unconnected
-  std::vector<TextureRef> images;  // per input; empty for scenes and unconnected inputs
+  std::vector<uint64_t> keys;         // per input (aq_process_ctx::input_keys); 0 unconnected
+  std::vector<TextureRef> images;     // per input; empty for scenes and unconnected inputs
   std::vector<DamageSource> sources;  // per input (aq_host::input_damage)
   // Every link of each input, for nodes with an AQ_PORT_MULTI port (ctx.input_lists); empty
   // otherwise. `lists` points into `links` (and into `values` for single-link inputs).
@@ -263,7 +263,8 @@ Region epilogue_damage_of(const FusedChain& chain, int width, int height) {
     const NodeState& state = *stage->call.state;
     if (!state.seen || state.seen_self_key != stage->call.self_key) return Region::everything();
     const aq_pointwise_desc& desc = *stage->type->fusable;
-    const bool has_reach = desc.struct_size >= offsetof(aq_pointwise_desc, reach) + sizeof(desc.reach);
+    const bool has_reach =
+        desc.struct_size >= offsetof(aq_pointwise_desc, reach) + sizeof(desc.reach);
     const int reach = has_reach ? desc.reach : -1;
     for (uint32_t k = 1; k < stage->inputs.size(); ++k) {
       if (stage->inputs[k].connected == 0) continue;
@@ -551,7 +552,6 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       for (uint32_t stored : planned.stored_formats) *k = hash_value(*k, stored);
       *k = builtin_key(*type, params, options, *k);
     }
-    state.self_key = self_key;
 
     // Fusion: a deferred node only records its stage; the node reading it runs the chain.
     std::shared_ptr<FusedChain> chain;
@@ -671,7 +671,8 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
         // What the producer's kept output holds depends on the epilogue it applied.
         uint64_t& producer_key = chain->producer->call.self_key;
         producer_key = hash_string(producer_key, "epilogue");
-        for (const auto& stage : chain->stages) producer_key = hash_string(producer_key, stage->call.node_id);
+        for (const auto& stage : chain->stages)
+          producer_key = hash_string(producer_key, stage->call.node_id);
         fused = impl_->run_producer(*chain->producer, stages, planned.stored_formats, format);
       } else {
         const int width = tail_into_resample ? settings.width : chain->input->image.width;

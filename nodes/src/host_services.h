@@ -35,10 +35,8 @@ struct NodeState {
   std::vector<TextureRef> images;
   std::vector<const aq_scene*> scenes;
 
-  // Damage tracking (aq_host::input_damage). `self_key` is `key` without the inputs: type,
-  // parameters, size, format, quality and the frame when time-dependent.
-  uint64_t self_key = 0;
-  // What the node saw on its last successful call: its own key and its inputs' keys.
+  // Damage tracking (aq_host::input_damage). What the node saw on its last successful call: its
+  // own key (CallState::self_key) and its inputs' keys.
   bool seen = false;
   uint64_t seen_self_key = 0;
   std::vector<uint64_t> seen_input_keys;
@@ -96,7 +94,9 @@ struct CallState {
   // Per output: output_image handed it out in this call (not a pass-through of an input).
   std::vector<bool> acquired_outputs;
 
-  // Damage tracking: per input its source and key now; the node's own key now.
+  // Damage tracking: per input its source and key now; the node's own key now (its cache key
+  // without the inputs: type, parameters, connections, size, format, quality, the frame when
+  // time-dependent, and for an epilogue producer the nodes fused into its draw).
   const std::vector<DamageSource>* sources = nullptr;
   const std::vector<uint64_t>* input_keys = nullptr;
   uint64_t self_key = 0;

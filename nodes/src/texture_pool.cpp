@@ -91,10 +91,9 @@ TextureRef TexturePool::acquire(int width, int height, uint32_t format, uint64_t
   if (it != free_.end()) {
     auto& list = it->second;
     // The writer's own claim first; else one nobody claims (a writer's texture is kept for it).
-    pick = writer == 0 ? list.end()
-                       : std::find_if(list.begin(), list.end(), [&](const auto& t) {
-                           return t->writer == writer && claimed(*t);
-                         });
+    pick = writer == 0 ? list.end() : std::find_if(list.begin(), list.end(), [&](const auto& t) {
+      return t->writer == writer && claimed(*t);
+    });
     if (pick != list.end()) {
       if (kept != nullptr) *kept = true;
     } else {

@@ -148,8 +148,8 @@ struct Blur {
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
     const bool direct =
         ctx.param_enum(kMethod) != kStrided && !uniform && max_sigma <= kDirectMaxSigma;
-    damage_ = direct ? direct_damage(ctx, in, out, direct_radius(max_sigma))
-                     : aq::Region::everything();
+    damage_ =
+        direct ? direct_damage(ctx, in, out, direct_radius(max_sigma)) : aq::Region::everything();
     drawn_ = damage_.for_drawing();
     if (in.format == AQ_FORMAT_RGBA8_HDR && !reads_encoded(ctx, uniform, max_sigma)) {
       aq_image decoded;
@@ -188,8 +188,7 @@ struct Blur {
       const aq_image depth = ctx.input_image(1);
       const aq::Region depth_changed = ctx.input_damage(1);
       const bool same_pixels = depth.width == in.width && depth.height == in.height;
-      changed.add(same_pixels || depth_changed.empty() ? depth_changed
-                                                       : aq::Region::everything());
+      changed.add(same_pixels || depth_changed.empty() ? depth_changed : aq::Region::everything());
     }
     aq::Region damage = changed.dilated(radius, radius, out.width, out.height);
     damage.add(ctx.epilogue_damage());
@@ -307,8 +306,8 @@ struct Blur {
       aq::bind_texture(program, "u_image", 0, axis == 0 ? in : rows);
       aq::set_float(program, "u_sigma", sigma);
       // The rows pass covers the rows the columns pass reads around the damaged pixels.
-      ctx.set_draw_region(
-          axis == 0 ? drawn_.dilated(0, radius, out.width, out.height).for_drawing() : drawn_);
+      ctx.set_draw_region(axis == 0 ? drawn_.dilated(0, radius, out.width, out.height).for_drawing()
+                                    : drawn_);
       if (!ctx.draw(axis == 0 ? rows : out)) return false;
     }
     return true;

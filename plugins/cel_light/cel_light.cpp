@@ -179,9 +179,8 @@ struct CelLight {
     if (bound) ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
     glBindSampler(5, 0);
     aq::unbind_textures(6);
-    return bound && ctx.set_output_damage(0, damage) && ctx.set_output_damage(1, damage)
-               ? AQ_OK
-               : AQ_ERROR;
+    return bound && ctx.set_output_damage(0, damage) && ctx.set_output_damage(1, damage) ? AQ_OK
+                                                                                         : AQ_ERROR;
   }
 
   // Damage tracking: the pixels whose light can differ from the kept outputs'. A pixel reads

@@ -88,10 +88,10 @@ struct Wobble {
         const aq::Region changed = ctx.input_damage(paper_port);
         const bool same_pixels = read.width == out.width && read.height == out.height;
         // The gradient is read at the pixel; the height four reads around it (one paper pixel).
-        damage.add(same_pixels || changed.empty()
-                       ? changed.dilated(precomputed ? 0 : 1, precomputed ? 0 : 1, out.width,
-                                         out.height)
-                       : aq::Region::everything());
+        damage.add(
+            same_pixels || changed.empty()
+                ? changed.dilated(precomputed ? 0 : 1, precomputed ? 0 : 1, out.width, out.height)
+                : aq::Region::everything());
       }
       damage.add(ctx.epilogue_damage());
     }

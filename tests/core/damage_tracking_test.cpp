@@ -74,8 +74,7 @@ TEST(DamageTracking, AnAnimationEqualsEveryFrameFromScratch) {
       const ImageF expected = evaluate(scratch, graph, frame);
       ASSERT_FALSE(got.empty());
       ASSERT_FALSE(expected.empty());
-      EXPECT_EQ(aq::test::max_abs_diff(got, expected), 0.0)
-          << precision << ", frame " << frame;
+      EXPECT_EQ(aq::test::max_abs_diff(got, expected), 0.0) << precision << ", frame " << frame;
       if (!previous.empty()) {
         EXPECT_GT(aq::test::max_abs_diff(got, previous), 0.0)
             << "frame " << frame << ": nothing moved, the test would prove nothing";
@@ -85,8 +84,8 @@ TEST(DamageTracking, AnAnimationEqualsEveryFrameFromScratch) {
       // nodes asked); from then on the nodes downstream of the light redraw part of the frame
       // while only the animation changed (frame 4), all of it after a parameter changed.
       if (frame == 4) {
-        for (const char* node : {"gbuf", "light", "open_erode", "dilate", "close_erode", "pigment",
-                                 "tint"}) {
+        for (const char* node :
+             {"gbuf", "light", "open_erode", "dilate", "close_erode", "pigment", "tint"}) {
           const double share = redrawn(animated, node);
           EXPECT_GT(share, 0.0) << node << " at frame 4 (" << precision << ")";
           EXPECT_LT(share, 0.95) << node << " at frame 4 redrew everything (" << precision << ")";
@@ -107,8 +106,8 @@ const aq::Registry& registry_with_test_nodes() {
     aq::register_builtin_nodes(*r);
     plugins.load({AQ_PLUGIN_BUILD_DIR}, *r);
     std::string why;
-    EXPECT_TRUE(plugins.load_file(std::string(AQ_TEST_PLUGIN_DIR) + "/aquarelle_test_nodes.so",
-                                  *r, &why))
+    EXPECT_TRUE(
+        plugins.load_file(std::string(AQ_TEST_PLUGIN_DIR) + "/aquarelle_test_nodes.so", *r, &why))
         << why;
     return r;
   }();
@@ -129,18 +128,20 @@ TEST(DamageTracking, AMovingSquareThroughStencilsAndEpiloguesEqualsFromScratch) 
       {"settings", {{"width", 128}, {"height", 72}, {"quality", "final"}, {"precision", "float"}}},
       {"nodes",
        {{"square", {{"type", "test_square"}}},
-        {"open", {{"type", "erode"}, {"params", {{"size", 3}}}, {"inputs", {{"image", "square.image"}}}}},
-        {"grow", {{"type", "dilate"}, {"params", {{"size", 5}}}, {"inputs", {{"image", "open.image"}}}}},
+        {"open",
+         {{"type", "erode"}, {"params", {{"size", 3}}}, {"inputs", {{"image", "square.image"}}}}},
+        {"grow",
+         {{"type", "dilate"}, {"params", {{"size", 5}}}, {"inputs", {{"image", "open.image"}}}}},
         {"paper", {{"type", "paper"}, {"params", {{"seed", 3}}}}},
         // Worley cells as the paper: steep slopes, the lookups move.
-        {"cells", {{"type", "noise"}, {"params", {{"type", "worley"}, {"scale", 64}, {"seed", 3}}}}},
+        {"cells",
+         {{"type", "noise"}, {"params", {{"type", "worley"}, {"scale", 64}, {"seed", 3}}}}},
         {"wobble",
          {{"type", "wobble"},
           {"params", {{"strength", 12.0}}},
           {"inputs", {{"image", "grow.image"}, {"paper", "cells.image"}}}}},
         {"edge",
-         {{"type", "edge"},
-          {"inputs", {{"image", "wobble.image"}, {"source", "square.image"}}}}},
+         {{"type", "edge"}, {"inputs", {{"image", "wobble.image"}, {"source", "square.image"}}}}},
         {"canvas", {{"type", "pigment_canvas"}, {"inputs", {{"paper", "paper.image"}}}}},
         {"pigment",
          {{"type", "pigment_apply"},

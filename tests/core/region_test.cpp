@@ -1,8 +1,8 @@
 // aq::Region (sdk/region.hpp), the pixel sets of damage tracking, against sets of pixels kept
 // one by one: the union stays disjoint and holds exactly the pixels added; dilation and
 // coverage are the pixel-wise ones; coarsening only ever adds pixels.
-#include <aquarelle/sdk/region.hpp>
 #include <gtest/gtest.h>
+#include <aquarelle/sdk/region.hpp>
 
 #include <random>
 #include <vector>
@@ -38,7 +38,8 @@ std::vector<aq::PixelRect> random_rects(std::mt19937& rng, int count, int max_si
   std::vector<aq::PixelRect> rects;
   for (int i = 0; i < count; ++i) {
     const int x0 = x(rng), y0 = y(rng);
-    rects.push_back(aq::PixelRect{x0, y0, std::min(kW, x0 + side(rng)), std::min(kH, y0 + side(rng))});
+    rects.push_back(
+        aq::PixelRect{x0, y0, std::min(kW, x0 + side(rng)), std::min(kH, y0 + side(rng))});
   }
   return rects;
 }

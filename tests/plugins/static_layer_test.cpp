@@ -88,7 +88,8 @@ TEST(CoveredPixels, EveryProjectedVertexLiesInTheRectangle) {
 TEST(CoveredPixels, ABoxBehindTheCameraIsClippedToTheView) {
   const int width = 96, height = 64;
   const glm::mat4 projection = glm::perspective(glm::radians(50.0f), 1.5f, 0.1f, 100.0f);
-  const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 2), glm::vec3(0, -0.3f, 0), glm::vec3(0, 1, 0));
+  const glm::mat4 view =
+      glm::lookAt(glm::vec3(0, 0, 2), glm::vec3(0, -0.3f, 0), glm::vec3(0, 1, 0));
   const glm::mat4 view_projection = projection * view;
   const std::vector<float> floor = {-3, -1.2f, -6, 3, -1.0f, 8};  // z to 8: behind the eye
   const PixelRect rect = rect_of(floor, glm::mat4(1.0f), view_projection, width, height);
@@ -98,7 +99,8 @@ TEST(CoveredPixels, ABoxBehindTheCameraIsClippedToTheView) {
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   int seen = 0;
   for (int i = 0; i < 20000; ++i) {
-    const glm::vec4 p(-3 + 6 * unit(random), -1.2f + 0.2f * unit(random), -6 + 14 * unit(random), 1);
+    const glm::vec4 p(-3 + 6 * unit(random), -1.2f + 0.2f * unit(random), -6 + 14 * unit(random),
+                      1);
     const glm::vec4 clip = view_projection * p;
     if (clip.w <= 0.1f) continue;
     const float x = (clip.x / clip.w * 0.5f + 0.5f) * width;

@@ -90,8 +90,8 @@ struct Square {
 
 AQ_NODE(kAdd, Add, "test_add", "Test", "adds offset", AQ_NODE_POINTWISE, kImageIn, kImageOut,
         kAddParams);
-AQ_NODE(kTime, TimeAdd, "test_time", "Test", "adds offset + time", AQ_NODE_TIME_DEPENDENT,
-        kImageIn, kImageOut, kAddParams);
+AQ_NODE(kTime, TimeAdd, "test_time", "Test", "adds offset + time", AQ_NODE_TIME_DEPENDENT, kImageIn,
+        kImageOut, kAddParams);
 AQ_NODE_NO_PARAMS(kFail, Fail, "test_fail", "Test", "always fails", 0, kImageIn, kImageOut);
 AQ_NODE_NO_PARAMS(kBad, BadShader, "test_bad_shader", "Test", "shader error", 0, kImageIn,
                   kImageOut);

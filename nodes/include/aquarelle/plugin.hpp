@@ -255,8 +255,8 @@ class Context {
   }
   // This call changed kept output `index` only in `region` (nothing is said for all()).
   bool set_output_damage(uint32_t index, const Region& region) const {
-    if (region.all() ||
-        !has_host_call(offsetof(aq_host, set_output_damage), raw_->host->set_output_damage != nullptr))
+    if (region.all() || !has_host_call(offsetof(aq_host, set_output_damage),
+                                       raw_->host->set_output_damage != nullptr))
       return true;
     const std::vector<aq_rect> rects = rects_of(region);
     return raw_->host->set_output_damage(raw_->host_data, index, rects.data(),
@@ -273,8 +273,8 @@ class Context {
   }
   // Output `index` holds its background outside `region` (nothing is said for all()).
   bool set_output_bounds(uint32_t index, const Region& region) const {
-    if (region.all() ||
-        !has_host_call(offsetof(aq_host, set_output_bounds), raw_->host->set_output_bounds != nullptr))
+    if (region.all() || !has_host_call(offsetof(aq_host, set_output_bounds),
+                                       raw_->host->set_output_bounds != nullptr))
       return true;
     const std::vector<aq_rect> rects = rects_of(region);
     return raw_->host->set_output_bounds(raw_->host_data, index, rects.data(),

@@ -118,9 +118,9 @@ class Region {
   // and bottom, each band's column intervals (of the rects spanning it) merged, and equal
   // neighbouring bands joined.
   void normalize() {
-    rects_.erase(std::remove_if(rects_.begin(), rects_.end(),
-                                [](const PixelRect& r) { return r.empty(); }),
-                 rects_.end());
+    rects_.erase(
+        std::remove_if(rects_.begin(), rects_.end(), [](const PixelRect& r) { return r.empty(); }),
+        rects_.end());
     if (rects_.size() <= 1) return;
     std::vector<int> edges;
     for (const PixelRect& r : rects_) {
@@ -180,7 +180,9 @@ class Region {
     }
     const std::vector<PixelRect> exact = rects_;
     for (int grid = 16;; grid *= 2) {
-      auto down = [grid](int v) { return v >= 0 ? v / grid * grid : -((-v + grid - 1) / grid) * grid; };
+      auto down = [grid](int v) {
+        return v >= 0 ? v / grid * grid : -((-v + grid - 1) / grid) * grid;
+      };
       auto up = [&](int v) { return -down(-v); };
       rects_.clear();
       for (const PixelRect& r : exact) {
