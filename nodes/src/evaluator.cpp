@@ -707,22 +707,16 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       state.key = key;
       state.valid = true;
       // What each stage saw; the chain's result changed where its producer redrew.
-      for (auto& stage : chain->stages) {
-        NodeState& stage_state = *stage->call.state;
-        finish_damage_call(stage_state, stage->call, stage_state.key, working.width,
-                           working.height);
-      }
-      CallState result_call;
+      for (auto& stage : chain->stages)
+        finish_damage_call(*stage->call.state, stage->call, stage->call.state->key);
+      std::vector<std::optional<Region>> result_damage;
       if (chain->producer) {
         FusedChain::Producer& producer = *chain->producer;
-        finish_damage_call(*producer.state, producer.call, producer.state->key, working.width,
-                           working.height);
+        finish_damage_call(*producer.state, producer.call, producer.state->key);
         if (!producer.call.declared_damage.empty())
-          result_call.declared_damage.push_back(producer.call.declared_damage[0]);
+          result_damage.push_back(producer.call.declared_damage[0]);
       }
-      result_call.input_keys = &state.seen_input_keys;
-      result_call.self_key = state.seen_self_key;
-      finish_damage_call(state, result_call, previous_key, working.width, working.height);
+      record_output_damage(state, previous_key, result_damage, {});
       NodeTiming timing{id, type->name, 0,
                         std::chrono::duration<double, std::milli>(end - start).count(), false};
       if (options.measure_gpu_time) timing.gpu_ms = state.marked_gpu_ms();
@@ -804,7 +798,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
         if (!decoded.ok()) return make_error("node '" + id + "': " + decoded.error().message);
         state.images[o] = *decoded;
       }
-      finish_damage_call(state, call, previous_key, working.width, working.height);
+      finish_damage_call(state, call, previous_key);
       timings_.back().redrawn = state.redrawn;
       state.key = key;
       state.valid = true;

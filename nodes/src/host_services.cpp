@@ -321,29 +321,29 @@ void begin_damage_call(CallState& call, size_t output_count) {
   call.declared_bounds.assign(output_count, std::nullopt);
 }
 
-void finish_damage_call(NodeState& state, const CallState& call, uint64_t previous_key, int width,
-                        int height) {
-  state.seen = true;
-  state.seen_self_key = call.self_key;
-  state.seen_input_keys = call.input_keys != nullptr ? *call.input_keys : std::vector<uint64_t>();
+void record_output_damage(NodeState& state, uint64_t previous_key,
+                          const std::vector<std::optional<Region>>& damage,
+                          const std::vector<std::optional<Region>>& bounds) {
   state.previous_key = previous_key;
   state.output_damage.assign(state.images.size(), Region::everything());
   state.output_bounds.assign(state.images.size(), Region::everything());
-  for (size_t o = 0; o < state.output_bounds.size() && o < call.declared_bounds.size(); ++o) {
-    if (call.declared_bounds[o]) state.output_bounds[o] = *call.declared_bounds[o];
-  }
   int64_t redrawn = 0, total = 0;
-  for (size_t o = 0; o < state.output_damage.size(); ++o) {
-    if (o < call.declared_damage.size() && call.declared_damage[o])
-      state.output_damage[o] = *call.declared_damage[o];
+  for (size_t o = 0; o < state.images.size(); ++o) {
+    if (o < bounds.size() && bounds[o]) state.output_bounds[o] = *bounds[o];
+    if (o < damage.size() && damage[o]) state.output_damage[o] = *damage[o];
     const TextureRef& image = state.images[o];
     if (!image) continue;  // a scene
     redrawn += state.output_damage[o].area(image->image.width, image->image.height);
     total += int64_t{image->image.width} * image->image.height;
   }
-  (void)width;
-  (void)height;
   state.redrawn = total > 0 ? static_cast<double>(redrawn) / static_cast<double>(total) : -1.0;
+}
+
+void finish_damage_call(NodeState& state, const CallState& call, uint64_t previous_key) {
+  state.seen = true;
+  state.seen_self_key = call.self_key;
+  state.seen_input_keys = call.input_keys != nullptr ? *call.input_keys : std::vector<uint64_t>();
+  record_output_damage(state, previous_key, call.declared_damage, call.declared_bounds);
 }
 
 int HostServices::input_damage(void* data, uint32_t index, aq_rect* rects, uint32_t capacity) {

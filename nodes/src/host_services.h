@@ -176,7 +176,11 @@ Region input_damage_of(const CallState& call, uint32_t index);
 // Before a call: nothing declared, the whole target drawn. After a successful one: what the node
 // saw and where its outputs changed (`previous_key`: the node's key before the call).
 void begin_damage_call(CallState& call, size_t output_count);
-void finish_damage_call(NodeState& state, const CallState& call, uint64_t previous_key, int width,
-                        int height);
+void finish_damage_call(NodeState& state, const CallState& call, uint64_t previous_key);
+// Where each output changed from what it held under `previous_key` (unset: everywhere) and its
+// bounds (unset: everywhere); finish_damage_call's second half, alone for a fused chain's result.
+void record_output_damage(NodeState& state, uint64_t previous_key,
+                          const std::vector<std::optional<Region>>& damage,
+                          const std::vector<std::optional<Region>>& bounds);
 
 }  // namespace aq

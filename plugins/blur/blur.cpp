@@ -151,6 +151,7 @@ struct Blur {
     damage_ =
         direct ? direct_damage(ctx, in, out, direct_radius(max_sigma)) : aq::Region::everything();
     drawn_ = damage_.for_drawing();
+    if (!ctx.set_draw_region(drawn_)) damage_ = drawn_ = aq::Region::everything();  // old host
     if (in.format == AQ_FORMAT_RGBA8_HDR && !reads_encoded(ctx, uniform, max_sigma)) {
       aq_image decoded;
       ctx.set_draw_region(
@@ -192,7 +193,6 @@ struct Blur {
     }
     aq::Region damage = changed.dilated(radius, radius, out.width, out.height);
     damage.add(ctx.epilogue_damage());
-    if (!ctx.set_draw_region(aq::Region::everything())) return aq::Region::everything();
     return damage;
   }
 

@@ -447,7 +447,9 @@ typedef struct aq_host {
   int (*set_output_damage)(void* host_data, uint32_t index, const aq_rect* rects, uint32_t count);
   /* set_draw_region: draw_fullscreen covers only these rects of the bound targets (scissored)
    * until the next set_draw_region or the end of process(); count 0: nothing; rects NULL: the
-   * whole target again. */
+   * whole target again. A node running an epilogue still issues its epilogue draw when the
+   * region is empty: it draws nothing, and tells the host the draw applies the epilogue (else
+   * the host runs the fused nodes over the output as a pass of their own). */
   void (*set_draw_region)(void* host_data, const aq_rect* rects, uint32_t count);
   /* set_output_bounds: every pixel of output `index` outside these rects holds the output's
    * background (the value of a pixel nothing was drawn into: the g-buffer's id 0), as Nuke's

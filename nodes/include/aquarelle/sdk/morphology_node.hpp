@@ -122,11 +122,6 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader) {
 
   // The spans keep an encoded input's encoding (the row extremes are some of its texels).
   const bool in_hdr8 = in.format == AQ_FORMAT_RGBA8_HDR;
-  std::array<aq_image, kMaxSpans> spans{};
-  for (int i = 0; i < plan.span_count; ++i) {
-    if (!ctx.scratch(in.width, in.height, in_hdr8 ? in.format : ctx.working_format(), &spans[i]))
-      return AQ_ERROR;
-  }
   aq_image out;
   if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
   // Damage tracking: with its output kept, only the pixels whose window holds a changed input
@@ -138,6 +133,11 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader) {
   Region drawn = damage.for_drawing();
   if (!ctx.set_draw_region(drawn.dilated(0, radius, out.width, out.height).for_drawing()))
     damage = drawn = Region::everything();
+  std::array<aq_image, kMaxSpans> spans{};
+  for (int i = 0; i < plan.span_count; ++i) {
+    if (!ctx.scratch(in.width, in.height, in_hdr8 ? in.format : ctx.working_format(), &spans[i]))
+      return AQ_ERROR;
+  }
   const bool out_hdr8 = out.format == AQ_FORMAT_RGBA8_HDR;
   const std::string rows_text = variant_text(shader, 0, plan, luminance, in_hdr8, in_hdr8);
   const std::string columns_text = variant_text(shader, 1, plan, luminance, in_hdr8, out_hdr8);
