@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace aq {
 namespace {
@@ -228,6 +230,70 @@ Status check_png_chunks(const std::string& path) {
     }
     at += length + 4;
     if (type == "IEND") break;
+  }
+  return Ok{};
+}
+
+Status check_jpeg_iptc(const std::string& path) {
+  auto file = open_header(path);
+  if (!file.ok()) return file.error();
+  const HeaderFile& header = **file;
+  const uint64_t size = header.size();
+  unsigned char soi[2] = {};
+  if (!header.read(soi, 2, 0) || soi[0] != 0xFF || soi[1] != 0xD8) return Ok{};  // not a JPEG
+  auto refuse = [&](const std::string& what) -> Status {
+    return make_error("cannot read image " + path + ": its Photoshop/IPTC metadata (APP13) " +
+                      what +
+                      " (the file is corrupt or forged; re-export it, or strip its "
+                      "metadata)");
+  };
+  auto be = [](const unsigned char* p, int n) {
+    uint64_t v = 0;
+    for (int i = 0; i < n; ++i) v = (v << 8) | p[i];
+    return v;
+  };
+  uint64_t at = 2;
+  while (at + 4 <= size) {
+    unsigned char marker[4] = {};
+    if (!header.read(marker, 4, at) || marker[0] != 0xFF) break;
+    const unsigned char code = marker[1];
+    if (code == 0xD9 || code == 0xDA) break;  // end of image, start of scan: no more metadata
+    if (code == 0x01 || (code >= 0xD0 && code <= 0xD7) || code == 0xFF) {
+      at += code == 0xFF ? 1 : 2;  // fill byte or a marker without a length
+      continue;
+    }
+    const uint64_t length = be(marker + 2, 2);
+    if (length < 2 || at + 2 + length > size) break;  // libjpeg reports a truncated file
+    if (code == 0xED && length - 2 >= 14) {
+      std::vector<unsigned char> data(length - 2);
+      if (!header.read(data.data(), data.size(), at + 4)) break;
+      if (std::memcmp(data.data(), "Photoshop 3.0", 14) == 0) {
+        // 8BIM resources: signature, id, an empty name (OpenImageIO expects two zero bytes),
+        // size, data padded to even; the IPTC one (0x0404) holds records 0x1C, record,
+        // dataset, 2-byte length, data. OpenImageIO 2.4 trusts both sizes (it read past the
+        // segment on a fuzzed file), so every one must fit here.
+        size_t p = 14;
+        while (p + 12 <= data.size() && std::memcmp(data.data() + p, "8BIM", 4) == 0) {
+          const uint64_t id = be(data.data() + p + 4, 2);
+          if (data[p + 6] != 0 || data[p + 7] != 0) return refuse("names a resource");
+          const uint64_t bytes = be(data.data() + p + 8, 4);
+          const size_t start = p + 12;
+          if (bytes > data.size() - start) {
+            return refuse("declares a resource of " + std::to_string(bytes) + " bytes where " +
+                          std::to_string(data.size() - start) + " are left");
+          }
+          for (size_t r = start; id == 0x0404 && r < start + bytes && data[r] == 0x1C;) {
+            if (r + 5 > start + bytes) return refuse("ends inside a record header");
+            const uint64_t record = be(data.data() + r + 3, 2);
+            if (record & 0x8000) return refuse("uses an extended record length");
+            if (record > start + bytes - (r + 5)) return refuse("declares a record past its end");
+            r += 5 + record;
+          }
+          p = start + bytes + (bytes & 1);
+        }
+      }
+    }
+    at += 2 + length;
   }
   return Ok{};
 }

@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <limits>
 
 #include "bad_input/bad_input_support.h"
@@ -122,6 +124,34 @@ TEST(ImageDeclaredSizes, PngChunkLongerThanTheFileIsRefused) {
   ASSERT_TRUE(fine.ok()) << fine.message();
   EXPECT_EQ(fine->width, 4);
   EXPECT_EQ(fine->height, 3);
+}
+
+// Found by the image fuzzer: a JPEG whose Photoshop/IPTC segment (APP13) is 58 bytes long while
+// its IPTC resource declares 99 and a record 94; OpenImageIO 2.4 copied the record from past
+// the segment (ASan: heap-buffer-overflow in decode_iptc_iim). The same picture without the
+// forged segment still reads.
+TEST(ImageDeclaredSizes, JpegIptcRecordLongerThanItsSegmentIsRefused) {
+  const fs::path dir = scratch_dir("bad_input_jpeg_iptc");
+  ASSERT_TRUE(write_image((dir / "fine.jpg").string(), constant_image(4, 3, 0.5f, 0.25f, 1.0f),
+                          WriteOptions{false, 8})
+                  .ok());
+  std::ifstream in(dir / "fine.jpg", std::ios::binary);
+  const std::string fine((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(fine.size(), 2u);
+  std::string resource = std::string("8BIM\x04\x04\x00\x00", 8) + big_endian(99) +
+                         std::string("\x1c\x02\x41\x00\x5e", 5) + std::string(25, 'x');
+  std::string app13 = std::string("Photoshop 3.0\0", 14) + resource;
+  const std::string segment = std::string("\xff\xed", 2) +
+                              static_cast<char>((app13.size() + 2) >> 8) +
+                              static_cast<char>((app13.size() + 2) & 0xff) + app13;
+  write_bytes(dir / "forged.jpg", fine.substr(0, 2) + segment + fine.substr(2));
+  auto refused = read_image((dir / "forged.jpg").string(), config());
+  ASSERT_FALSE(refused.ok());
+  EXPECT_TRUE(mentions(refused.message(), "forged.jpg")) << refused.message();
+  EXPECT_TRUE(mentions(refused.message(), "APP13")) << refused.message();
+  auto read = read_image((dir / "fine.jpg").string(), config());
+  ASSERT_TRUE(read.ok()) << read.message();
+  EXPECT_EQ(read->width, 4);
 }
 
 TEST(ImageDeclaredSizes, MemoryBudgetRefusesLargeDecodes) {
