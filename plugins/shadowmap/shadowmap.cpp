@@ -88,6 +88,10 @@ class ShadowMap {
     // The depth test keeps the nearest surface whatever the order, so the map is the same.
     const std::vector<bool>& unchanged = unchanged_.update(*scene);
     bool layered = false;
+    // Damage tracking: the texels that may differ from what the kept map held (the last and
+    // this call's moving casters over the same layer; everything otherwise), for readers that
+    // can use them and for `render --stats`.
+    aq::Region damage = aq::Region::everything();
     if (unchanged_.any()) {
       aq::Fnv1a key;
       unchanged_.mix_into(key);
@@ -105,7 +109,7 @@ class ShadowMap {
       }
       // With the map as the last call left it, the layer goes back only where that call's
       // moving casters were.
-      if (layered) drawn_.restore(layer_, &depth, 1, &depth_buffer, kept);
+      if (layered) damage = drawn_.restore(layer_, &depth, 1, &depth_buffer, kept);
     }
     if (!ctx.bind_targets(&depth, 1, &depth_buffer)) return AQ_ERROR;
     if (!layered) {
@@ -114,8 +118,11 @@ class ShadowMap {
     }
     draw_meshes(*scene, layered ? &unchanged : nullptr, false, program);
     aq::unbind_textures(1);  // the cut-out texture unit, and the program
-    if (layered) drawn_.record(layer_, world_boxes, unchanged, glm::dmat4(light), size, size);
-    return AQ_OK;
+    if (layered) {
+      drawn_.record(layer_, world_boxes, unchanged, glm::dmat4(light), size, size);
+      damage.add(drawn_.moving());
+    }
+    return kept && !ctx.set_output_damage(0, damage) ? AQ_ERROR : AQ_OK;
   }
 
  private:

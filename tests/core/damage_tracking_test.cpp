@@ -84,8 +84,8 @@ TEST(DamageTracking, AnAnimationEqualsEveryFrameFromScratch) {
       // nodes asked); from then on the nodes downstream of the light redraw part of the frame
       // while only the animation changed (frame 4), all of it after a parameter changed.
       if (frame == 4) {
-        for (const char* node :
-             {"gbuf", "light", "open_erode", "dilate", "close_erode", "pigment", "tint"}) {
+        for (const char* node : {"gbuf", "shadow", "light", "open_erode", "dilate", "close_erode",
+                                 "pigment", "tint"}) {
           const double share = redrawn(animated, node);
           EXPECT_GT(share, 0.0) << node << " at frame 4 (" << precision << ")";
           EXPECT_LT(share, 0.95) << node << " at frame 4 redrew everything (" << precision << ")";
