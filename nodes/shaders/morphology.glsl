@@ -31,6 +31,17 @@
 // stored extremes: only the last write decodes or encodes (the luminance order decodes to
 // compare, since luminance mixes channels).
 //
+//   AQ_MORPH_BLOCKED      1: the square, per-channel, 8-bit fast path (below)
+//
+// The blocked path (square footprint, per channel, an 8-bit input): pass 0 computes the row
+// extremes of a 2 x 2 block of pixels per fragment, reading the 2r + 2 texels of each of its
+// two rows once for both columns ((r + 1) / 2 reads per pixel instead of 2r + 1, a quarter of
+// the fragments), and stores the four results bit-exactly as packUnorm4x8 words in one RGBA32UI
+// texel (x: the block's pixel (0, 0), y: (1, 0), z: (0, 1), w: (1, 1)). Pass 1 reads the
+// r + 1 blocks that hold the column of rows y - r .. y + r (two rows per read instead of one)
+// and drops the one row of them outside the window. The extremes are the same texels' extremes,
+// so the image is bit-identical to the two plain passes.
+//
 // Orders: 0 = per channel (min/max of each of r, g, b, a separately, the seed's sec. 3.3);
 // 1 = luminance order (a total order on colours: Rec.709 luminance, ties broken by r, g, b, a),
 // so every output pixel is one of the window's input colours and no new colour appears.
@@ -49,11 +60,18 @@
 #define AQ_MORPH_IN_HDR8 0
 #define AQ_MORPH_OUT_HDR8 0
 #endif
+#ifndef AQ_MORPH_BLOCKED
+#define AQ_MORPH_BLOCKED 0
+#endif
 
 #include "aquarelle/hdr8.glsl"
 
 in vec2 v_uv;
+#if AQ_MORPH_BLOCKED && AQ_MORPH_PASS == 0
+layout(location = 0) out uvec4 o_block;  // four pixels' row extremes, packUnorm4x8 each
+#else
 layout(location = 0) out vec4 o_color;  // pass 1 result, or span 0 in pass 0
+#endif
 #if AQ_MORPH_PASS == 0 && AQ_MORPH_SPAN_COUNT > 1
 layout(location = 1) out vec4 o_span1;
 #endif
@@ -72,6 +90,9 @@ const int kRowSpans[9] = AQ_MORPH_ROW_SPANS;
 
 #if AQ_MORPH_PASS == 0
 uniform sampler2D u_image;
+#elif AQ_MORPH_BLOCKED
+uniform usampler2D u_blocks;
+uniform ivec2 u_image_size;  // the image's size in pixels (the blocks cover it rounded up to even)
 #else
 uniform sampler2D u_spans[AQ_MORPH_SPAN_COUNT];
 #endif
@@ -110,7 +131,63 @@ vec4 aq_morph_combine(vec4 best, vec4 candidate) {
 #endif
 }
 
-#if AQ_MORPH_PASS == 0
+#if AQ_MORPH_BLOCKED && AQ_MORPH_PASS == 0
+void main() {
+  ivec2 block = ivec2(gl_FragCoord.xy);
+  ivec2 last = textureSize(u_image, 0) - 1;
+  int x0 = 2 * block.x;
+  uvec4 words;
+  for (int half_row = 0; half_row < 2; ++half_row) {
+    int y = min(2 * block.y + half_row, last.y);
+    // Columns x0 - r .. x0 + 1 + r: the inner 2r for both pixels, one outer texel each.
+    vec4 inner = texelFetch(u_image, ivec2(clamp(x0, 0, last.x), y), 0);
+    inner = aq_morph_combine(inner, texelFetch(u_image, ivec2(min(x0 + 1, last.x), y), 0));
+    for (int t = 1; t < AQ_MORPH_RADIUS; ++t) {
+      inner = aq_morph_combine(inner, texelFetch(u_image, ivec2(max(x0 - t, 0), y), 0));
+      inner = aq_morph_combine(inner, texelFetch(u_image, ivec2(min(x0 + 1 + t, last.x), y), 0));
+    }
+    vec4 left = texelFetch(u_image, ivec2(max(x0 - AQ_MORPH_RADIUS, 0), y), 0);
+    vec4 right = texelFetch(u_image, ivec2(min(x0 + 1 + AQ_MORPH_RADIUS, last.x), y), 0);
+    uint a = packUnorm4x8(aq_morph_combine(inner, left));
+    uint b = packUnorm4x8(aq_morph_combine(inner, right));
+    if (half_row == 0) {
+      words.xy = uvec2(a, b);
+    } else {
+      words.zw = uvec2(a, b);
+    }
+  }
+  o_block = words;
+}
+#elif AQ_MORPH_BLOCKED
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  int last_block = (u_image_size.y - 1) >> 1;
+  bool odd_column = (p.x & 1) == 1;
+  int first = max(p.y - AQ_MORPH_RADIUS, 0), last = min(p.y + AQ_MORPH_RADIUS, u_image_size.y - 1);
+  int b0 = (p.y - AQ_MORPH_RADIUS) >> 1;
+#ifdef AQ_MORPH_DILATE
+  vec4 best = vec4(0.0);  // the identity of max on unorm values
+#else
+  vec4 best = vec4(1.0);  // the identity of min on unorm values
+#endif
+  for (int k = 0; k <= AQ_MORPH_RADIUS; ++k) {
+    int b = clamp(b0 + k, 0, last_block);
+    uvec4 words = texelFetch(u_blocks, ivec2(p.x >> 1, b), 0);
+    uvec2 column = odd_column ? words.yw : words.xz;
+    // The block's two rows, each only when inside the window (clamped to the image).
+    int top = 2 * b, bottom = 2 * b + 1;
+    vec4 upper = unpackUnorm4x8(column.x), lower = unpackUnorm4x8(column.y);
+    best = top >= first && top <= last ? aq_morph_combine(best, upper) : best;
+    best = bottom >= first && bottom <= last ? aq_morph_combine(best, lower) : best;
+  }
+#if AQ_MORPH_IN_HDR8 && !AQ_MORPH_OUT_HDR8
+  best = aq_hdr8_decode(best);
+#elif !AQ_MORPH_IN_HDR8 && AQ_MORPH_OUT_HDR8
+  best = aq_hdr8_encode(best);
+#endif
+  o_color = best;
+}
+#elif AQ_MORPH_PASS == 0
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   int last = textureSize(u_image, 0).x - 1;

@@ -8,7 +8,8 @@
 namespace {
 
 struct Dilate {
-  int process(aq::Context& ctx) { return aq::morphology::run(ctx, shaders::dilate_frag); }
+  aq::morphology::BlockTexture blocks;
+  int process(aq::Context& ctx) { return aq::morphology::run(ctx, shaders::dilate_frag, blocks); }
 };
 
 }  // namespace

@@ -8,7 +8,8 @@
 namespace {
 
 struct Erode {
-  int process(aq::Context& ctx) { return aq::morphology::run(ctx, shaders::erode_frag); }
+  aq::morphology::BlockTexture blocks;
+  int process(aq::Context& ctx) { return aq::morphology::run(ctx, shaders::erode_frag, blocks); }
 };
 
 }  // namespace

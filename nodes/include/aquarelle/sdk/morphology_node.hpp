@@ -13,11 +13,14 @@
 #pragma once
 
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/gl_raii.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace aq::morphology {
 
@@ -85,7 +88,7 @@ inline SpanPlan plan_spans(int radius, Footprint footprint) {
 // morphology.glsl). Variants are cached by the host like any program; they carry no source path,
 // so they are not hot-reloaded.
 inline std::string variant_text(const aq_shader_source& shader, int pass, const SpanPlan& plan,
-                                bool luminance, bool in_hdr8, bool out_hdr8) {
+                                bool luminance, bool in_hdr8, bool out_hdr8, bool blocked = false) {
   auto list = [](const int* values, int count) {
     std::string text;
     for (int i = 0; i < count; ++i) text += (i > 0 ? "," : "") + std::to_string(values[i]);
@@ -99,11 +102,93 @@ inline std::string variant_text(const aq_shader_source& shader, int pass, const 
          list(widths.data(), kMaxSpans) + ")\n#define AQ_MORPH_ROW_SPANS int[9](" +
          list(plan.row_span.data(), 2 * kMaxRadius + 1) + ")\n#define AQ_MORPH_LUMINANCE " +
          (luminance ? "1" : "0") + "\n#define AQ_MORPH_IN_HDR8 " + (in_hdr8 ? "1" : "0") +
-         "\n#define AQ_MORPH_OUT_HDR8 " + (out_hdr8 ? "1" : "0") + "\n" + shader.text;
+         "\n#define AQ_MORPH_OUT_HDR8 " + (out_hdr8 ? "1" : "0") + "\n#define AQ_MORPH_BLOCKED " +
+         (blocked ? "1" : "0") + "\n" + shader.text;
+}
+
+// The RGBA32UI texture of the blocked path's 2 x 2 blocks (morphology.glsl), owned by the node:
+// the host's pool has no integer four-channel format.
+class BlockTexture {
+ public:
+  aq_image get(uint32_t gl_generation, int width, int height) {
+    if (!texture_ || generation_ != gl_generation || width_ != width || height_ != height) {
+      if (generation_ != gl_generation) texture_.forget();  // the old context's name
+      glTextureStorage2D(texture_.create(), 1, GL_RGBA32UI, width, height);
+      // An integer texture with a filtering (default) sampler state is incomplete.
+      glTextureParameteri(texture_.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTextureParameteri(texture_.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      generation_ = gl_generation;
+      width_ = width;
+      height_ = height;
+    }
+    return aq_image{texture_.get(), width, height, AQ_FORMAT_R32UI};
+  }
+
+ private:
+  gl::Texture texture_;
+  uint32_t generation_ = 0;
+  int width_ = 0, height_ = 0;
+};
+
+// Whether the blocked fast path applies: a square window, per channel, on 8-bit values (where
+// packUnorm4x8 holds a texel exactly). AQUARELLE_MORPH_BLOCKED=0 turns it off (the lever table).
+inline bool blocked_path(const aq_image& in, Footprint footprint, bool luminance) {
+  const char* value = std::getenv("AQUARELLE_MORPH_BLOCKED");  // read per call: tests flip it
+  const bool enabled = value == nullptr || std::string(value) != "0";
+  return enabled && footprint == kSquare && !luminance &&
+         (in.format == AQ_FORMAT_RGBA8 || in.format == AQ_FORMAT_RGBA8_HDR);
+}
+
+// The rect of 2 x 2 blocks that holds every pixel of `r`.
+inline PixelRect blocks_of(const PixelRect& r) {
+  return PixelRect{r.x0 >> 1, r.y0 >> 1, (r.x1 + 1) >> 1, (r.y1 + 1) >> 1};
+}
+
+// The blocked fast path (morphology.glsl): pass 0 into 2 x 2 blocks over the blocks of the
+// rows pass's region, pass 1 over `drawn`.
+inline int run_blocked(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& blocks,
+                       const aq_image& in, const aq_image& out, const SpanPlan& plan,
+                       const Region& damage, const Region& drawn, bool out_hdr8) {
+  const bool in_hdr8 = in.format == AQ_FORMAT_RGBA8_HDR;
+  const aq_image block_image =
+      blocks.get(ctx.raw()->gl_generation, (in.width + 1) / 2, (in.height + 1) / 2);
+  const std::string rows_text = variant_text(shader, 0, plan, false, in_hdr8, in_hdr8, true);
+  const std::string columns_text = variant_text(shader, 1, plan, false, in_hdr8, out_hdr8, true);
+  const GLuint rows = ctx.program(aq_shader_source{shader.name, rows_text.c_str(), nullptr});
+  const GLuint columns = ctx.program(aq_shader_source{shader.name, columns_text.c_str(), nullptr});
+  if (rows == 0 || columns == 0) return AQ_ERROR;
+
+  Region rows_region = Region::everything();
+  if (!drawn.all()) {
+    rows_region = Region();
+    const Region rows_read = drawn.dilated(0, plan.radius, out.width, out.height);
+    std::vector<PixelRect> block_rects;
+    for (const PixelRect& r : rows_read.rects()) block_rects.push_back(blocks_of(r));
+    rows_region.add(block_rects);
+  }
+  glUseProgram(rows);
+  aq::bind_texture(rows, "u_image", 0, in);
+  ctx.set_draw_region(rows_region.for_drawing());
+  if (!ctx.bind_targets(&block_image, 1)) {
+    aq::unbind_textures(1);
+    return AQ_ERROR;
+  }
+  ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+
+  glUseProgram(columns);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, block_image.texture);
+  glBindSampler(0, 0);
+  glUniform1i(glGetUniformLocation(columns, "u_blocks"), 0);
+  glUniform2i(glGetUniformLocation(columns, "u_image_size"), in.width, in.height);
+  ctx.set_draw_region(drawn);
+  const bool ok = ctx.draw(out);
+  aq::unbind_textures(1);
+  return ok && ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
 }
 
 // Runs erosion or dilation, whichever `shader` implements.
-inline int run(aq::Context& ctx, const aq_shader_source& shader) {
+inline int run(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& blocks) {
   const aq_image in = ctx.input_image(0);
   const int64_t size = ctx.param_int(kSize);
   if (size < 1 || size > 2 * kMaxRadius + 1 || size % 2 == 0) {
@@ -133,12 +218,14 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader) {
   Region drawn = damage.for_drawing();
   if (!ctx.set_draw_region(drawn.dilated(0, radius, out.width, out.height).for_drawing()))
     damage = drawn = Region::everything();
+  const bool out_hdr8 = out.format == AQ_FORMAT_RGBA8_HDR;
+  if (blocked_path(in, footprint == kDisc ? kDisc : kSquare, luminance))
+    return run_blocked(ctx, shader, blocks, in, out, plan, damage, drawn, out_hdr8);
   std::array<aq_image, kMaxSpans> spans{};
   for (int i = 0; i < plan.span_count; ++i) {
     if (!ctx.scratch(in.width, in.height, in_hdr8 ? in.format : ctx.working_format(), &spans[i]))
       return AQ_ERROR;
   }
-  const bool out_hdr8 = out.format == AQ_FORMAT_RGBA8_HDR;
   const std::string rows_text = variant_text(shader, 0, plan, luminance, in_hdr8, in_hdr8);
   const std::string columns_text = variant_text(shader, 1, plan, luminance, in_hdr8, out_hdr8);
   const GLuint rows = ctx.program(aq_shader_source{shader.name, rows_text.c_str(), nullptr});
