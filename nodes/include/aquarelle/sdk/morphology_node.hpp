@@ -121,6 +121,8 @@ class BlockTexture {
       width_ = width;
       height_ = height;
     }
+    // No aq_image_format names RGBA32UI; only bind_targets sees this image, which reads the
+    // texture name and size, not the format.
     return aq_image{texture_.get(), width, height, AQ_FORMAT_R32UI};
   }
 
