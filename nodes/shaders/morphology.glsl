@@ -131,6 +131,17 @@ vec4 aq_morph_combine(vec4 best, vec4 candidate) {
 #endif
 }
 
+// The columns pass's result in the output's format: decoded or encoded only here.
+vec4 aq_morph_output(vec4 best) {
+#if AQ_MORPH_IN_HDR8 && !AQ_MORPH_OUT_HDR8
+  return aq_hdr8_decode(best);
+#elif !AQ_MORPH_IN_HDR8 && AQ_MORPH_OUT_HDR8
+  return aq_hdr8_encode(best);
+#else
+  return best;
+#endif
+}
+
 #if AQ_MORPH_BLOCKED && AQ_MORPH_PASS == 0
 void main() {
   ivec2 block = ivec2(gl_FragCoord.xy);
@@ -180,12 +191,7 @@ void main() {
     best = top >= first && top <= last ? aq_morph_combine(best, upper) : best;
     best = bottom >= first && bottom <= last ? aq_morph_combine(best, lower) : best;
   }
-#if AQ_MORPH_IN_HDR8 && !AQ_MORPH_OUT_HDR8
-  best = aq_hdr8_decode(best);
-#elif !AQ_MORPH_IN_HDR8 && AQ_MORPH_OUT_HDR8
-  best = aq_hdr8_encode(best);
-#endif
-  o_color = best;
+  o_color = aq_morph_output(best);
 }
 #elif AQ_MORPH_PASS == 0
 void main() {
@@ -229,11 +235,6 @@ void main() {
     vec4 below = texelFetch(u_spans[kRowSpans[AQ_MORPH_RADIUS - dy]], down, 0);
     best = aq_morph_combine(aq_morph_combine(best, above), below);
   }
-#if AQ_MORPH_IN_HDR8 && !AQ_MORPH_OUT_HDR8
-  best = aq_hdr8_decode(best);
-#elif !AQ_MORPH_IN_HDR8 && AQ_MORPH_OUT_HDR8
-  best = aq_hdr8_encode(best);
-#endif
-  o_color = best;
+  o_color = aq_morph_output(best);
 }
 #endif

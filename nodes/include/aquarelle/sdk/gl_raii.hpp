@@ -65,4 +65,31 @@ using Texture = Object<Kind::kTexture>;
 using Framebuffer = Object<Kind::kFramebuffer>;
 using Sampler = Object<Kind::kSampler>;
 
+// A texture a node keeps between calls (a depth buffer, a scratch format the host's pool does
+// not have), made again when the context, the size or the format changes.
+class KeptTexture {
+ public:
+  // The texture for width x height in `internal_format`; `kept` false when it was (re)made, so
+  // whatever it held is gone.
+  GLuint get(uint32_t gl_generation, int width, int height, GLenum internal_format, bool* kept) {
+    *kept = texture_ && generation_ == gl_generation && width_ == width && height_ == height &&
+            format_ == internal_format;
+    if (!*kept) {
+      if (generation_ != gl_generation) texture_.forget();  // the old context's name
+      glTextureStorage2D(texture_.create(), 1, internal_format, width, height);
+      generation_ = gl_generation;
+      width_ = width;
+      height_ = height;
+      format_ = internal_format;
+    }
+    return texture_.get();
+  }
+
+ private:
+  Texture texture_;
+  uint32_t generation_ = 0;
+  int width_ = 0, height_ = 0;
+  GLenum format_ = 0;
+};
+
 }  // namespace aq::gl

@@ -111,25 +111,20 @@ inline std::string variant_text(const aq_shader_source& shader, int pass, const 
 class BlockTexture {
  public:
   aq_image get(uint32_t gl_generation, int width, int height) {
-    if (!texture_ || generation_ != gl_generation || width_ != width || height_ != height) {
-      if (generation_ != gl_generation) texture_.forget();  // the old context's name
-      glTextureStorage2D(texture_.create(), 1, GL_RGBA32UI, width, height);
+    bool kept = false;
+    const GLuint name = texture_.get(gl_generation, width, height, GL_RGBA32UI, &kept);
+    if (!kept) {
       // An integer texture with a filtering (default) sampler state is incomplete.
-      glTextureParameteri(texture_.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTextureParameteri(texture_.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      generation_ = gl_generation;
-      width_ = width;
-      height_ = height;
+      glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     }
     // No aq_image_format names RGBA32UI; only bind_targets sees this image, which reads the
     // texture name and size, not the format.
-    return aq_image{texture_.get(), width, height, AQ_FORMAT_R32UI};
+    return aq_image{name, width, height, AQ_FORMAT_R32UI};
   }
 
  private:
-  gl::Texture texture_;
-  uint32_t generation_ = 0;
-  int width_ = 0, height_ = 0;
+  gl::KeptTexture texture_;
 };
 
 // Whether the blocked fast path applies: a square window, per channel, on 8-bit values (where

@@ -267,21 +267,12 @@ class KeptDepth {
  public:
   // The depth buffer for a width x height target; `kept` false when it was (re)created.
   aq_image get(uint32_t gl_generation, int width, int height, bool* kept) {
-    *kept = texture_ && generation_ == gl_generation && width_ == width && height_ == height;
-    if (!*kept) {
-      if (generation_ != gl_generation) texture_.forget();  // the old context's name
-      glTextureStorage2D(texture_.create(), 1, GL_DEPTH_COMPONENT32F, width, height);
-      generation_ = gl_generation;
-      width_ = width;
-      height_ = height;
-    }
-    return aq_image{texture_.get(), width, height, AQ_FORMAT_DEPTH32F};
+    const GLuint name = texture_.get(gl_generation, width, height, GL_DEPTH_COMPONENT32F, kept);
+    return aq_image{name, width, height, AQ_FORMAT_DEPTH32F};
   }
 
  private:
-  gl::Texture texture_;
-  uint32_t generation_ = 0;
-  int width_ = 0, height_ = 0;
+  gl::KeptTexture texture_;
 };
 
 // What a node's last call left in its outputs over the cached layer: which layer, and the
