@@ -81,8 +81,9 @@ TEST(DamageTracking, AnAnimationEqualsEveryFrameFromScratch) {
       }
       previous = got;
       // The pool hands the outputs back from the third frame on (they are tagged once the
-      // nodes asked); from then on the nodes downstream of the light redraw part of the frame
-      // while only the animation changed (frame 4), all of it after a parameter changed.
+      // nodes asked); from then on the g-buffer, the shadow map (their moving meshes) and the
+      // nodes downstream of the light redraw part of the frame while only the animation changed
+      // (frame 4), all of it after a parameter changed.
       if (frame == 4) {
         for (const char* node : {"gbuf", "shadow", "light", "open_erode", "dilate", "close_erode",
                                  "pigment", "tint"}) {
