@@ -63,11 +63,17 @@
 #ifndef AQ_MORPH_BLOCKED
 #define AQ_MORPH_BLOCKED 0
 #endif
+#ifndef AQ_MORPH_IN_BLOCKS
+#define AQ_MORPH_IN_BLOCKS 0
+#endif
+#ifndef AQ_MORPH_OUT_BLOCKS
+#define AQ_MORPH_OUT_BLOCKS 0
+#endif
 
 #include "aquarelle/hdr8.glsl"
 
 in vec2 v_uv;
-#if AQ_MORPH_BLOCKED && AQ_MORPH_PASS == 0
+#if AQ_MORPH_BLOCKED && (AQ_MORPH_PASS == 0 || AQ_MORPH_OUT_BLOCKS)
 layout(location = 0) out uvec4 o_block;  // four pixels' row extremes, packUnorm4x8 each
 #else
 layout(location = 0) out vec4 o_color;  // pass 1 result, or span 0 in pass 0
@@ -88,7 +94,7 @@ layout(location = 4) out vec4 o_span4;
 const int kHalfWidths[5] = AQ_MORPH_HALF_WIDTHS;
 const int kRowSpans[9] = AQ_MORPH_ROW_SPANS;
 
-#if AQ_MORPH_PASS == 0
+#if AQ_MORPH_PASS == 0 && !AQ_MORPH_IN_BLOCKS
 uniform sampler2D u_image;
 #elif AQ_MORPH_BLOCKED
 uniform usampler2D u_blocks;
@@ -142,7 +148,66 @@ vec4 aq_morph_output(vec4 best) {
 #endif
 }
 
-#if AQ_MORPH_BLOCKED && AQ_MORPH_PASS == 0
+#if AQ_MORPH_BLOCKED && (AQ_MORPH_IN_BLOCKS || AQ_MORPH_OUT_BLOCKS)
+// Blocks to blocks: one fragment per 2 x 2 block computes its four pixels' extremes along the
+// pass's axis from the blocks at offsets kLo .. kHi along it, which hold the pixels 2b - r ..
+// 2b + 1 + r of both of the block's lines. Pixels outside the image are left out of the window
+// (the same as clamping the lookups, as everywhere in this file).
+const int kLo = -((AQ_MORPH_RADIUS + 1) >> 1);
+const int kHi = (AQ_MORPH_RADIUS + 1) >> 1;
+const int kSpan = kHi - kLo + 1;
+
+// Pixel `along` (0 or 1 along the axis) of line `across` (0 or 1) of a block's words.
+uint aq_morph_word(uvec4 words, int along, int across) {
+#if AQ_MORPH_PASS == 0
+  return across == 0 ? (along == 0 ? words.x : words.y) : (along == 0 ? words.z : words.w);
+#else
+  return across == 0 ? (along == 0 ? words.x : words.z) : (along == 0 ? words.y : words.w);
+#endif
+}
+
+void main() {
+  ivec2 block = ivec2(gl_FragCoord.xy);
+#if AQ_MORPH_PASS == 0
+  const ivec2 axis = ivec2(1, 0);
+  int extent = u_image_size.x;
+#else
+  const ivec2 axis = ivec2(0, 1);
+  int extent = u_image_size.y;
+#endif
+  int b = AQ_MORPH_PASS == 0 ? block.x : block.y;
+  ivec2 last_block = (u_image_size - 1) >> 1;
+  uvec4 words[kSpan];
+  for (int k = 0; k < kSpan; ++k)
+    words[k] = texelFetch(u_blocks, clamp(block + (kLo + k) * axis, ivec2(0), last_block), 0);
+  uint results[4];
+  for (int across = 0; across < 2; ++across) {
+    for (int along = 0; along < 2; ++along) {
+#ifdef AQ_MORPH_DILATE
+      vec4 best = vec4(0.0);
+#else
+      vec4 best = vec4(1.0);
+#endif
+      // Constant bounds, so the loops unroll and every index below is a constant.
+      for (int t = 0; t <= 2 * AQ_MORPH_RADIUS; ++t) {
+        int d = along - AQ_MORPH_RADIUS + t;
+        int pixel = 2 * b + d;
+        // d - 2 kLo >= 0, so the shift is a floor division.
+        vec4 v = unpackUnorm4x8(aq_morph_word(words[((d - 2 * kLo) >> 1)], (d - 2 * kLo) & 1,
+                                              across));
+        best = pixel >= 0 && pixel < extent ? aq_morph_combine(best, v) : best;
+      }
+      results[2 * across + along] = packUnorm4x8(aq_morph_output(best));
+    }
+  }
+#if AQ_MORPH_PASS == 0
+  o_block = uvec4(results[0], results[1], results[2], results[3]);
+#else
+  // results are indexed [column * 2 + row] here: x = (0, 0), y = (1, 0), z = (0, 1), w = (1, 1).
+  o_block = uvec4(results[0], results[2], results[1], results[3]);
+#endif
+}
+#elif AQ_MORPH_BLOCKED && AQ_MORPH_PASS == 0
 void main() {
   ivec2 block = ivec2(gl_FragCoord.xy);
   ivec2 last = textureSize(u_image, 0) - 1;

@@ -384,8 +384,35 @@ static void decode_hdr8(std::vector<float>& rgba) {
   }
 }
 
+// An AQ_FORMAT_RGBA8_HDR_BLOCKS texture's pixels, decoded (plugin.h has the layout).
+static Result<ImageF> read_blocks(GLuint texture, int width, int height) {
+  const int blocks_x = (width + 1) / 2, blocks_y = (height + 1) / 2;
+  std::vector<uint32_t> words(static_cast<size_t>(blocks_x) * blocks_y * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureSubImage(texture, 0, 0, 0, 0, blocks_x, blocks_y, 1, GL_RGBA_INTEGER,
+                       GL_UNSIGNED_INT, static_cast<GLsizei>(words.size() * 4), words.data());
+  if (glGetError() != GL_NO_ERROR) return make_error("reading a texture of 2 x 2 blocks failed");
+  ImageF out(width, height, 4);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const size_t block = (static_cast<size_t>(y / 2) * blocks_x + x / 2) * 4;
+      const uint32_t word = words[block + (y % 2) * 2 + x % 2];
+      for (int c = 0; c < 4; ++c)
+        out.pixels[(static_cast<size_t>(y) * width + x) * 4 + c] =
+            static_cast<float>((word >> (8 * c)) & 0xFFu) / 255.0f;
+    }
+  }
+  decode_hdr8(out.pixels);
+  return out;
+}
+
 Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t format,
                             int64_t max_bytes_per_read) {
+  if (format == AQ_FORMAT_RGBA8_HDR_BLOCKS) {
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    return read_blocks(texture, width, height);
+  }
   bool single =
       format == AQ_FORMAT_R32F || format == AQ_FORMAT_DEPTH32F || format == AQ_FORMAT_R32UI;
   const int channels = single ? 1 : 4;
@@ -436,7 +463,8 @@ Result<ImageF> Evaluator::read_back(const TextureRef& texture) {
 }
 
 // AQUARELLE_FORMATS_BY_NEED=0 keeps every output in the format its plugin asks for,
-// AQUARELLE_HDR8=0 only turns the encoded HDR format off and AQUARELLE_EPILOGUE_FUSION=0 runs
+// AQUARELLE_HDR8=0 only turns the encoded HDR formats off, AQUARELLE_MORPH_BLOCKS=0 only the one
+// in 2 x 2 blocks, and AQUARELLE_EPILOGUE_FUSION=0 runs
 // pointwise chains after an AQ_NODE_EPILOGUE node as a pass of their own, so a bench run can
 // measure each lever off without a rebuild (the bench sets no EvalOptions for them).
 static bool enabled_in_environment(const char* name) {
@@ -454,6 +482,7 @@ Result<Plan> compile(const Graph& graph, const Registry& registry, const EvalOpt
   plan_options.formats_by_need =
       options.formats_by_need && enabled_in_environment("AQUARELLE_FORMATS_BY_NEED");
   plan_options.hdr8 = plan_options.formats_by_need && enabled_in_environment("AQUARELLE_HDR8");
+  plan_options.blocks = plan_options.hdr8 && enabled_in_environment("AQUARELLE_MORPH_BLOCKS");
   plan_options.epilogue_fusion = enabled_in_environment("AQUARELLE_EPILOGUE_FUSION");
   return compile_plan(graph, registry, plan_options, output);
 }
@@ -790,6 +819,15 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       // to an output the plan keeps in the working format is decoded here.
       for (size_t o = 0; o < type->outputs.size(); ++o) {
         const TextureRef& image = state.images[o];
+        const bool blocks_stored =
+            call.stored_format(static_cast<uint32_t>(o)) == AQ_FORMAT_RGBA8_HDR_BLOCKS;
+        if (image && (image->image.format == AQ_FORMAT_RGBA8_HDR_BLOCKS) != blocks_stored) {
+          state.valid = false;
+          return make_error("node '" + id + "' (" + type->name + "): output '" +
+                            type->outputs[o].name +
+                            "' is not in the 2 x 2 blocks its readers were promised, or is in "
+                            "blocks they were not (a plugin bug: report it to its author)");
+        }
         if (!image || image->image.format != AQ_FORMAT_RGBA8_HDR ||
             call.stored_format(static_cast<uint32_t>(o)) == AQ_FORMAT_RGBA8_HDR)
           continue;

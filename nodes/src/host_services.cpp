@@ -117,11 +117,11 @@ bool HostServices::valid_size(CallState* call, int32_t width, int32_t height) {
 
 // An unknown format would get an all-zero texture of some default kind: refuse it by name.
 bool HostServices::valid_format(CallState* call, const char* function, uint32_t format) {
-  if (format >= AQ_FORMAT_RGBA16F && format <= AQ_FORMAT_RGBA8_HDR) return true;
+  if (format >= AQ_FORMAT_RGBA16F && format <= AQ_FORMAT_RGBA8_HDR_BLOCKS) return true;
   fail_call(*call,
             std::string(function) + ": unknown image format " + std::to_string(format) +
                 " (aq_format in plugin.h: 1 RGBA16F, 2 RGBA32F, 3 R32F, 4 DEPTH32F, "
-                "5 R32UI, 6 RGBA8, 7 RGBA8_HDR; use ctx.working_format for the graph's precision)");
+                "5 R32UI, 6 RGBA8, 7 RGBA8_HDR, 8 RGBA8_HDR_BLOCKS; use ctx.working_format for the graph's precision)");
   return false;
 }
 
@@ -139,11 +139,11 @@ int HostServices::output_image(void* data, uint32_t index, int32_t width, int32_
   // its readers. An encoded HDR output goes only to readers that decode it: a plugin asking
   // for one the plan did not choose (output_like an encoded input) gets the working format.
   const uint32_t stored = call->stored_format(index);
-  const bool colour =
-      format == AQ_FORMAT_RGBA16F || format == AQ_FORMAT_RGBA32F || format == AQ_FORMAT_RGBA8_HDR;
+  const bool encoded = format == AQ_FORMAT_RGBA8_HDR || format == AQ_FORMAT_RGBA8_HDR_BLOCKS;
+  const bool colour = format == AQ_FORMAT_RGBA16F || format == AQ_FORMAT_RGBA32F || encoded;
   if (colour && stored != 0) {
     format = stored;
-  } else if (format == AQ_FORMAT_RGBA8_HDR) {
+  } else if (encoded) {
     format = call->working_format;
   }
   // Tagged with the instance and the output once the instance asked (output_kept), so that
@@ -250,7 +250,9 @@ int HostServices::bind_targets(void* data, const aq_image* colors, uint32_t coun
   }
   glBindFramebuffer(GL_FRAMEBUFFER, fbo);
   const aq_image& size_of = count > 0 ? colors[0] : *depth;
-  glViewport(0, 0, size_of.width, size_of.height);
+  int32_t width = 0, height = 0;
+  aq_image_texels(&size_of, &width, &height);  // a target in 2 x 2 blocks is drawn per block
+  glViewport(0, 0, width, height);
   return AQ_OK;
 }
 

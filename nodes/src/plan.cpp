@@ -92,7 +92,8 @@ std::set<std::string> deferred_nodes(const Graph& graph, const Registry& registr
 // An output nobody reads and the requested output keep their format. Empty when none changes.
 std::vector<uint32_t> stored_formats(const Graph& graph, const Registry& registry,
                                      const std::vector<std::string>& order, const std::string& id,
-                                     const NodeType& type, const PortRef& target, bool hdr8) {
+                                     const NodeType& type, const PortRef& target, bool hdr8,
+                                     bool blocks) {
   std::vector<uint32_t> formats(type.outputs.size(), 0);
   bool any = false;
   const bool half = graph.settings.precision != "float";
@@ -103,6 +104,7 @@ std::vector<uint32_t> stored_formats(const Graph& graph, const Registry& registr
     int readers = 0;
     bool all_eight_bit = true;
     bool all_hdr8 = true;
+    bool all_blocks = true;
     for (const auto& reader_id : order) {
       const Node& reader = graph.nodes.at(reader_id);
       const NodeType* reader_type = registry.find(reader.type);
@@ -112,11 +114,13 @@ std::vector<uint32_t> stored_formats(const Graph& graph, const Registry& registr
         const int index = reader_type->input_index(input);
         all_eight_bit = all_eight_bit && index >= 0 && reader_type->inputs[index].eight_bit_enough;
         all_hdr8 = all_hdr8 && index >= 0 && reader_type->inputs[index].hdr8;
+        all_blocks = all_blocks && index >= 0 && reader_type->inputs[index].blocks;
       }
     }
     if (readers == 0) continue;
     if (all_hdr8 && hdr8 && half && type.outputs[o].hdr8) {
-      formats[o] = AQ_FORMAT_RGBA8_HDR;
+      formats[o] = all_blocks && blocks && type.outputs[o].blocks ? AQ_FORMAT_RGBA8_HDR_BLOCKS
+                                                                  : AQ_FORMAT_RGBA8_HDR;
     } else if (all_eight_bit) {
       formats[o] = AQ_FORMAT_RGBA8;
     }
@@ -198,7 +202,8 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
     planned.producer = planned.deferred && type->fusable == nullptr;
     if (options.formats_by_need && !planned.deferred)
       planned.stored_formats =
-          stored_formats(graph, registry, order, id, *type, *target, options.hdr8);
+          stored_formats(graph, registry, order, id, *type, *target, options.hdr8,
+                         options.blocks);
     plan.nodes.push_back(planned);
 
     // The chain of deferred nodes feeding this one through its first input.
@@ -232,8 +237,11 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
     if (pass.epilogue) {
       const bool encodes = !head->type->outputs.empty() && head->type->outputs[0].hdr8;
       std::vector<uint32_t>& stored = plan.nodes.back().stored_formats;
-      for (uint32_t& format : stored)
+      for (uint32_t& format : stored) {
+        // The fused pass writes pixels: a chain's result in blocks is stored encoded instead.
+        if (format == AQ_FORMAT_RGBA8_HDR_BLOCKS) format = AQ_FORMAT_RGBA8_HDR;
         if (format == AQ_FORMAT_RGBA8_HDR && !encodes) format = 0;
+      }
       if (std::all_of(stored.begin(), stored.end(), [](uint32_t f) { return f == 0; }))
         stored.clear();
     }
@@ -270,7 +278,8 @@ std::string format_plan(const Plan& plan) {
       chain = "fused: " + chain;
     }
     if (pass.resamples) chain += " (inside the upscale)";
-    for (const uint32_t format : {AQ_FORMAT_RGBA8, AQ_FORMAT_RGBA8_HDR}) {
+    for (const uint32_t format :
+         {AQ_FORMAT_RGBA8, AQ_FORMAT_RGBA8_HDR, AQ_FORMAT_RGBA8_HDR_BLOCKS}) {
       std::string narrow;
       for (size_t o = 0; o < node->stored_formats.size(); ++o)
         if (node->stored_formats[o] == format)

@@ -75,7 +75,8 @@ std::string read_ports(const aq_port_desc* ports, uint32_t count, const char* ki
              std::to_string(port.type) + " (expected AQ_PORT_IMAGE or AQ_PORT_SCENE)";
     }
     if ((port.flags & ~static_cast<uint32_t>(AQ_PORT_OPTIONAL | AQ_PORT_MULTI |
-                                             AQ_PORT_8BIT_ENOUGH | AQ_PORT_HDR8)) != 0) {
+                                             AQ_PORT_8BIT_ENOUGH | AQ_PORT_HDR8 |
+                                             AQ_PORT_BLOCKS)) != 0) {
       return std::string(kind) + " '" + name + "' has unknown flags " + std::to_string(port.flags);
     }
     if ((port.flags & AQ_PORT_MULTI) != 0 &&
@@ -92,6 +93,11 @@ std::string read_ports(const aq_port_desc* ports, uint32_t count, const char* ki
       return std::string(kind) + " '" + name +
              "' is AQ_PORT_HDR8: only image ports can hold an encoded 8-bit image";
     }
+    if ((port.flags & AQ_PORT_BLOCKS) != 0 && (port.flags & AQ_PORT_HDR8) == 0) {
+      return std::string(kind) + " '" + name +
+             "' is AQ_PORT_BLOCKS without AQ_PORT_HDR8: 2 x 2 blocks hold encoded 8-bit pixels, "
+             "so a port that takes them must handle AQ_FORMAT_RGBA8_HDR too";
+    }
     if (!seen.insert(name).second) {
       return std::string(kind) + " '" + name + "' is declared twice";
     }
@@ -102,6 +108,7 @@ std::string read_ports(const aq_port_desc* ports, uint32_t count, const char* ki
     info.multi = (port.flags & AQ_PORT_MULTI) != 0;
     info.eight_bit_enough = (port.flags & AQ_PORT_8BIT_ENOUGH) != 0;
     info.hdr8 = (port.flags & AQ_PORT_HDR8) != 0;
+    info.blocks = (port.flags & AQ_PORT_BLOCKS) != 0;
     info.description = text_or_empty(port.description);
     out->push_back(std::move(info));
   }

@@ -19,6 +19,7 @@ size_t bytes_per_pixel(uint32_t format) {
       return 4;
     case AQ_FORMAT_RGBA8:
     case AQ_FORMAT_RGBA8_HDR:
+    case AQ_FORMAT_RGBA8_HDR_BLOCKS:  // 16 bytes a texel of four pixels
       return 4;
     default:
       return 16;
@@ -41,6 +42,8 @@ const char* format_name(uint32_t format) {
       return "RGBA8";
     case AQ_FORMAT_RGBA8_HDR:
       return "RGBA8 HDR";
+    case AQ_FORMAT_RGBA8_HDR_BLOCKS:
+      return "RGBA8 HDR 2x2";
     default:
       return "unknown";
   }
@@ -62,6 +65,8 @@ GLenum internal_format(uint32_t format) {
     case AQ_FORMAT_RGBA8:
     case AQ_FORMAT_RGBA8_HDR:
       return GL_RGBA8;
+    case AQ_FORMAT_RGBA8_HDR_BLOCKS:
+      return GL_RGBA32UI;
     default:
       return GL_RGBA32F;
   }
@@ -111,14 +116,17 @@ TextureRef TexturePool::acquire(int width, int height, uint32_t format, uint64_t
     texture->texture = gl::make_texture();
     GLuint id = texture->texture.get();
     glBindTexture(GL_TEXTURE_2D, id);
-    glTexStorage2D(GL_TEXTURE_2D, 1, internal_format(format), width, height);
-    bool integer = format == AQ_FORMAT_R32UI;
+    texture->image = aq_image{id, width, height, format};
+    int32_t texels_x = 0, texels_y = 0;
+    aq_image_texels(&texture->image, &texels_x, &texels_y);
+    glTexStorage2D(GL_TEXTURE_2D, 1, internal_format(format), texels_x, texels_y);
+    // An integer texture with a filtering sampler state is incomplete.
+    bool integer = format == AQ_FORMAT_R32UI || format == AQ_FORMAT_RGBA8_HDR_BLOCKS;
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, integer ? GL_NEAREST : GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, integer ? GL_NEAREST : GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glBindTexture(GL_TEXTURE_2D, 0);
-    texture->image = aq_image{id, width, height, format};
     ++created_;
     bytes_ += bytes_per_pixel(format) * static_cast<size_t>(width) * height;
   }

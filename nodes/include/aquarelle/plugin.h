@@ -72,7 +72,12 @@ enum {
    * texture (the aq_image's format says so; the plugin asks for its usual format). The host
    * stores an output so only when its writer and every reader say AQ_PORT_HDR8, it is not the
    * requested output and the graph's precision is half. An older host refuses the plugin. */
-  AQ_PORT_HDR8 = 1u << 3
+  AQ_PORT_HDR8 = 1u << 3,
+  /* Appended in ABI 1: an AQ_PORT_HDR8 image port that also handles AQ_FORMAT_RGBA8_HDR_BLOCKS
+   * (a morphology chain keeps its images in 2 x 2 blocks between its nodes). The host stores
+   * an output so only where it would store AQ_FORMAT_RGBA8_HDR and the writer and every reader
+   * say AQ_PORT_BLOCKS. An older host refuses the plugin (unknown flag). */
+  AQ_PORT_BLOCKS = 1u << 4
 };
 
 typedef enum aq_format {
@@ -88,7 +93,14 @@ typedef enum aq_format {
    * Monotone, so min and max work on the stored values; relative step about 2 % over
    * [0.1, 2]. Only ports that say AQ_PORT_HDR8 see it (bandwidth by need: llvmpipe reads
    * several 8-bit texels about three times as fast as float ones). GLSL: aquarelle/hdr8.glsl. */
-  AQ_FORMAT_RGBA8_HDR = 7
+  AQ_FORMAT_RGBA8_HDR = 7,
+  /* Appended in ABI 1: an AQ_FORMAT_RGBA8_HDR image in 2 x 2 blocks of pixels: an RGBA32UI
+   * texture of ceil(width / 2) x ceil(height / 2) texels (aq_image.width and height stay the
+   * image's pixels), texel (i, j) holding the packUnorm4x8 words of pixels (2i, 2j) in x,
+   * (2i + 1, 2j) in y, (2i, 2j + 1) in z and (2i + 1, 2j + 1) in w. A pass that works on whole
+   * blocks (the morphology's) reads and writes four pixels per fragment. Only ports that say
+   * AQ_PORT_BLOCKS see it; aq_image_texels() gives the texture's size. */
+  AQ_FORMAT_RGBA8_HDR_BLOCKS = 8
 } aq_format;
 
 typedef enum aq_precision { AQ_PRECISION_HALF = 0, AQ_PRECISION_FLOAT = 1 } aq_precision;
@@ -105,6 +117,14 @@ typedef struct aq_image {
   int32_t height;
   uint32_t format; /* aq_format */
 } aq_image;
+
+/* Appended in ABI 1: the size of an image's texture in texels: its pixels, or its 2 x 2
+ * blocks for AQ_FORMAT_RGBA8_HDR_BLOCKS. */
+static inline void aq_image_texels(const aq_image* image, int32_t* width, int32_t* height) {
+  const int blocks = image->format == AQ_FORMAT_RGBA8_HDR_BLOCKS;
+  *width = blocks ? (image->width + 1) / 2 : image->width;
+  *height = blocks ? (image->height + 1) / 2 : image->height;
+}
 
 /* ---- Scenes: what flows on a `scene` port ------------------------------------------- */
 

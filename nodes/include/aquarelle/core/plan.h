@@ -35,8 +35,9 @@ struct PlannedNode {
   // Per output port (type order): the format the host stores it in instead of the one its
   // plugin asks for (bandwidth by need), 0 where the plugin's choice stands: AQ_FORMAT_RGBA8
   // when every reader reads it through an AQ_PORT_8BIT_ENOUGH input, AQ_FORMAT_RGBA8_HDR when
-  // the writer and every reader say AQ_PORT_HDR8 (half precision only). Never the requested
-  // output. Empty when no output changes.
+  // the writer and every reader say AQ_PORT_HDR8 (half precision only), AQ_FORMAT_RGBA8_HDR_BLOCKS
+  // when they also say AQ_PORT_BLOCKS (a morphology chain). Never the requested output. Empty
+  // when no output changes.
   std::vector<uint32_t> stored_formats;
 };
 
@@ -83,6 +84,8 @@ struct PlanOptions {
   bool formats_by_need = true;
   // ... including AQ_FORMAT_RGBA8_HDR (with formats_by_need).
   bool hdr8 = true;
+  // ... and AQ_FORMAT_RGBA8_HDR_BLOCKS between AQ_PORT_BLOCKS ports (with hdr8).
+  bool blocks = true;
 };
 
 // Compiles the plan; errors name the node (cycle, missing node, unknown type, bad output).

@@ -21,6 +21,8 @@ struct PortInfo {
   bool eight_bit_enough = false;
   // An image port that handles AQ_FORMAT_RGBA8_HDR (AQ_PORT_HDR8).
   bool hdr8 = false;
+  // ... and AQ_FORMAT_RGBA8_HDR_BLOCKS too (AQ_PORT_BLOCKS).
+  bool blocks = false;
 };
 
 struct ParamInfo {

@@ -33,10 +33,13 @@ constexpr int kMaxSpans = kMaxRadius + 1;
 
 // Both ports take AQ_FORMAT_RGBA8_HDR: the encoding is monotone per channel, so the extremes
 // are taken on the stored values and the image is decoded or encoded only on the last write.
+// And AQ_FORMAT_RGBA8_HDR_BLOCKS: between two of these nodes (erode -> dilate -> erode) the
+// image stays in the blocks the blocked path computes in, so each pass works on a quarter of
+// the fragments and reads whole blocks.
 inline constexpr aq_port_desc kInputs[] = {
-    aq::image_port("image", "colour to filter", AQ_PORT_HDR8)};
+    aq::image_port("image", "colour to filter", AQ_PORT_HDR8 | AQ_PORT_BLOCKS)};
 inline constexpr aq_port_desc kOutputs[] = {
-    aq::image_port("image", "filtered colour", AQ_PORT_HDR8)};
+    aq::image_port("image", "filtered colour", AQ_PORT_HDR8 | AQ_PORT_BLOCKS)};
 inline constexpr aq_param_desc kParams[] = {
     aq::int_param("size", 3, 1, 2 * kMaxRadius + 1,
                   "window diameter in pixels, odd (1, 3, 5, 7, 9); 1 passes the image through"),
@@ -133,7 +136,8 @@ inline bool blocked_path(const aq_image& in, Footprint footprint, bool luminance
   const char* value = std::getenv("AQUARELLE_MORPH_BLOCKED");  // read per call: tests flip it
   const bool enabled = value == nullptr || std::string(value) != "0";
   return enabled && footprint == kSquare && !luminance &&
-         (in.format == AQ_FORMAT_RGBA8 || in.format == AQ_FORMAT_RGBA8_HDR);
+         (in.format == AQ_FORMAT_RGBA8 || in.format == AQ_FORMAT_RGBA8_HDR ||
+          in.format == AQ_FORMAT_RGBA8_HDR_BLOCKS);
 }
 
 // The rect of 2 x 2 blocks that holds every pixel of `r`.
@@ -141,83 +145,100 @@ inline PixelRect blocks_of(const PixelRect& r) {
   return PixelRect{r.x0 >> 1, r.y0 >> 1, (r.x1 + 1) >> 1, (r.y1 + 1) >> 1};
 }
 
-// The blocked fast path (morphology.glsl): pass 0 into 2 x 2 blocks over the blocks of the
-// rows pass's region, pass 1 over `drawn`.
-inline int run_blocked(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& blocks,
-                       const aq_image& in, const aq_image& out, const SpanPlan& plan,
-                       const Region& damage, const Region& drawn, bool out_hdr8) {
-  const bool in_hdr8 = in.format == AQ_FORMAT_RGBA8_HDR;
+inline Region blocks_of(const Region& pixels) {
+  if (pixels.all()) return Region::everything();
+  std::vector<PixelRect> rects;
+  for (const PixelRect& r : pixels.rects()) rects.push_back(blocks_of(r));
+  Region blocks;
+  blocks.add(rects);
+  return blocks;
+}
+
+// `pixels` grown to whole 2 x 2 blocks: the pixels a pass over their blocks computes.
+inline Region whole_blocks(const Region& pixels, int width, int height) {
+  if (pixels.all()) return pixels;
+  std::vector<PixelRect> rects;
+  for (const PixelRect& r : pixels.rects()) {
+    const PixelRect b = blocks_of(r);
+    rects.push_back(PixelRect{2 * b.x0, 2 * b.y0, std::min(2 * b.x1, width),
+                              std::min(2 * b.y1, height)});
+  }
+  Region grown;
+  grown.add(rects);
+  return grown;
+}
+
+inline bool in_blocks(const aq_image& image) { return image.format == AQ_FORMAT_RGBA8_HDR_BLOCKS; }
+
+// Binds `blocks` (an RGBA32UI texture, read with texelFetch) to unit 0 of `program`'s u_blocks.
+inline void bind_blocks(GLuint program, const aq_image& blocks, const aq_image& image) {
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, blocks.texture);
+  glBindSampler(0, 0);
+  glUniform1i(glGetUniformLocation(program, "u_blocks"), 0);
+  glUniform2i(glGetUniformLocation(program, "u_image_size"), image.width, image.height);
+}
+
+// The blocked fast path (morphology.glsl): pass 0 into the node's 2 x 2 blocks over the blocks
+// of the rows the columns pass reads, pass 1 over `drawn`. Either end may be in blocks itself
+// (AQ_FORMAT_RGBA8_HDR_BLOCKS): pass 0 then reads blocks, pass 1 writes whole blocks.
+inline bool run_blocked(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& blocks,
+                        const aq_image& in, const aq_image& out, const SpanPlan& plan,
+                        const Region& drawn) {
+  const bool in_hdr8 = in.format == AQ_FORMAT_RGBA8_HDR || in_blocks(in);
+  const bool out_hdr8 = out.format == AQ_FORMAT_RGBA8_HDR || in_blocks(out);
   const aq_image block_image =
       blocks.get(ctx.raw()->gl_generation, (in.width + 1) / 2, (in.height + 1) / 2);
-  const std::string rows_text = variant_text(shader, 0, plan, false, in_hdr8, in_hdr8, true);
-  const std::string columns_text = variant_text(shader, 1, plan, false, in_hdr8, out_hdr8, true);
+  const std::string rows_text = std::string(in_blocks(in) ? "#define AQ_MORPH_IN_BLOCKS 1\n" : "") +
+                                variant_text(shader, 0, plan, false, in_hdr8, in_hdr8, true);
+  const std::string columns_text =
+      std::string(in_blocks(out) ? "#define AQ_MORPH_OUT_BLOCKS 1\n" : "") +
+      variant_text(shader, 1, plan, false, in_hdr8, out_hdr8, true);
   const GLuint rows = ctx.program(aq_shader_source{shader.name, rows_text.c_str(), nullptr});
   const GLuint columns = ctx.program(aq_shader_source{shader.name, columns_text.c_str(), nullptr});
-  if (rows == 0 || columns == 0) return AQ_ERROR;
+  if (rows == 0 || columns == 0) return false;
 
-  Region rows_region = Region::everything();
-  if (!drawn.all()) {
-    rows_region = Region();
-    const Region rows_read = drawn.dilated(0, plan.radius, out.width, out.height);
-    std::vector<PixelRect> block_rects;
-    for (const PixelRect& r : rows_read.rects()) block_rects.push_back(blocks_of(r));
-    rows_region.add(block_rects);
-  }
+  // The columns pass computes whole blocks when it writes blocks: the rows pass covers the rows
+  // of their windows.
+  const Region computed = in_blocks(out) ? whole_blocks(drawn, out.width, out.height) : drawn;
+  const Region rows_region =
+      blocks_of(computed.all() ? computed : computed.dilated(0, plan.radius, out.width, out.height));
   glUseProgram(rows);
-  aq::bind_texture(rows, "u_image", 0, in);
+  if (in_blocks(in)) {
+    bind_blocks(rows, in, in);
+  } else {
+    aq::bind_texture(rows, "u_image", 0, in);
+  }
   ctx.set_draw_region(rows_region.for_drawing());
   if (!ctx.bind_targets(&block_image, 1)) {
     aq::unbind_textures(1);
-    return AQ_ERROR;
+    return false;
   }
   ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
 
   glUseProgram(columns);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, block_image.texture);
-  glBindSampler(0, 0);
-  glUniform1i(glGetUniformLocation(columns, "u_blocks"), 0);
-  glUniform2i(glGetUniformLocation(columns, "u_image_size"), in.width, in.height);
-  ctx.set_draw_region(drawn);
+  bind_blocks(columns, block_image, in);
+  ctx.set_draw_region(in_blocks(out) ? blocks_of(drawn).for_drawing() : drawn);
   const bool ok = ctx.draw(out);
   aq::unbind_textures(1);
-  return ok && ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
+  return ok;
 }
 
-// Runs erosion or dilation, whichever `shader` implements.
-inline int run(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& blocks) {
-  const aq_image in = ctx.input_image(0);
-  const int64_t size = ctx.param_int(kSize);
-  if (size < 1 || size > 2 * kMaxRadius + 1 || size % 2 == 0) {
-    return ctx.fail("parameter 'size' is " + std::to_string(size) +
-                    ": use an odd size from 1 to 9 (1, 3, 5, 7 or 9) so the window is centred "
-                    "on the pixel");
-  }
-  if (size == 1) return ctx.pass_through(0, 0) ? AQ_OK : AQ_ERROR;
-  // `size` is in output pixels; a proxy render keeps at least a radius of 1 so the effect
-  // does not vanish.
-  const int radius = std::max(
-      1, static_cast<int>(std::lround(static_cast<double>(size / 2) * ctx.render_scale())));
-  const auto footprint = static_cast<Footprint>(ctx.param_enum(kFootprint));
-  const SpanPlan plan = plan_spans(radius, footprint == kDisc ? kDisc : kSquare);
-  const bool luminance = ctx.param_enum(kMode) == kLuminance;
+// `image` (in 2 x 2 blocks) as encoded pixels in a scratch image, or the pixels of `image` into
+// `blocks`: the blocked passes with a radius of 0, for the paths that work on pixels.
+inline bool convert_blocks(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& blocks,
+                           const aq_image& from, aq_image* to) {
+  if (!in_blocks(*to) && !ctx.scratch(from.width, from.height, AQ_FORMAT_RGBA8_HDR, to))
+    return false;
+  return run_blocked(ctx, shader, blocks, from, *to, plan_spans(0, kSquare), Region::everything());
+}
 
-  // The spans keep an encoded input's encoding (the row extremes are some of its texels).
+// The two plain passes (pass 0 into one span texture per row half-width, pass 1 combining them)
+// from `in` into `out`, both in pixels.
+inline int run_plain(aq::Context& ctx, const aq_shader_source& shader, const aq_image& in,
+                     const aq_image& out, const SpanPlan& plan, bool luminance, const Region& drawn) {
   const bool in_hdr8 = in.format == AQ_FORMAT_RGBA8_HDR;
-  aq_image out;
-  if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
-  // Damage tracking: with its output kept, only the pixels whose window holds a changed input
-  // pixel are redrawn; the rows pass covers the rows the columns pass reads around them.
-  Region damage = Region::everything();
-  if (ctx.output_kept(0) && in.width == out.width && in.height == out.height)
-    damage = ctx.input_damage(0).dilated(radius, radius, out.width, out.height);
-  if (damage.empty()) return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
-  Region drawn = damage.for_drawing();
-  if (!ctx.set_draw_region(drawn.dilated(0, radius, out.width, out.height).for_drawing()))
-    damage = drawn = Region::everything();
   const bool out_hdr8 = out.format == AQ_FORMAT_RGBA8_HDR;
-  if (blocked_path(in, footprint == kDisc ? kDisc : kSquare, luminance))
-    return run_blocked(ctx, shader, blocks, in, out, plan, damage, drawn, out_hdr8);
   std::array<aq_image, kMaxSpans> spans{};
   for (int i = 0; i < plan.span_count; ++i) {
     if (!ctx.scratch(in.width, in.height, in_hdr8 ? in.format : ctx.working_format(), &spans[i]))
@@ -230,6 +251,8 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& b
   if (rows == 0 || columns == 0) return AQ_ERROR;
 
   // Pass 0: every row span at once, one colour attachment each.
+  ctx.set_draw_region(drawn.all() ? drawn
+                                  : drawn.dilated(0, plan.radius, out.width, out.height).for_drawing());
   glUseProgram(rows);
   aq::bind_texture(rows, "u_image", 0, in);
   if (!ctx.bind_targets(spans.data(), static_cast<uint32_t>(plan.span_count))) {
@@ -250,7 +273,58 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& b
   ctx.set_draw_region(drawn);
   const bool ok = ctx.draw(out);
   aq::unbind_textures(kMaxSpans);
-  return ok && ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
+  return ok ? AQ_OK : AQ_ERROR;
+}
+
+// Runs erosion or dilation, whichever `shader` implements.
+inline int run(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& blocks) {
+  const aq_image in = ctx.input_image(0);
+  const int64_t size = ctx.param_int(kSize);
+  if (size < 1 || size > 2 * kMaxRadius + 1 || size % 2 == 0) {
+    return ctx.fail("parameter 'size' is " + std::to_string(size) +
+                    ": use an odd size from 1 to 9 (1, 3, 5, 7 or 9) so the window is centred "
+                    "on the pixel");
+  }
+  // The host stores the output in 2 x 2 blocks when every reader takes them (AQ_PORT_BLOCKS),
+  // else encoded or in the working format.
+  aq_image out;
+  if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+  if (size == 1 && out.format == in.format) return ctx.pass_through(0, 0) ? AQ_OK : AQ_ERROR;
+  // `size` is in output pixels; a proxy render keeps at least a radius of 1 so the effect
+  // does not vanish. Size 1 into another format than the input's only converts it.
+  const int radius =
+      size == 1 ? 0
+                : std::max(1, static_cast<int>(std::lround(static_cast<double>(size / 2) *
+                                                           ctx.render_scale())));
+  const auto footprint = static_cast<Footprint>(ctx.param_enum(kFootprint));
+  const SpanPlan plan = plan_spans(radius, footprint == kDisc ? kDisc : kSquare);
+  const bool luminance = ctx.param_enum(kMode) == kLuminance;
+
+  // Damage tracking: with its output kept, only the pixels whose window holds a changed input
+  // pixel are redrawn; the rows pass covers the rows the columns pass reads around them.
+  Region damage = Region::everything();
+  if (ctx.output_kept(0) && in.width == out.width && in.height == out.height)
+    damage = ctx.input_damage(0).dilated(radius, radius, out.width, out.height);
+  if (damage.empty()) return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
+  Region drawn = damage.for_drawing();
+  if (!ctx.set_draw_region(drawn.dilated(0, radius, out.width, out.height).for_drawing()))
+    damage = drawn = Region::everything();
+  if (blocked_path(in, footprint == kDisc ? kDisc : kSquare, luminance)) {
+    if (!run_blocked(ctx, shader, blocks, in, out, plan, drawn)) return AQ_ERROR;
+    return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
+  }
+
+  // The plain passes work on pixels: an input in blocks is unpacked first and an output in
+  // blocks packed last, both whole (a disc or luminance order after a square's blocks).
+  aq_image source = in, target = out;
+  if (in_blocks(in) && !convert_blocks(ctx, shader, blocks, in, &source)) return AQ_ERROR;
+  if (in_blocks(out)) {
+    damage = drawn = Region::everything();
+    if (!ctx.scratch(out.width, out.height, AQ_FORMAT_RGBA8_HDR, &target)) return AQ_ERROR;
+  }
+  if (run_plain(ctx, shader, source, target, plan, luminance, drawn) != AQ_OK) return AQ_ERROR;
+  if (in_blocks(out) && !convert_blocks(ctx, shader, blocks, target, &out)) return AQ_ERROR;
+  return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
 }
 
 }  // namespace aq::morphology
