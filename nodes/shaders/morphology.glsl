@@ -222,10 +222,16 @@ void main() {
       inner = aq_morph_combine(inner, texelFetch(u_image, ivec2(max(x0 - t, 0), y), 0));
       inner = aq_morph_combine(inner, texelFetch(u_image, ivec2(min(x0 + 1 + t, last.x), y), 0));
     }
+#if AQ_MORPH_RADIUS == 0
+    // Each pixel alone: the node only packs its pixels into blocks.
+    uint a = packUnorm4x8(texelFetch(u_image, ivec2(clamp(x0, 0, last.x), y), 0));
+    uint b = packUnorm4x8(texelFetch(u_image, ivec2(min(x0 + 1, last.x), y), 0));
+#else
     vec4 left = texelFetch(u_image, ivec2(max(x0 - AQ_MORPH_RADIUS, 0), y), 0);
     vec4 right = texelFetch(u_image, ivec2(min(x0 + 1 + AQ_MORPH_RADIUS, last.x), y), 0);
     uint a = packUnorm4x8(aq_morph_combine(inner, left));
     uint b = packUnorm4x8(aq_morph_combine(inner, right));
+#endif
     if (half_row == 0) {
       words.xy = uvec2(a, b);
     } else {

@@ -109,20 +109,25 @@ uint32_t stored(const Plan& plan, const std::string& id, size_t output = 0) {
 TEST(Hdr8, TheFlagshipStoresItsLightMorphologyAndPigmentEncoded) {
   const ReadResult text = read_graph_file(source_path("graphs/underwater.json"), registry());
   const Plan plan = plan_of(text, "half");
-  for (const char* id : {"light", "open_erode", "dilate", "close_erode", "pigment"})
+  for (const char* id : {"light", "close_erode", "pigment"})
     EXPECT_EQ(stored(plan, id), uint32_t{AQ_FORMAT_RGBA8_HDR}) << id;
+  // Read by the next morphology node: kept in 2 x 2 blocks.
+  for (const char* id : {"open_erode", "dilate"})
+    EXPECT_EQ(stored(plan, id), uint32_t{AQ_FORMAT_RGBA8_HDR_BLOCKS}) << id;
   EXPECT_EQ(stored(plan, "light", 1), uint32_t{AQ_FORMAT_RGBA8}) << "plain: edge's source";
   for (const char* id : {"wobble", "edge", "blur", "gbuf"})
     EXPECT_NE(stored(plan, id), uint32_t{AQ_FORMAT_RGBA8_HDR}) << id;
   // Float precision asks for accuracy: nothing is encoded; nor with the lever off.
   for (const Plan& other : {plan_of(text, "float"), plan_of(text, "half", false)})
-    for (const char* id : {"light", "open_erode", "dilate", "close_erode"})
+    for (const char* id : {"light", "open_erode", "dilate", "close_erode"}) {
       EXPECT_NE(stored(other, id), uint32_t{AQ_FORMAT_RGBA8_HDR}) << id;
+      EXPECT_NE(stored(other, id), uint32_t{AQ_FORMAT_RGBA8_HDR_BLOCKS}) << id;
+    }
 }
 
 TEST(Hdr8, AReaderThatCannotDecodeKeepsTheWorkingFormat) {
   const Plan plan = plan_of(read_graph_text(kPassThrough, registry(), "pass through"), "half");
-  EXPECT_EQ(stored(plan, "erode"), uint32_t{AQ_FORMAT_RGBA8_HDR}) << "read by an erode";
+  EXPECT_EQ(stored(plan, "erode"), uint32_t{AQ_FORMAT_RGBA8_HDR_BLOCKS}) << "read by an erode";
   EXPECT_EQ(stored(plan, "same"), 0u) << "read by a tint, which does not decode";
   EXPECT_EQ(stored(plan, "input"), 0u) << "image_input does not say it can write it";
 }
@@ -238,7 +243,7 @@ TEST(Hdr8, TheBlockedMorphologyGivesTheSameBitsAsThePlainPasses) {
     ASSERT_FALSE(plan.nodes.empty());
     for (const PlannedNode& node : plan.nodes) {
       if (node.id != "input" && node.id != plan.nodes.back().id) {
-        EXPECT_EQ(stored(plan, node.id), uint32_t{AQ_FORMAT_RGBA8_HDR}) << node.id;
+        EXPECT_EQ(stored(plan, node.id), uint32_t{AQ_FORMAT_RGBA8_HDR_BLOCKS}) << node.id;
       }
     }
     for (const auto& [width, height] : {std::pair{64, 48}, {63, 47}, {17, 9}}) {
@@ -250,11 +255,55 @@ TEST(Hdr8, TheBlockedMorphologyGivesTheSameBitsAsThePlainPasses) {
       // input again would be answered with the plain passes' pixels without drawing.
       ASSERT_TRUE(render(graph_text, hdr_image(width, height, true), true).ok());
       auto blocked = render(graph_text, light, true);
+      // Pixels between the nodes instead of 2 x 2 blocks (the blocked path within each node).
+      ASSERT_TRUE(render(graph_text, hdr_image(width, height, true), true).ok());
+      setenv("AQUARELLE_MORPH_BLOCKS", "0", 1);
+      auto pixels_between = render(graph_text, light, true);
+      unsetenv("AQUARELLE_MORPH_BLOCKS");
       ASSERT_TRUE(plain.ok()) << plain.message();
       ASSERT_TRUE(blocked.ok()) << blocked.message();
+      ASSERT_TRUE(pixels_between.ok()) << pixels_between.message();
       EXPECT_EQ(test::max_abs_diff(*blocked, *plain), 0.0) << width << "x" << height;
+      EXPECT_EQ(test::max_abs_diff(*blocked, *pixels_between), 0.0) << width << "x" << height;
       EXPECT_GT(test::max_abs_diff(*blocked, light), 0.0) << "the windows moved nothing";
     }
+  }
+}
+
+// A disc and a luminance order between square windows: those nodes work on pixels, so they
+// unpack the 2 x 2 blocks they are given and pack the ones they hand on; the bits stay those of
+// pixels between every node.
+const char* kMixedMorphologyChain = R"({
+  "aquarelle": 1,
+  "nodes": {
+    "input": {"type": "image_input", "params": {"name": "image"}},
+    "square": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "input.image"}},
+    "disc": {"type": "dilate", "params": {"size": 5, "footprint": "disc"},
+             "inputs": {"image": "square.image"}},
+    "luma": {"type": "erode", "params": {"size": 3, "mode": "luminance"},
+             "inputs": {"image": "disc.image"}},
+    "same": {"type": "dilate", "params": {"size": 1}, "inputs": {"image": "luma.image"}},
+    "last": {"type": "dilate", "params": {"size": 3}, "inputs": {"image": "same.image"}}
+  },
+  "output": "last.image"
+})";
+
+TEST(Hdr8, NodesThatWorkOnPixelsTakeAndGiveBlocksWithTheSameBits) {
+  const Plan plan =
+      plan_of(read_graph_text(kMixedMorphologyChain, registry(), "mixed chain"), "half");
+  for (const char* id : {"square", "disc", "luma", "same"})
+    EXPECT_EQ(stored(plan, id), uint32_t{AQ_FORMAT_RGBA8_HDR_BLOCKS}) << id;
+  for (const auto& [width, height] : {std::pair{64, 48}, {33, 19}}) {
+    const ImageF light = hdr_image(width, height, false);
+    setenv("AQUARELLE_MORPH_BLOCKS", "0", 1);
+    auto pixels = render(kMixedMorphologyChain, light, true);
+    unsetenv("AQUARELLE_MORPH_BLOCKS");
+    ASSERT_TRUE(render(kMixedMorphologyChain, hdr_image(width, height, true), true).ok());
+    auto blocks = render(kMixedMorphologyChain, light, true);
+    ASSERT_TRUE(pixels.ok()) << pixels.message();
+    ASSERT_TRUE(blocks.ok()) << blocks.message();
+    EXPECT_EQ(test::max_abs_diff(*blocks, *pixels), 0.0) << width << "x" << height;
+    EXPECT_GT(test::max_abs_diff(*blocks, light), 0.0) << "the windows moved nothing";
   }
 }
 
@@ -262,8 +311,13 @@ TEST(Hdr8, TheBlockedMorphologyGivesTheSameBitsAsThePlainPasses) {
 // through its own pass (unfused) or as the input of a fused chain.
 TEST(Hdr8, AnEncodedImagePassedThroughIsDecodedForItsReader) {
   const ImageF light = hdr_image(64, 48, false);
+  // Blocks off: the size-1 erode passes its encoded input through. On: it unpacks its input's
+  // 2 x 2 blocks into the working format its reader needs.
   for (bool fuse : {false, true}) {
+    for (bool blocks : {false, true}) {
+    if (!blocks) setenv("AQUARELLE_MORPH_BLOCKS", "0", 1);
     auto on = render(kPassThrough, light, true, fuse);
+    unsetenv("AQUARELLE_MORPH_BLOCKS");
     auto off = render(kPassThrough, light, false, fuse);
     ASSERT_TRUE(on.ok()) << on.message();
     ASSERT_TRUE(off.ok()) << off.message();
@@ -273,6 +327,7 @@ TEST(Hdr8, AnEncodedImagePassedThroughIsDecodedForItsReader) {
     const Comparison result = compare(*on, *off);
     EXPECT_GT(result.max_abs, 0.0) << "nothing was encoded";
     EXPECT_LE(result.worst_over_bound, 1.0) << "an encoded image reached the tint undecoded";
+    }
   }
 }
 

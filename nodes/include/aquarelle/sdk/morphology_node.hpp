@@ -224,11 +224,11 @@ inline bool run_blocked(aq::Context& ctx, const aq_shader_source& shader, BlockT
   return ok;
 }
 
-// `image` (in 2 x 2 blocks) as encoded pixels in a scratch image, or the pixels of `image` into
-// `blocks`: the blocked passes with a radius of 0, for the paths that work on pixels.
+// `from` in 2 x 2 blocks as encoded pixels in a new scratch image `to`, or `from`'s pixels into
+// `to` in blocks: the blocked passes with a radius of 0, for the paths that work on pixels.
 inline bool convert_blocks(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& blocks,
                            const aq_image& from, aq_image* to) {
-  if (!in_blocks(*to) && !ctx.scratch(from.width, from.height, AQ_FORMAT_RGBA8_HDR, to))
+  if (in_blocks(from) && !ctx.scratch(from.width, from.height, AQ_FORMAT_RGBA8_HDR, to))
     return false;
   return run_blocked(ctx, shader, blocks, from, *to, plan_spans(0, kSquare), Region::everything());
 }
