@@ -389,8 +389,8 @@ static Result<ImageF> read_blocks(GLuint texture, int width, int height) {
   const int blocks_x = (width + 1) / 2, blocks_y = (height + 1) / 2;
   std::vector<uint32_t> words(static_cast<size_t>(blocks_x) * blocks_y * 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureSubImage(texture, 0, 0, 0, 0, blocks_x, blocks_y, 1, GL_RGBA_INTEGER,
-                       GL_UNSIGNED_INT, static_cast<GLsizei>(words.size() * 4), words.data());
+  glGetTextureSubImage(texture, 0, 0, 0, 0, blocks_x, blocks_y, 1, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                       static_cast<GLsizei>(words.size() * 4), words.data());
   if (glGetError() != GL_NO_ERROR) return make_error("reading a texture of 2 x 2 blocks failed");
   ImageF out(width, height, 4);
   for (int y = 0; y < height; ++y) {

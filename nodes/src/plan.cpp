@@ -202,8 +202,7 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
     planned.producer = planned.deferred && type->fusable == nullptr;
     if (options.formats_by_need && !planned.deferred)
       planned.stored_formats =
-          stored_formats(graph, registry, order, id, *type, *target, options.hdr8,
-                         options.blocks);
+          stored_formats(graph, registry, order, id, *type, *target, options.hdr8, options.blocks);
     plan.nodes.push_back(planned);
 
     // The chain of deferred nodes feeding this one through its first input.

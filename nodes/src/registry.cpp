@@ -74,9 +74,9 @@ std::string read_ports(const aq_port_desc* ports, uint32_t count, const char* ki
       return std::string(kind) + " '" + name + "' has unknown port type " +
              std::to_string(port.type) + " (expected AQ_PORT_IMAGE or AQ_PORT_SCENE)";
     }
-    if ((port.flags & ~static_cast<uint32_t>(AQ_PORT_OPTIONAL | AQ_PORT_MULTI |
-                                             AQ_PORT_8BIT_ENOUGH | AQ_PORT_HDR8 |
-                                             AQ_PORT_BLOCKS)) != 0) {
+    if ((port.flags &
+         ~static_cast<uint32_t>(AQ_PORT_OPTIONAL | AQ_PORT_MULTI | AQ_PORT_8BIT_ENOUGH |
+                                AQ_PORT_HDR8 | AQ_PORT_BLOCKS)) != 0) {
       return std::string(kind) + " '" + name + "' has unknown flags " + std::to_string(port.flags);
     }
     if ((port.flags & AQ_PORT_MULTI) != 0 &&

@@ -315,18 +315,18 @@ TEST(Hdr8, AnEncodedImagePassedThroughIsDecodedForItsReader) {
   // 2 x 2 blocks into the working format its reader needs.
   for (bool fuse : {false, true}) {
     for (bool blocks : {false, true}) {
-    if (!blocks) setenv("AQUARELLE_MORPH_BLOCKS", "0", 1);
-    auto on = render(kPassThrough, light, true, fuse);
-    unsetenv("AQUARELLE_MORPH_BLOCKS");
-    auto off = render(kPassThrough, light, false, fuse);
-    ASSERT_TRUE(on.ok()) << on.message();
-    ASSERT_TRUE(off.ok()) << off.message();
-    for (ImageF* image : {&*on, &*off})
-      for (size_t i = 0; i < image->pixels.size(); i += 4)
-        for (size_t c = 0; c < 3; ++c) image->pixels[i + c] *= 2.0f;
-    const Comparison result = compare(*on, *off);
-    EXPECT_GT(result.max_abs, 0.0) << "nothing was encoded";
-    EXPECT_LE(result.worst_over_bound, 1.0) << "an encoded image reached the tint undecoded";
+      if (!blocks) setenv("AQUARELLE_MORPH_BLOCKS", "0", 1);
+      auto on = render(kPassThrough, light, true, fuse);
+      unsetenv("AQUARELLE_MORPH_BLOCKS");
+      auto off = render(kPassThrough, light, false, fuse);
+      ASSERT_TRUE(on.ok()) << on.message();
+      ASSERT_TRUE(off.ok()) << off.message();
+      for (ImageF* image : {&*on, &*off})
+        for (size_t i = 0; i < image->pixels.size(); i += 4)
+          for (size_t c = 0; c < 3; ++c) image->pixels[i + c] *= 2.0f;
+      const Comparison result = compare(*on, *off);
+      EXPECT_GT(result.max_abs, 0.0) << "nothing was encoded";
+      EXPECT_LE(result.worst_over_bound, 1.0) << "an encoded image reached the tint undecoded";
     }
   }
 }

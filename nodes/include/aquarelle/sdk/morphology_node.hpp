@@ -160,15 +160,17 @@ inline Region whole_blocks(const Region& pixels, int width, int height) {
   std::vector<PixelRect> rects;
   for (const PixelRect& r : pixels.rects()) {
     const PixelRect b = blocks_of(r);
-    rects.push_back(PixelRect{2 * b.x0, 2 * b.y0, std::min(2 * b.x1, width),
-                              std::min(2 * b.y1, height)});
+    rects.push_back(
+        PixelRect{2 * b.x0, 2 * b.y0, std::min(2 * b.x1, width), std::min(2 * b.y1, height)});
   }
   Region grown;
   grown.add(rects);
   return grown;
 }
 
-inline bool in_blocks(const aq_image& image) { return image.format == AQ_FORMAT_RGBA8_HDR_BLOCKS; }
+inline bool in_blocks(const aq_image& image) {
+  return image.format == AQ_FORMAT_RGBA8_HDR_BLOCKS;
+}
 
 // Binds `blocks` (an RGBA32UI texture, read with texelFetch) to unit 0 of `program`'s u_blocks.
 inline void bind_blocks(GLuint program, const aq_image& blocks, const aq_image& image) {
@@ -201,8 +203,8 @@ inline bool run_blocked(aq::Context& ctx, const aq_shader_source& shader, BlockT
   // The columns pass computes whole blocks when it writes blocks: the rows pass covers the rows
   // of their windows.
   const Region computed = in_blocks(out) ? whole_blocks(drawn, out.width, out.height) : drawn;
-  const Region rows_region =
-      blocks_of(computed.all() ? computed : computed.dilated(0, plan.radius, out.width, out.height));
+  const Region rows_region = blocks_of(
+      computed.all() ? computed : computed.dilated(0, plan.radius, out.width, out.height));
   glUseProgram(rows);
   if (in_blocks(in)) {
     bind_blocks(rows, in, in);
@@ -236,7 +238,8 @@ inline bool convert_blocks(aq::Context& ctx, const aq_shader_source& shader, Blo
 // The two plain passes (pass 0 into one span texture per row half-width, pass 1 combining them)
 // from `in` into `out`, both in pixels.
 inline int run_plain(aq::Context& ctx, const aq_shader_source& shader, const aq_image& in,
-                     const aq_image& out, const SpanPlan& plan, bool luminance, const Region& drawn) {
+                     const aq_image& out, const SpanPlan& plan, bool luminance,
+                     const Region& drawn) {
   const bool in_hdr8 = in.format == AQ_FORMAT_RGBA8_HDR;
   const bool out_hdr8 = out.format == AQ_FORMAT_RGBA8_HDR;
   std::array<aq_image, kMaxSpans> spans{};
@@ -251,8 +254,8 @@ inline int run_plain(aq::Context& ctx, const aq_shader_source& shader, const aq_
   if (rows == 0 || columns == 0) return AQ_ERROR;
 
   // Pass 0: every row span at once, one colour attachment each.
-  ctx.set_draw_region(drawn.all() ? drawn
-                                  : drawn.dilated(0, plan.radius, out.width, out.height).for_drawing());
+  ctx.set_draw_region(
+      drawn.all() ? drawn : drawn.dilated(0, plan.radius, out.width, out.height).for_drawing());
   glUseProgram(rows);
   aq::bind_texture(rows, "u_image", 0, in);
   if (!ctx.bind_targets(spans.data(), static_cast<uint32_t>(plan.span_count))) {
@@ -294,8 +297,8 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& b
   // does not vanish. Size 1 into another format than the input's only converts it.
   const int radius =
       size == 1 ? 0
-                : std::max(1, static_cast<int>(std::lround(static_cast<double>(size / 2) *
-                                                           ctx.render_scale())));
+                : std::max(1, static_cast<int>(
+                                  std::lround(static_cast<double>(size / 2) * ctx.render_scale())));
   const auto footprint = static_cast<Footprint>(ctx.param_enum(kFootprint));
   const SpanPlan plan = plan_spans(radius, footprint == kDisc ? kDisc : kSquare);
   const bool luminance = ctx.param_enum(kMode) == kLuminance;
