@@ -308,7 +308,8 @@ std::string format_plan(const Plan& plan) {
       "[RGBA8: port]: outputs stored in 8 bits because every reader reads them through an "
       "input content with 8 bits; [RGBA8 HDR: port]: linear HDR colour encoded in 8 bits "
       "(sqrt(c / (1 + c))) because its writer and every reader handle that (bandwidth by "
-      "need)\n";
+      "need); [RGBA8 HDR 2x2: port]: the same in 2 x 2 blocks of packed pixels, between "
+      "nodes that work on whole blocks (a morphology chain)\n";
   return text;
 }
 
