@@ -17,7 +17,7 @@ namespace {
 
 constexpr aq_port_desc kInputs[] = {
     // AQ_PORT_HDR8: an encoded image is decoded texel by texel before the bilinear blend.
-    aq::image_port("image", "colour to displace", AQ_PORT_HDR8),
+    aq::image_port("image", "colour to displace", AQ_PORT_HDR8 | AQ_PORT_BLOCKS),
     // Heights in [0, 1] differenced over two paper pixels: 8 bits move the displacement by at
     // most strength/510 paper pixels (README), so the host may store the paper as RGBA8.
     aq_port_desc{"paper", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
@@ -46,7 +46,10 @@ struct Wobble {
   int process(aq::Context& ctx) {
     const aq_image in = ctx.input_image(kImage);
     const double strength = ctx.param_float(kStrength);
-    if (strength == 0.0) return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
+    // An image in 2 x 2 blocks is drawn out as pixels even unmoved: readers of the output take
+    // pixels.
+    const bool blocks = in.format == AQ_FORMAT_RGBA8_HDR_BLOCKS;
+    if (strength == 0.0 && !blocks) return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
     aq_image paper = ctx.input_image(kPaper);
     if (!ctx.connected(kPaper) && !render_procedural_paper(ctx, in, &paper)) return AQ_ERROR;
 
@@ -60,12 +63,20 @@ struct Wobble {
         std::string("#define AQ_WOBBLE_GRADIENT ") + (precomputed ? "1" : "0") +
         "\n#define AQ_WOBBLE_DECODE_HDR8 " + (in.format == AQ_FORMAT_RGBA8_HDR ? "1" : "0") +
         "\n#define AQ_WOBBLE_ENCODE_HDR8 " + (out.format == AQ_FORMAT_RGBA8_HDR ? "1" : "0") +
-        "\n" + shaders::wobble_frag.text;
+        "\n#define AQ_WOBBLE_BLOCKS " + (blocks ? "1" : "0") + "\n" + shaders::wobble_frag.text;
     const GLuint program =
         ctx.program(aq_shader_source{shaders::wobble_frag.name, text.c_str(), nullptr});
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
-    aq::bind_texture(program, "u_image", 0, in);
+    if (blocks) {
+      glActiveTexture(GL_TEXTURE0);
+      glBindTexture(GL_TEXTURE_2D, in.texture);
+      glBindSampler(0, 0);
+      glUniform1i(glGetUniformLocation(program, "u_blocks"), 0);
+      glUniform2i(glGetUniformLocation(program, "u_image_size"), in.width, in.height);
+    } else {
+      aq::bind_texture(program, "u_image", 0, in);
+    }
     aq::bind_texture(program, "u_paper", 1, precomputed ? ctx.input_image(kGradient) : paper);
     aq::set_vec2(program, "u_paper_size", paper.width, paper.height);
     // The displacement is strength·h'/P² in uv for a paper of P pixels across (see the

@@ -109,10 +109,10 @@ uint32_t stored(const Plan& plan, const std::string& id, size_t output = 0) {
 TEST(Hdr8, TheFlagshipStoresItsLightMorphologyAndPigmentEncoded) {
   const ReadResult text = read_graph_file(source_path("graphs/underwater.json"), registry());
   const Plan plan = plan_of(text, "half");
-  for (const char* id : {"light", "close_erode", "pigment"})
+  for (const char* id : {"light", "pigment"})
     EXPECT_EQ(stored(plan, id), uint32_t{AQ_FORMAT_RGBA8_HDR}) << id;
-  // Read by the next morphology node: kept in 2 x 2 blocks.
-  for (const char* id : {"open_erode", "dilate"})
+  // Read by the next morphology node or the wobble: kept in 2 x 2 blocks.
+  for (const char* id : {"open_erode", "dilate", "close_erode"})
     EXPECT_EQ(stored(plan, id), uint32_t{AQ_FORMAT_RGBA8_HDR_BLOCKS}) << id;
   EXPECT_EQ(stored(plan, "light", 1), uint32_t{AQ_FORMAT_RGBA8}) << "plain: edge's source";
   for (const char* id : {"wobble", "edge", "blur", "gbuf"})
@@ -304,6 +304,32 @@ TEST(Hdr8, NodesThatWorkOnPixelsTakeAndGiveBlocksWithTheSameBits) {
     ASSERT_TRUE(blocks.ok()) << blocks.message();
     EXPECT_EQ(test::max_abs_diff(*blocks, *pixels), 0.0) << width << "x" << height;
     EXPECT_GT(test::max_abs_diff(*blocks, light), 0.0) << "the windows moved nothing";
+  }
+}
+
+// wobble takes the erode's 2 x 2 blocks and reads its four texels from them: the same bytes as
+// from pixels, so the same light (bit-exact on llvmpipe, whose texel and unpack conversions
+// agree; a GPU may round the bytes' floats by an ulp). Unmoved (strength 0) it draws the blocks
+// out as pixels instead of passing them through to readers that take pixels: the same light up
+// to the float rounding of its bilinear weights at the pixel centres, which can move the half
+// output by its last bit.
+TEST(Hdr8, WobbleReadsBlocksAsItReadsPixels) {
+  const Plan plan = plan_of(read_graph_text(kWobble, registry(), "wobble"), "half");
+  EXPECT_EQ(stored(plan, "erode"), uint32_t{AQ_FORMAT_RGBA8_HDR_BLOCKS});
+  for (const char* strength : {"8.0", "0.0"}) {
+    std::string graph = kWobble;
+    graph.replace(graph.find("8.0"), 3, strength);
+    const ImageF light = hdr_image(63, 47, false);
+    setenv("AQUARELLE_MORPH_BLOCKS", "0", 1);
+    auto pixels = render(graph.c_str(), light, true);
+    unsetenv("AQUARELLE_MORPH_BLOCKS");
+    auto blocks = render(graph.c_str(), light, true);
+    ASSERT_TRUE(pixels.ok()) << pixels.message();
+    ASSERT_TRUE(blocks.ok()) << blocks.message();
+    for (size_t i = 0; i < pixels->pixels.size(); ++i)
+      ASSERT_LE(std::abs(blocks->pixels[i] - pixels->pixels[i]), half_slack(pixels->pixels[i]))
+          << "strength " << strength << ", value " << i;
+    EXPECT_GT(test::max_abs_diff(*blocks, light), 0.0) << "nothing was filtered";
   }
 }
 

@@ -18,19 +18,51 @@
 #ifndef AQ_WOBBLE_ENCODE_HDR8
 #define AQ_WOBBLE_ENCODE_HDR8 0
 #endif
+#ifndef AQ_WOBBLE_BLOCKS
+#define AQ_WOBBLE_BLOCKS 0
+#endif
 #include "aquarelle/hdr8.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 
+#if AQ_WOBBLE_BLOCKS
+// The image in 2 x 2 blocks of packed encoded pixels (AQ_FORMAT_RGBA8_HDR_BLOCKS, plugin.h).
+uniform usampler2D u_blocks;
+uniform ivec2 u_image_size;
+#else
 uniform sampler2D u_image;
+#endif
 uniform sampler2D u_paper;  // height in .r, stretched over the image
 uniform vec2 u_paper_size;  // paper pixels across the image
 uniform float u_strength;   // paper pixels of displacement per unit slope (height per paper pixel)
 
 float paper_height(vec2 uv) { return texture(u_paper, uv).r; }
 
+#if AQ_WOBBLE_BLOCKS
+// Pixel p (inside the image) of the blocks, decoded.
+vec4 block_pixel(ivec2 p) {
+  uvec4 words = texelFetch(u_blocks, p >> 1, 0);
+  uvec2 row = (p.y & 1) == 0 ? words.xy : words.zw;
+  uint word = (p.x & 1) == 0 ? row.x : row.y;
+  // bytes · (1/255) rather than unpackUnorm4x8 (a division): llvmpipe's RGBA8 texel fetch
+  // converts so, and a last-bit difference here can round the encoded output to the next code.
+  vec4 bytes = vec4(uvec4(word, word >> 8, word >> 16, word >> 24) & 0xFFu);
+  return aq_hdr8_decode(bytes * (1.0 / 255.0));
+}
+#endif
+
 vec4 image_at(vec2 uv) {
-#if AQ_WOBBLE_DECODE_HDR8
+#if AQ_WOBBLE_BLOCKS
+  ivec2 last = u_image_size - 1;
+  vec2 t = uv * vec2(u_image_size) - 0.5;
+  vec2 f = fract(t);
+  ivec2 i0 = ivec2(floor(t));
+  vec4 c00 = block_pixel(clamp(i0, ivec2(0), last));
+  vec4 c10 = block_pixel(clamp(i0 + ivec2(1, 0), ivec2(0), last));
+  vec4 c01 = block_pixel(clamp(i0 + ivec2(0, 1), ivec2(0), last));
+  vec4 c11 = block_pixel(clamp(i0 + ivec2(1, 1), ivec2(0), last));
+  return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+#elif AQ_WOBBLE_DECODE_HDR8
   ivec2 last = textureSize(u_image, 0) - 1;
   vec2 t = uv * vec2(last + 1) - 0.5;
   vec2 f = fract(t);
