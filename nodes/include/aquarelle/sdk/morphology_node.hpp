@@ -140,20 +140,6 @@ inline bool blocked_path(const aq_image& in, Footprint footprint, bool luminance
           in.format == AQ_FORMAT_RGBA8_HDR_BLOCKS);
 }
 
-// The rect of 2 x 2 blocks that holds every pixel of `r`.
-inline PixelRect blocks_of(const PixelRect& r) {
-  return PixelRect{r.x0 >> 1, r.y0 >> 1, (r.x1 + 1) >> 1, (r.y1 + 1) >> 1};
-}
-
-inline Region blocks_of(const Region& pixels) {
-  if (pixels.all()) return Region::everything();
-  std::vector<PixelRect> rects;
-  for (const PixelRect& r : pixels.rects()) rects.push_back(blocks_of(r));
-  Region blocks;
-  blocks.add(rects);
-  return blocks;
-}
-
 // `pixels` grown to whole 2 x 2 blocks: the pixels a pass over their blocks computes.
 inline Region whole_blocks(const Region& pixels, int width, int height) {
   if (pixels.all()) return pixels;

@@ -220,4 +220,19 @@ inline std::vector<aq_rect> rects_of(const Region& region) {
   return rects;
 }
 
+// The rect of 2 x 2 blocks that holds every pixel of `r` (passes over AQ_FORMAT_RGBA8_HDR_BLOCKS
+// texels draw per block).
+inline PixelRect blocks_of(const PixelRect& r) {
+  return PixelRect{r.x0 >> 1, r.y0 >> 1, (r.x1 + 1) >> 1, (r.y1 + 1) >> 1};
+}
+
+inline Region blocks_of(const Region& pixels) {
+  if (pixels.all()) return Region::everything();
+  std::vector<PixelRect> rects;
+  for (const PixelRect& r : pixels.rects()) rects.push_back(blocks_of(r));
+  Region blocks;
+  blocks.add(rects);
+  return blocks;
+}
+
 }  // namespace aq
