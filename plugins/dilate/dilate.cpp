@@ -8,8 +8,7 @@
 namespace {
 
 struct Dilate {
-  aq::morphology::BlockTexture blocks;
-  int process(aq::Context& ctx) { return aq::morphology::run(ctx, shaders::dilate_frag, blocks); }
+  int process(aq::Context& ctx) { return aq::morphology::run(ctx, shaders::dilate_frag); }
 };
 
 }  // namespace

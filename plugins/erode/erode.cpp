@@ -8,8 +8,7 @@
 namespace {
 
 struct Erode {
-  aq::morphology::BlockTexture blocks;
-  int process(aq::Context& ctx) { return aq::morphology::run(ctx, shaders::erode_frag, blocks); }
+  int process(aq::Context& ctx) { return aq::morphology::run(ctx, shaders::erode_frag); }
 };
 
 }  // namespace

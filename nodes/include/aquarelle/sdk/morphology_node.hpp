@@ -13,7 +13,6 @@
 #pragma once
 
 #include <aquarelle/plugin.hpp>
-#include <aquarelle/sdk/gl_raii.hpp>
 
 #include <algorithm>
 #include <array>
@@ -109,27 +108,6 @@ inline std::string variant_text(const aq_shader_source& shader, int pass, const 
          (blocked ? "1" : "0") + "\n" + shader.text;
 }
 
-// The RGBA32UI texture of the blocked path's 2 x 2 blocks (morphology.glsl), owned by the node:
-// the host's pool has no integer four-channel format.
-class BlockTexture {
- public:
-  aq_image get(uint32_t gl_generation, int width, int height) {
-    bool kept = false;
-    const GLuint name = texture_.get(gl_generation, width, height, GL_RGBA32UI, &kept);
-    if (!kept) {
-      // An integer texture with a filtering (default) sampler state is incomplete.
-      glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    }
-    // No aq_image_format names RGBA32UI; only bind_targets sees this image, which reads the
-    // texture name and size, not the format.
-    return aq_image{name, width, height, AQ_FORMAT_R32UI};
-  }
-
- private:
-  gl::KeptTexture texture_;
-};
-
 // Whether the blocked fast path applies: a square window, per channel, on 8-bit values (where
 // packUnorm4x8 holds a texel exactly). AQUARELLE_MORPH_BLOCKED=0 turns it off (the lever table).
 inline bool blocked_path(const aq_image& in, Footprint footprint, bool luminance) {
@@ -167,16 +145,17 @@ inline void bind_blocks(GLuint program, const aq_image& blocks, const aq_image& 
   glUniform2i(glGetUniformLocation(program, "u_image_size"), image.width, image.height);
 }
 
-// The blocked fast path (morphology.glsl): pass 0 into the node's 2 x 2 blocks over the blocks
-// of the rows the columns pass reads, pass 1 over `drawn`. Either end may be in blocks itself
-// (AQ_FORMAT_RGBA8_HDR_BLOCKS): pass 0 then reads blocks, pass 1 writes whole blocks.
-inline bool run_blocked(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& blocks,
-                        const aq_image& in, const aq_image& out, const SpanPlan& plan,
-                        const Region& drawn) {
+// The blocked fast path (morphology.glsl): pass 0 into a scratch image of 2 x 2 blocks over the
+// blocks of the rows the columns pass reads, pass 1 over `drawn`. Either end may be in blocks
+// itself (AQ_FORMAT_RGBA8_HDR_BLOCKS): pass 0 then reads blocks, pass 1 writes whole blocks.
+inline bool run_blocked(aq::Context& ctx, const aq_shader_source& shader, const aq_image& in,
+                        const aq_image& out, const SpanPlan& plan, const Region& drawn) {
   const bool in_hdr8 = in.format == AQ_FORMAT_RGBA8_HDR || in_blocks(in);
   const bool out_hdr8 = out.format == AQ_FORMAT_RGBA8_HDR || in_blocks(out);
-  const aq_image block_image =
-      blocks.get(ctx.raw()->gl_generation, (in.width + 1) / 2, (in.height + 1) / 2);
+  // The row extremes keep the input's values: encoded, or plain 8 bits from an RGBA8 input (the
+  // scratch's format only gives it the blocks' layout; nobody else reads it).
+  aq_image block_image;
+  if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA8_HDR_BLOCKS, &block_image)) return false;
   const std::string rows_text = std::string(in_blocks(in) ? "#define AQ_MORPH_IN_BLOCKS 1\n" : "") +
                                 variant_text(shader, 0, plan, false, in_hdr8, in_hdr8, true);
   const std::string columns_text =
@@ -214,11 +193,11 @@ inline bool run_blocked(aq::Context& ctx, const aq_shader_source& shader, BlockT
 
 // `from` in 2 x 2 blocks as encoded pixels in a new scratch image `to`, or `from`'s pixels into
 // `to` in blocks: the blocked passes with a radius of 0, for the paths that work on pixels.
-inline bool convert_blocks(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& blocks,
-                           const aq_image& from, aq_image* to) {
+inline bool convert_blocks(aq::Context& ctx, const aq_shader_source& shader, const aq_image& from,
+                           aq_image* to) {
   if (in_blocks(from) && !ctx.scratch(from.width, from.height, AQ_FORMAT_RGBA8_HDR, to))
     return false;
-  return run_blocked(ctx, shader, blocks, from, *to, plan_spans(0, kSquare), Region::everything());
+  return run_blocked(ctx, shader, from, *to, plan_spans(0, kSquare), Region::everything());
 }
 
 // The two plain passes (pass 0 into one span texture per row half-width, pass 1 combining them)
@@ -266,7 +245,7 @@ inline int run_plain(aq::Context& ctx, const aq_shader_source& shader, const aq_
 }
 
 // Runs erosion or dilation, whichever `shader` implements.
-inline int run(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& blocks) {
+inline int run(aq::Context& ctx, const aq_shader_source& shader) {
   const aq_image in = ctx.input_image(0);
   const int64_t size = ctx.param_int(kSize);
   if (size < 1 || size > 2 * kMaxRadius + 1 || size % 2 == 0) {
@@ -299,20 +278,20 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader, BlockTexture& b
   if (!ctx.set_draw_region(drawn.dilated(0, radius, out.width, out.height).for_drawing()))
     damage = drawn = Region::everything();
   if (blocked_path(in, footprint == kDisc ? kDisc : kSquare, luminance)) {
-    if (!run_blocked(ctx, shader, blocks, in, out, plan, drawn)) return AQ_ERROR;
+    if (!run_blocked(ctx, shader, in, out, plan, drawn)) return AQ_ERROR;
     return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
   }
 
   // The plain passes work on pixels: an input in blocks is unpacked first and an output in
   // blocks packed last, both whole (a disc or luminance order after a square's blocks).
   aq_image source = in, target = out;
-  if (in_blocks(in) && !convert_blocks(ctx, shader, blocks, in, &source)) return AQ_ERROR;
+  if (in_blocks(in) && !convert_blocks(ctx, shader, in, &source)) return AQ_ERROR;
   if (in_blocks(out)) {
     damage = drawn = Region::everything();
     if (!ctx.scratch(out.width, out.height, AQ_FORMAT_RGBA8_HDR, &target)) return AQ_ERROR;
   }
   if (run_plain(ctx, shader, source, target, plan, luminance, drawn) != AQ_OK) return AQ_ERROR;
-  if (in_blocks(out) && !convert_blocks(ctx, shader, blocks, target, &out)) return AQ_ERROR;
+  if (in_blocks(out) && !convert_blocks(ctx, shader, target, &out)) return AQ_ERROR;
   return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
 }
 
