@@ -38,39 +38,31 @@ uniform float u_strength;   // paper pixels of displacement per unit slope (heig
 
 float paper_height(vec2 uv) { return texture(u_paper, uv).r; }
 
+#if AQ_WOBBLE_BLOCKS || AQ_WOBBLE_DECODE_HDR8
+// Texel p (inside the image) of an encoded image, decoded.
+vec4 decoded_texel(ivec2 p) {
 #if AQ_WOBBLE_BLOCKS
-// Pixel p (inside the image) of the blocks, decoded.
-vec4 block_pixel(ivec2 p) {
-  uvec4 words = texelFetch(u_blocks, p >> 1, 0);
-  uvec2 row = (p.y & 1) == 0 ? words.xy : words.zw;
-  uint word = (p.x & 1) == 0 ? row.x : row.y;
-  // bytes · (1/255) rather than unpackUnorm4x8 (a division): llvmpipe's RGBA8 texel fetch
-  // converts so, and a last-bit difference here can round the encoded output to the next code.
-  vec4 bytes = vec4(uvec4(word, word >> 8, word >> 16, word >> 24) & 0xFFu);
-  return aq_hdr8_decode(bytes * (1.0 / 255.0));
+  return aq_hdr8_block_pixel(u_blocks, p);
+#else
+  return aq_hdr8_decode(texelFetch(u_image, p, 0));
+#endif
 }
 #endif
 
 vec4 image_at(vec2 uv) {
+#if AQ_WOBBLE_BLOCKS || AQ_WOBBLE_DECODE_HDR8
 #if AQ_WOBBLE_BLOCKS
   ivec2 last = u_image_size - 1;
-  vec2 t = uv * vec2(u_image_size) - 0.5;
-  vec2 f = fract(t);
-  ivec2 i0 = ivec2(floor(t));
-  vec4 c00 = block_pixel(clamp(i0, ivec2(0), last));
-  vec4 c10 = block_pixel(clamp(i0 + ivec2(1, 0), ivec2(0), last));
-  vec4 c01 = block_pixel(clamp(i0 + ivec2(0, 1), ivec2(0), last));
-  vec4 c11 = block_pixel(clamp(i0 + ivec2(1, 1), ivec2(0), last));
-  return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
-#elif AQ_WOBBLE_DECODE_HDR8
+#else
   ivec2 last = textureSize(u_image, 0) - 1;
+#endif
   vec2 t = uv * vec2(last + 1) - 0.5;
   vec2 f = fract(t);
   ivec2 i0 = ivec2(floor(t));
-  vec4 c00 = aq_hdr8_decode(texelFetch(u_image, clamp(i0, ivec2(0), last), 0));
-  vec4 c10 = aq_hdr8_decode(texelFetch(u_image, clamp(i0 + ivec2(1, 0), ivec2(0), last), 0));
-  vec4 c01 = aq_hdr8_decode(texelFetch(u_image, clamp(i0 + ivec2(0, 1), ivec2(0), last), 0));
-  vec4 c11 = aq_hdr8_decode(texelFetch(u_image, clamp(i0 + ivec2(1, 1), ivec2(0), last), 0));
+  vec4 c00 = decoded_texel(clamp(i0, ivec2(0), last));
+  vec4 c10 = decoded_texel(clamp(i0 + ivec2(1, 0), ivec2(0), last));
+  vec4 c01 = decoded_texel(clamp(i0 + ivec2(0, 1), ivec2(0), last));
+  vec4 c11 = decoded_texel(clamp(i0 + ivec2(1, 1), ivec2(0), last));
   return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
 #else
   return texture(u_image, uv);
