@@ -169,6 +169,14 @@ Result<ImageF> render(const char* graph, const ImageF& input, bool hdr8, bool fu
   return image;
 }
 
+// render() with the lever `variable` switched off (=0) for this one render.
+Result<ImageF> render_without(const char* variable, const char* graph, const ImageF& input) {
+  setenv(variable, "0", 1);
+  auto image = render(graph, input, true);
+  unsetenv(variable);
+  return image;
+}
+
 struct Comparison {
   double worst_over_bound = 0.0;  // max of |on - off| / (bound + slack)
   double mean_abs = 0.0;
@@ -248,18 +256,14 @@ TEST(Hdr8, TheBlockedMorphologyGivesTheSameBitsAsThePlainPasses) {
     }
     for (const auto& [width, height] : {std::pair{64, 48}, {63, 47}, {17, 9}}) {
       const ImageF light = hdr_image(width, height, false);
-      setenv("AQUARELLE_MORPH_BLOCKED", "0", 1);
-      auto plain = render(graph_text, light, true);
-      unsetenv("AQUARELLE_MORPH_BLOCKED");
+      auto plain = render_without("AQUARELLE_MORPH_BLOCKED", graph_text, light);
       // Another image in between: the nodes keep their outputs (damage tracking), so the same
       // input again would be answered with the plain passes' pixels without drawing.
       ASSERT_TRUE(render(graph_text, hdr_image(width, height, true), true).ok());
       auto blocked = render(graph_text, light, true);
       // Pixels between the nodes instead of 2 x 2 blocks (the blocked path within each node).
       ASSERT_TRUE(render(graph_text, hdr_image(width, height, true), true).ok());
-      setenv("AQUARELLE_MORPH_BLOCKS", "0", 1);
-      auto pixels_between = render(graph_text, light, true);
-      unsetenv("AQUARELLE_MORPH_BLOCKS");
+      auto pixels_between = render_without("AQUARELLE_MORPH_BLOCKS", graph_text, light);
       ASSERT_TRUE(plain.ok()) << plain.message();
       ASSERT_TRUE(blocked.ok()) << blocked.message();
       ASSERT_TRUE(pixels_between.ok()) << pixels_between.message();
@@ -295,9 +299,7 @@ TEST(Hdr8, NodesThatWorkOnPixelsTakeAndGiveBlocksWithTheSameBits) {
     EXPECT_EQ(stored(plan, id), uint32_t{AQ_FORMAT_RGBA8_HDR_BLOCKS}) << id;
   for (const auto& [width, height] : {std::pair{64, 48}, {33, 19}}) {
     const ImageF light = hdr_image(width, height, false);
-    setenv("AQUARELLE_MORPH_BLOCKS", "0", 1);
-    auto pixels = render(kMixedMorphologyChain, light, true);
-    unsetenv("AQUARELLE_MORPH_BLOCKS");
+    auto pixels = render_without("AQUARELLE_MORPH_BLOCKS", kMixedMorphologyChain, light);
     ASSERT_TRUE(render(kMixedMorphologyChain, hdr_image(width, height, true), true).ok());
     auto blocks = render(kMixedMorphologyChain, light, true);
     ASSERT_TRUE(pixels.ok()) << pixels.message();
@@ -320,9 +322,7 @@ TEST(Hdr8, WobbleReadsBlocksAsItReadsPixels) {
     std::string graph = kWobble;
     graph.replace(graph.find("8.0"), 3, strength);
     const ImageF light = hdr_image(63, 47, false);
-    setenv("AQUARELLE_MORPH_BLOCKS", "0", 1);
-    auto pixels = render(graph.c_str(), light, true);
-    unsetenv("AQUARELLE_MORPH_BLOCKS");
+    auto pixels = render_without("AQUARELLE_MORPH_BLOCKS", graph.c_str(), light);
     auto blocks = render(graph.c_str(), light, true);
     ASSERT_TRUE(pixels.ok()) << pixels.message();
     ASSERT_TRUE(blocks.ok()) << blocks.message();
