@@ -57,6 +57,13 @@ Graph reference_pipeline(const Graph& graph) {
     } else if (node.type == "shadowmap") {
       node.params["size"] = 4096;
       node.params["auto_size"] = false;
+    } else if (node.type == "cel_light" && node.inputs.count("surface") != 0) {
+      // The packed surface holds normal and albedo in half precision; the reference reads the
+      // g-buffer's own targets, in float.
+      const std::string gbuffer = node.inputs.at("surface").node;
+      node.inputs.erase("surface");
+      for (const char* port : {"normal", "albedo", "id"})
+        node.inputs[port] = PortRef{gbuffer, port};
     }
   }
   return reference;

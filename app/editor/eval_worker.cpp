@@ -19,7 +19,7 @@ uint32_t copy_of(const aq_image& image) {
   GLuint copy = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &copy);
   glTextureStorage2D(copy, 1, static_cast<GLenum>(internal), image.width, image.height);
-  const bool integer = image.format == AQ_FORMAT_R32UI;
+  const bool integer = image.format == AQ_FORMAT_R32UI || image.format == AQ_FORMAT_RGBA32UI;
   glTextureParameteri(copy, GL_TEXTURE_MIN_FILTER, integer ? GL_NEAREST : GL_LINEAR);
   glTextureParameteri(copy, GL_TEXTURE_MAG_FILTER, integer ? GL_NEAREST : GL_LINEAR);
   glTextureParameteri(copy, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

@@ -103,6 +103,10 @@ bool is_single_channel_float(uint32_t format) {
   return format == AQ_FORMAT_R32F || format == AQ_FORMAT_DEPTH32F;
 }
 
+bool is_integer(uint32_t format) {
+  return format == AQ_FORMAT_R32UI || format == AQ_FORMAT_RGBA32UI;
+}
+
 // "node 'blur' (blur): ..." → "blur"
 std::string node_named_in(const std::string& message) {
   auto start = message.find("node '");
@@ -128,7 +132,8 @@ Viewer::~Viewer() {
 Viewer::Mapping Viewer::current_mapping() const {
   if (!has_image_) return Mapping::kColor;
   const aq_image& image = image_;
-  if (image.format == AQ_FORMAT_R32UI) return Mapping::kId;  // only an id mapping can read it
+  // Only an id mapping can read an integer texture (packed words show as ids of their first).
+  if (is_integer(image.format)) return Mapping::kId;
   if (mapping_choice_ == 1) return Mapping::kColor;
   if (mapping_choice_ == 2) return Mapping::kDepth;
   if (mapping_choice_ == 3) return Mapping::kId;
@@ -326,14 +331,13 @@ void Viewer::render_display_texture() {
   glUniform1i(glGetUniformLocation(program_.get(), "u_image"), 0);
   glUniform1i(glGetUniformLocation(program_.get(), "u_ids"), 1);
   int mode = static_cast<int>(mapping);
-  if (mapping == Mapping::kId && image.format != AQ_FORMAT_R32UI) mode = 3;
+  if (mapping == Mapping::kId && !is_integer(image.format)) mode = 3;
   glUniform1i(glGetUniformLocation(program_.get(), "u_mapping"), mode);
   glUniform1i(glGetUniformLocation(program_.get(), "u_channel"), channel_);
   glUniform1i(glGetUniformLocation(program_.get(), "u_srgb"), srgb_ ? 1 : 0);
   glUniform1f(glGetUniformLocation(program_.get(), "u_gain"), std::exp2(exposure_));
   glUniform2f(glGetUniformLocation(program_.get(), "u_range"), range_[0], range_[1]);
-  glBindTextureUnit(mapping == Mapping::kId && image.format == AQ_FORMAT_R32UI ? 1 : 0,
-                    image.texture);
+  glBindTextureUnit(mapping == Mapping::kId && is_integer(image.format) ? 1 : 0, image.texture);
   if (image.format == AQ_FORMAT_DEPTH32F) {
     glTextureParameteri(image.texture, GL_TEXTURE_COMPARE_MODE, GL_NONE);
   }
@@ -623,6 +627,12 @@ void Viewer::draw(EditorState& state) {
         glGetTextureSubImage(probed.texture, 0, x, y, 0, 1, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_INT,
                              sizeof id, &id);
         std::snprintf(line, sizeof line, "(%d, %d)  id %u", x, y, id);
+      } else if (probed.format == AQ_FORMAT_RGBA32UI) {
+        GLuint words[4] = {};
+        glGetTextureSubImage(probed.texture, 0, x, y, 0, 1, 1, 1, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                             sizeof words, words);
+        std::snprintf(line, sizeof line, "(%d, %d)  words %08x %08x %08x %08x", x, y, words[0],
+                      words[1], words[2], words[3]);
       } else if (is_single_channel_float(probed.format)) {
         float v = 0;
         GLenum format = probed.format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : GL_RED;

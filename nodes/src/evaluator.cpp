@@ -420,10 +420,12 @@ Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t form
   while (glGetError() != GL_NO_ERROR) {
   }  // only this read's error counts below
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  const bool ids = format == AQ_FORMAT_R32UI;
+  const bool words = format == AQ_FORMAT_RGBA32UI;  // packed data: the words' values
+  const bool ids = format == AQ_FORMAT_R32UI || words;
   const GLenum gl_format =
-      ids ? GL_RED_INTEGER
-          : (format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : (single ? GL_RED : GL_RGBA));
+      words ? GL_RGBA_INTEGER
+      : ids ? GL_RED_INTEGER
+            : (format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : (single ? GL_RED : GL_RGBA));
   const GLenum gl_type = ids ? GL_UNSIGNED_INT : GL_FLOAT;
   // The buffer size of one read is a GLsizei: a 16384x16384 RGBA float image (4 GiB) does not
   // fit, so large textures are read in bands of rows, each well under 2 GiB.
@@ -436,7 +438,7 @@ Result<ImageF> read_texture(GLuint texture, int width, int height, uint32_t form
     const auto bytes = static_cast<GLsizei>(static_cast<int64_t>(rows) * width * pixel_bytes);
     void* target = out.pixels.data() + offset;
     if (ids) {
-      id_rows.resize(static_cast<size_t>(rows) * width);
+      id_rows.resize(static_cast<size_t>(rows) * width * channels);
       target = id_rows.data();
     }
     glGetTextureSubImage(texture, 0, 0, y, 0, width, rows, 1, gl_format, gl_type, bytes, target);

@@ -117,10 +117,11 @@ bool HostServices::valid_size(CallState* call, int32_t width, int32_t height) {
 
 // An unknown format would get an all-zero texture of some default kind: refuse it by name.
 bool HostServices::valid_format(CallState* call, const char* function, uint32_t format) {
-  if (format >= AQ_FORMAT_RGBA16F && format <= AQ_FORMAT_RGBA8_HDR_BLOCKS) return true;
+  if (format >= AQ_FORMAT_RGBA16F && format <= AQ_FORMAT_RGBA32UI) return true;
   fail_call(*call, std::string(function) + ": unknown image format " + std::to_string(format) +
                        " (aq_format in plugin.h: 1 RGBA16F, 2 RGBA32F, 3 R32F, 4 DEPTH32F, "
-                       "5 R32UI, 6 RGBA8, 7 RGBA8_HDR, 8 RGBA8_HDR_BLOCKS; use ctx.working_format "
+                       "5 R32UI, 6 RGBA8, 7 RGBA8_HDR, 8 RGBA8_HDR_BLOCKS, 9 RGBA32UI; use "
+                       "ctx.working_format "
                        "for the graph's precision)");
   return false;
 }

@@ -21,6 +21,8 @@ size_t bytes_per_pixel(uint32_t format) {
     case AQ_FORMAT_RGBA8_HDR:
     case AQ_FORMAT_RGBA8_HDR_BLOCKS:  // 16 bytes a texel of four pixels
       return 4;
+    case AQ_FORMAT_RGBA32UI:
+      return 16;
     default:
       return 16;
   }
@@ -44,6 +46,8 @@ const char* format_name(uint32_t format) {
       return "RGBA8 HDR";
     case AQ_FORMAT_RGBA8_HDR_BLOCKS:
       return "RGBA8 HDR 2x2";
+    case AQ_FORMAT_RGBA32UI:
+      return "RGBA32UI";
     default:
       return "unknown";
   }
@@ -66,6 +70,7 @@ GLenum internal_format(uint32_t format) {
     case AQ_FORMAT_RGBA8_HDR:
       return GL_RGBA8;
     case AQ_FORMAT_RGBA8_HDR_BLOCKS:
+    case AQ_FORMAT_RGBA32UI:
       return GL_RGBA32UI;
     default:
       return GL_RGBA32F;
@@ -121,7 +126,8 @@ TextureRef TexturePool::acquire(int width, int height, uint32_t format, uint64_t
     aq_image_texels(&texture->image, &texels_x, &texels_y);
     glTexStorage2D(GL_TEXTURE_2D, 1, internal_format(format), texels_x, texels_y);
     // An integer texture with a filtering sampler state is incomplete.
-    bool integer = format == AQ_FORMAT_R32UI || format == AQ_FORMAT_RGBA8_HDR_BLOCKS;
+    bool integer = format == AQ_FORMAT_R32UI || format == AQ_FORMAT_RGBA8_HDR_BLOCKS ||
+                   format == AQ_FORMAT_RGBA32UI;
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, integer ? GL_NEAREST : GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, integer ? GL_NEAREST : GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

@@ -4,7 +4,7 @@
 // value quantised to `levels` with hue and saturation kept. Output is linear HDR.
 //
 //   scene ──► light direction, colour, ambient, light matrix (scene_math.hpp, as shadowmap)
-//   position, normal, albedo, id ──┐
+//   position, surface ─────────────┐    (or position, normal, albedo, id)
 //   shadow (optional) ─────────────┼──► cel_light.frag ──► image (working format)
 //   caustics (optional) ───────────┘                    └─► plain (the same without caustics)
 #include <aquarelle/plugin.hpp>
@@ -15,20 +15,24 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <string>
+#include <vector>
 
 #include "cel_light_shaders.h"
 
 namespace {
 
-enum Input { kScene, kPosition, kNormal, kAlbedo, kId, kShadow, kCaustics };
+enum Input { kScene, kPosition, kNormal, kAlbedo, kId, kShadow, kCaustics, kSurface };
 constexpr aq_port_desc kInputs[] = {
     aq::scene_port("scene", "light direction, colour and ambient; the light matrix"),
     aq::image_port("position", "world position (gbuffer.position)"),
-    aq::image_port("normal", "world normal (gbuffer.normal)"),
-    aq::image_port("albedo", "base colour (gbuffer.albedo)"),
-    aq::image_port("id", "object id, 0 = background (gbuffer.id)"),
+    aq::optional_image_port("normal", "world normal (gbuffer.normal); or connect `surface`"),
+    aq::optional_image_port("albedo", "base colour (gbuffer.albedo); or connect `surface`"),
+    aq::optional_image_port("id", "object id, 0 = background (gbuffer.id); or connect `surface`"),
     aq::optional_image_port("shadow", "light-space depth (shadowmap.depth); unlit test if absent"),
-    aq::optional_image_port("caustics", "tileable caustic texture, mean 1 (caustics.image)")};
+    aq::optional_image_port("caustics", "tileable caustic texture, mean 1 (caustics.image)"),
+    aq::optional_image_port("surface",
+                            "normal, albedo and id packed in one texel (gbuffer.surface): one "
+                            "read instead of three; replaces `normal`, `albedo` and `id`")};
 constexpr aq_port_desc kOutputs[] = {
     // AQ_PORT_HDR8: written encoded (aquarelle/hdr8.glsl) when every reader decodes it.
     aq::image_port("image", "lit, cel-shaded colour (HDR)", AQ_PORT_HDR8),
@@ -60,10 +64,11 @@ constexpr aq_param_desc kParams[] = {
 
 // The shader variant for this node's connections and parameters (see cel_light.frag).
 std::string variant_source(bool has_shadow, bool has_caustics, bool quantize, int pcf_radius,
-                           bool same_size, bool encode) {
-  return "#define AQ_HAS_SHADOW " + std::to_string(has_shadow ? 1 : 0) +
-         "\n#define AQ_HAS_CAUSTICS " + std::to_string(has_caustics ? 1 : 0) +
-         "\n#define AQ_QUANTIZE " + std::to_string(quantize ? 1 : 0) + "\n#define AQ_PCF_RADIUS " +
+                           bool same_size, bool encode, bool surface) {
+  return "#define AQ_SURFACE " + std::to_string(surface ? 1 : 0) + "\n#define AQ_HAS_SHADOW " +
+         std::to_string(has_shadow ? 1 : 0) + "\n#define AQ_HAS_CAUSTICS " +
+         std::to_string(has_caustics ? 1 : 0) + "\n#define AQ_QUANTIZE " +
+         std::to_string(quantize ? 1 : 0) + "\n#define AQ_PCF_RADIUS " +
          std::to_string(pcf_radius) + "\n#define AQ_SAME_SIZE " +
          std::to_string(same_size ? 1 : 0) + "\n#define AQ_ENCODE_HDR8 " +
          std::to_string(encode ? 1 : 0) + "\n" + shaders::cel_light_frag.text;
@@ -79,6 +84,7 @@ struct CelLight {
     int pcf_radius;
     bool same_size;
     bool encode;
+    bool surface;
     bool operator==(const Variant&) const = default;
   };
   Variant variant_{};
@@ -87,6 +93,7 @@ struct CelLight {
   aq::view_bounds::MeshBoxes boxes;
   uint32_t sampler_generation = 0;
   uint64_t lighting_key_ = 0;  // the scene's part of the uniforms on the last call
+  bool warned_both_ = false;
 
   int process(aq::Context& ctx) {
     const aq_scene* scene = ctx.input_scene(kScene);
@@ -95,6 +102,25 @@ struct CelLight {
                       "': input `scene` is not connected; connect the scene node that feeds "
                       "the gbuffer");
     }
+    const bool packed = ctx.connected(kSurface);
+    if (!packed && !(ctx.connected(kNormal) && ctx.connected(kAlbedo) && ctx.connected(kId))) {
+      return ctx.fail(std::string("cel_light '") + ctx.node_id() +
+                      "': the surface is not connected; connect `surface` to the gbuffer's "
+                      "`surface` output (or all of `normal`, `albedo` and `id` to its outputs of "
+                      "those names)");
+    }
+    if (packed && ctx.input_image(kSurface).format != AQ_FORMAT_RGBA32UI) {
+      return ctx.fail(std::string("cel_light '") + ctx.node_id() +
+                      "': input `surface` is not a packed surface (RGBA32UI); connect a "
+                      "gbuffer's `surface` output to it, or an image to `normal`/`albedo`/`id`");
+    }
+    if (packed && (ctx.connected(kNormal) || ctx.connected(kAlbedo) || ctx.connected(kId)) &&
+        !warned_both_) {
+      ctx.warn(std::string("cel_light '") + ctx.node_id() +
+               "': `surface` is connected, so `normal`, `albedo` and `id` are not read; "
+               "disconnect them");
+      warned_both_ = true;
+    }
     const aq_image position = ctx.input_image(kPosition);
     aq_image targets[2];
     if (!ctx.output_like(0, position, &targets[0]) || !ctx.output_like(1, position, &targets[1])) {
@@ -102,18 +128,20 @@ struct CelLight {
     }
     const bool has_shadow = ctx.connected(kShadow);
     const bool has_caustics = ctx.connected(kCaustics);
-    const bool gbuffer_same_size = same_size(position, ctx.input_image(kNormal)) &&
-                                   same_size(position, ctx.input_image(kAlbedo)) &&
-                                   same_size(position, ctx.input_image(kId));
+    bool gbuffer_same_size = true;
+    for (uint32_t input : surface_inputs(ctx))
+      gbuffer_same_size = gbuffer_same_size && same_size(position, ctx.input_image(input));
     const Variant variant{has_shadow,
                           has_caustics,
                           ctx.param_bool(kQuantize),
                           static_cast<int>(ctx.param_int(kPcfRadius)),
                           gbuffer_same_size,
-                          targets[0].format == AQ_FORMAT_RGBA8_HDR};
+                          targets[0].format == AQ_FORMAT_RGBA8_HDR,
+                          packed};
     if (source.empty() || variant != variant_) {  // not re-made every frame
-      source = variant_source(variant.shadow, variant.caustics, variant.quantize,
-                              variant.pcf_radius, variant.same_size, variant.encode);
+      source =
+          variant_source(variant.shadow, variant.caustics, variant.quantize, variant.pcf_radius,
+                         variant.same_size, variant.encode, variant.surface);
       variant_ = variant;
     }
     // No source path: hot reload would read the file without the variant's defines.
@@ -122,9 +150,13 @@ struct CelLight {
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
     aq::bind_texture(program, "u_position", 0, position);
-    aq::bind_texture(program, "u_normal", 1, ctx.input_image(kNormal));
-    aq::bind_texture(program, "u_albedo", 2, ctx.input_image(kAlbedo));
-    aq::bind_texture(program, "u_id", 3, ctx.input_image(kId));
+    if (packed) {
+      aq::bind_texture(program, "u_surface", 1, ctx.input_image(kSurface));
+    } else {
+      aq::bind_texture(program, "u_normal", 1, ctx.input_image(kNormal));
+      aq::bind_texture(program, "u_albedo", 2, ctx.input_image(kAlbedo));
+      aq::bind_texture(program, "u_id", 3, ctx.input_image(kId));
+    }
     if (has_shadow) aq::bind_texture(program, "u_shadow", 4, ctx.input_image(kShadow));
     if (has_caustics) {
       // One period of the caustics: the hardware's repeat wrap gives the periodic bilinear
@@ -183,15 +215,23 @@ struct CelLight {
                                                                                          : AQ_ERROR;
   }
 
+  // The inputs a pixel's surface is read from besides its position.
+  static std::vector<uint32_t> surface_inputs(const aq::Context& ctx) {
+    if (ctx.connected(kSurface)) return {kSurface};
+    return {kNormal, kAlbedo, kId};
+  }
+
   // Damage tracking: the pixels whose light can differ from the kept outputs'. A pixel reads
   // the g-buffer at itself; the shadow map, the caustics and the scene's light only where a
   // surface is (the background is the parameter's colour or the g-buffer's albedo), so a change
-  // of those reaches only the id input's bounds (where the g-buffer drew meshes), not the open
-  // water.
+  // of those reaches only the id's (or surface's) bounds (where the g-buffer drew meshes), not the
+  // open water.
   aq::Region damaged(const aq::Context& ctx, const aq_image& target, bool lighting_changed) {
     if (!ctx.output_kept(0) || !ctx.output_kept(1)) return aq::Region::everything();
     aq::Region damage;
-    for (uint32_t input : {kPosition, kNormal, kAlbedo, kId}) {
+    std::vector<uint32_t> inputs = surface_inputs(ctx);
+    inputs.push_back(kPosition);
+    for (uint32_t input : inputs) {
       const aq_image image = ctx.input_image(input);
       if (image.width != target.width || image.height != target.height)
         return aq::Region::everything();
@@ -201,7 +241,7 @@ struct CelLight {
     for (uint32_t input : {kShadow, kCaustics})
       surfaces_changed =
           surfaces_changed || (ctx.connected(input) && !ctx.input_damage(input).empty());
-    if (surfaces_changed) damage.add(ctx.input_bounds(kId));
+    if (surfaces_changed) damage.add(ctx.input_bounds(ctx.connected(kSurface) ? kSurface : kId));
     return damage;
   }
 };

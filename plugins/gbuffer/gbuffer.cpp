@@ -8,6 +8,7 @@
 //                           gradient with a = 0 behind the scene)   working format
 //                 depth    (linear view depth, far plane on the background)  R32F
 //                 id       (object_id as float, 0 on the background)         R32F
+//                 surface  (normal, albedo and id packed for the light)      RGBA32UI
 //
 // The background is marked explicitly (id 0, w = 0), never by a zero normal. Texture alpha
 // under a mesh's cut-off is a hole (cut-out cards).
@@ -27,7 +28,7 @@
 namespace {
 
 constexpr aq_port_desc kInputs[] = {aq::scene_port("scene", "meshes, camera and light")};
-enum Output { kPosition, kNormal, kAlbedo, kDepth, kId, kOutputCount };
+enum Output { kPosition, kNormal, kAlbedo, kDepth, kId, kSurface, kOutputCount };
 constexpr aq_port_desc kOutputs[] = {
     aq::image_port("position", "world position; w = 1 on geometry, 0 on the background"),
     aq::image_port("normal", "world normal (unit), facing the camera; w = 1 on geometry"),
@@ -35,7 +36,11 @@ constexpr aq_port_desc kOutputs[] = {
     aq::image_port("depth",
                    "linear view depth (world units along the view axis); far plane "
                    "on the background (R32F)"),
-    aq::image_port("id", "object id as a float (R32F); 0 on the background")};
+    aq::image_port("id", "object id as a float (R32F); 0 on the background"),
+    aq::image_port("surface",
+                   "normal, albedo and id in one texel for a deferred light (RGBA32UI): x = "
+                   "packHalf2x16(normal.xy), y = packHalf2x16(normal.z, albedo.r), z = "
+                   "packHalf2x16(albedo.gb), w = floatBitsToUint(id); one read instead of three")};
 enum Param { kCacheStatic };
 constexpr aq_param_desc kParams[] = {aq::bool_param(
     "cache_static", true,
@@ -51,8 +56,9 @@ class GBuffer {
                       "': input `scene` is not connected; connect a scene node's `scene` port");
     }
     const int width = ctx.width(), height = ctx.height();
-    const uint32_t formats[kOutputCount] = {AQ_FORMAT_RGBA32F, ctx.working_format(),
-                                            ctx.working_format(), AQ_FORMAT_R32F, AQ_FORMAT_R32F};
+    const uint32_t formats[kOutputCount] = {AQ_FORMAT_RGBA32F,    ctx.working_format(),
+                                            ctx.working_format(), AQ_FORMAT_R32F,
+                                            AQ_FORMAT_R32F,       AQ_FORMAT_RGBA32UI};
     aq_image targets[kOutputCount];
     for (uint32_t i = 0; i < kOutputCount; ++i) {
       if (!ctx.output(i, width, height, formats[i], &targets[i])) return AQ_ERROR;
@@ -164,6 +170,8 @@ class GBuffer {
     glClearBufferfv(GL_COLOR, kAlbedo, zero);
     glClearBufferfv(GL_COLOR, kDepth, far_value);
     glClearBufferfv(GL_COLOR, kId, zero);
+    const GLuint no_words[4] = {0, 0, 0, 0};
+    glClearBufferuiv(GL_COLOR, kSurface, no_words);
     return true;
   }
 
@@ -225,6 +233,6 @@ class GBuffer {
 
 AQ_NODE(kGBufferNode, GBuffer, "gbuffer", "Scene",
         "Rasterises the scene from its camera: world position, normal, albedo, linear "
-        "depth and object id (0 = background).",
+        "depth and object id (0 = background), and the last three packed for the light.",
         0, kInputs, kOutputs, kParams);
 AQ_PLUGIN("gbuffer", "1.0", &kGBufferNode)

@@ -30,7 +30,8 @@ def test_node_types_list_ports_and_params():
     types = {t.name: t for t in aquarelle.node_types()}
     assert {"scene", "gbuffer", "blur", "tint", "cel_light"} <= set(types)
     gbuffer = types["gbuffer"]
-    assert [p.name for p in gbuffer.outputs] == ["position", "normal", "albedo", "depth", "id"]
+    assert [p.name for p in gbuffer.outputs] == [
+        "position", "normal", "albedo", "depth", "id", "surface"]
     assert gbuffer.inputs[0].type == "scene"
     blur = aquarelle.node_type("blur")
     sigma = {p.name: p for p in blur.params}["sigma"]
@@ -66,7 +67,7 @@ def test_problems_are_objects_with_file_line_node_and_parameter(tmp_path):
 def test_parameters_and_links_are_edited_with_the_command_lines_checks():
     graph = aquarelle.Graph.load(UNDERWATER)
     assert graph.nodes["gbuf"] == "gbuffer"
-    assert graph.inputs("light")["normal"] == "gbuf.normal"
+    assert graph.inputs("light")["surface"] == "gbuf.surface"
     graph.set("blur", "sigma", 1.5)
     assert graph.get("blur", "sigma") == 1.5
     assert graph.params("blur")["sigma"] == 1.5

@@ -100,7 +100,11 @@ typedef enum aq_format {
    * (2i + 1, 2j) in y, (2i, 2j + 1) in z and (2i + 1, 2j + 1) in w. A pass that works on whole
    * blocks (the morphology's) reads and writes four pixels per fragment. Only ports that say
    * AQ_PORT_BLOCKS see it; aq_image_texels() gives the texture's size. */
-  AQ_FORMAT_RGBA8_HDR_BLOCKS = 8
+  AQ_FORMAT_RGBA8_HDR_BLOCKS = 8,
+  /* Appended in ABI 1: four 32-bit unsigned words per pixel (RGBA32UI, nearest), packed data
+   * whose layout the port that carries it states (gbuffer.surface: a deferred light's normal,
+   * albedo and id in one texel, one read instead of three). Read back as the words' values. */
+  AQ_FORMAT_RGBA32UI = 9
 } aq_format;
 
 typedef enum aq_precision { AQ_PRECISION_HALF = 0, AQ_PRECISION_FLOAT = 1 } aq_precision;

@@ -10,19 +10,25 @@
 // source `edge` looks at, so caustic patterns draw no outlines).
 //
 // cel_light.cpp prepends the variant (llvmpipe runs both sides of a branch on a uniform):
+//   AQ_SURFACE   1: normal, albedo and id from the packed `surface` (one read instead of three)
 //   AQ_HAS_SHADOW, AQ_HAS_CAUSTICS, AQ_QUANTIZE  0 or 1
 //   AQ_PCF_RADIUS                                0..4
 //   AQ_SAME_SIZE   1 when every g-buffer input has the output's size (read at gl_FragCoord)
 //   AQ_ENCODE_HDR8 1 when `image` is stored as AQ_FORMAT_RGBA8_HDR (aquarelle/hdr8.glsl)
+#include "aquarelle/gbuffer_surface.glsl"
 #include "aquarelle/hdr8.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_plain;
 
 uniform sampler2D u_position;
+#if AQ_SURFACE
+uniform usampler2D u_surface;
+#else
 uniform sampler2D u_normal;
 uniform sampler2D u_albedo;
 uniform sampler2D u_id;
+#endif
 uniform sampler2D u_shadow;
 uniform sampler2D u_caustics;  // bound with a repeating sampler: the texture is one period
 
@@ -103,25 +109,39 @@ vec3 cel(vec3 lit) {
 
 // G-buffer texels are read exactly (no filtering across an object's edge); inputs of another
 // size than the output are addressed proportionally.
-vec4 fetch(sampler2D s) {
+ivec2 texel_of(ivec2 size) {
 #if AQ_SAME_SIZE
-  return texelFetch(s, ivec2(gl_FragCoord.xy), 0);
+  return ivec2(gl_FragCoord.xy);
 #else
-  ivec2 size = textureSize(s, 0);
-  ivec2 texel = ivec2(floor(v_uv * vec2(size)));
-  return texelFetch(s, clamp(texel, ivec2(0), size - 1), 0);
+  return clamp(ivec2(floor(v_uv * vec2(size))), ivec2(0), size - 1);
 #endif
 }
+
+vec4 fetch(sampler2D s) {
+  return texelFetch(s, texel_of(textureSize(s, 0)), 0);
+}
+
+#if AQ_SURFACE
+aq_surface fetch_surface() {
+  return aq_surface_unpack(texelFetch(u_surface, texel_of(textureSize(u_surface, 0)), 0));
+}
+#endif
 
 // Every pixel computes the light and background pixels select their colour at the end: on
 // llvmpipe a branch on per-pixel data runs both sides for the whole block anyway, so an early
 // return for the background only added its own reads (measured: the pass 30 -> 26 ms at 720p).
 void main() {
-  bool background = !(fetch(u_id).r >= 0.5);  // id 0 (or NaN)
-  vec4 albedo_texel = fetch(u_albedo);
-  vec3 p = fetch(u_position).xyz;
+#if AQ_SURFACE
+  aq_surface surface = fetch_surface();
+  bool background = !(surface.id >= 0.5);  // id 0 (or NaN)
+  vec3 albedo = max(surface.albedo, vec3(0.0));
+  vec3 n = surface.normal;
+#else
+  bool background = !(fetch(u_id).r >= 0.5);
+  vec3 albedo = max(fetch(u_albedo).rgb, vec3(0.0));
   vec3 n = fetch(u_normal).xyz;
-  vec3 albedo = max(albedo_texel.rgb, vec3(0.0));
+#endif
+  vec3 p = fetch(u_position).xyz;
   float len = length(n);
   n = len > 1e-6 ? n / len : vec3(0.0);
 

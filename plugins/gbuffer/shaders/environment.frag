@@ -4,6 +4,7 @@
 // is still background (id 0) for every later pass; cel_light shows it when asked. The other
 // targets get the values that mark the background (what the clears write without an
 // environment), so this one pass replaces five clears.
+#include "aquarelle/gbuffer_surface.glsl"
 in vec2 v_uv;
 
 layout(location = 0) out vec4 o_position;
@@ -11,6 +12,7 @@ layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_albedo;
 layout(location = 3) out float o_depth;
 layout(location = 4) out float o_id;
+layout(location = 5) out uvec4 o_surface;
 
 uniform mat4 u_inverse_view_projection;
 uniform vec3 u_top;
@@ -27,4 +29,5 @@ void main() {
   o_normal = vec4(0.0);
   o_depth = u_far_plane;
   o_id = 0.0;
+  o_surface = aq_surface_pack(vec3(0.0), o_albedo.rgb, 0.0);
 }

@@ -1,5 +1,6 @@
-// Writes the five gbuffer targets; albedo is the vertex colour times the base colour texture. Covered pixels get w = 1 in position, normal and albedo and
+// Writes the six gbuffer targets; albedo is the vertex colour times the base colour texture. Covered pixels get w = 1 in position, normal and albedo and
 // their object id (>= 1); the clear values (w = 0, id 0, depth = far plane) mark the background.
+#include "aquarelle/gbuffer_surface.glsl"
 in vec3 v_world;
 in vec3 v_normal;
 in vec3 v_color;
@@ -11,6 +12,7 @@ layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_albedo;
 layout(location = 3) out float o_depth;
 layout(location = 4) out float o_id;
+layout(location = 5) out uvec4 o_surface;  // aquarelle/gbuffer_surface.glsl
 
 uniform float u_object_id;
 uniform sampler2D u_base_color;  // the mesh's texture, or one white texel
@@ -46,4 +48,5 @@ void main() {
   o_albedo = vec4(v_color * texel.rgb, 1.0);
   o_depth = v_view_depth;
   o_id = u_object_id;
+  o_surface = aq_surface_pack(o_normal.xyz, o_albedo.rgb, o_id);
 }
