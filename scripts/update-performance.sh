@@ -37,10 +37,11 @@ levers=(
   "pigment as canvas + pointwise apply (fused) instead of one node|pigment|one-node-pigment|off"
   "gbuffer: still meshes from a cached layer|gbuf|gbuf.cache_static=false|off"
   "wobble: the paper's precomputed gradient|wobble|-wobble.gradient|off"
+  "gbuffer: normal, albedo and id in one packed surface texel for the light|light|-light.surface +light.normal=gbuf.normal +light.albedo=gbuf.albedo +light.id=gbuf.id|off"
   "caustics: grid from the footprint (off by default)|caustics|caustics.auto_grid=true|on"
   "caustics: coverage in closed form over 3 x 3 texels|caustics|caustics.window=2|off"
   "damage tracking: nodes with kept outputs redraw only what changed|light|env:AQUARELLE_DAMAGE=0|off"
-  "the default levers off|-|blur.direct_kernel=full one-node-pigment pigment.cache_canvas=false gbuf.cache_static=false -wobble.gradient env:AQUARELLE_FORMATS_BY_NEED=0 env:AQUARELLE_EPILOGUE_FUSION=0 env:AQUARELLE_DAMAGE=0 env:AQUARELLE_MORPH_BLOCKED=0 env:AQUARELLE_MORPH_BLOCKS=0|off"
+  "the default levers off|-|blur.direct_kernel=full one-node-pigment pigment.cache_canvas=false gbuf.cache_static=false -wobble.gradient -light.surface +light.normal=gbuf.normal +light.albedo=gbuf.albedo +light.id=gbuf.id env:AQUARELLE_FORMATS_BY_NEED=0 env:AQUARELLE_EPILOGUE_FUSION=0 env:AQUARELLE_DAMAGE=0 env:AQUARELLE_MORPH_BLOCKED=0 env:AQUARELLE_MORPH_BLOCKS=0|off"
   "formats by need, all of it: 8-bit edge source and paper, 8-bit HDR light|edge|env:AQUARELLE_FORMATS_BY_NEED=0|off"
   "formats by need: light, morphology and pigment as 8-bit HDR|dilate|env:AQUARELLE_HDR8=0|off"
   "morphology: 2 x 2 blocks of packed 8-bit row extremes (square windows)|dilate|env:AQUARELLE_MORPH_BLOCKED=0|off"
@@ -54,6 +55,7 @@ for i in "${!levers[@]}"; do
   sets=()
   envs=()
   run_graph=$graph
+  step=0
   for s in $settings; do
     if [ "$s" = one-node-pigment ]; then
       # The flagship's pigment_canvas + pigment_apply as the one `pigment` node they split from
@@ -77,10 +79,25 @@ PYTHON
       run_graph=$copy
     elif [ "${s#env:}" != "$s" ]; then
       envs+=("${s#env:}")  # env:NAME=VALUE: a host switch the bench has no --set for
+    elif [ "${s#+}" != "$s" ]; then
+      # +NODE.INPUT=SOURCE.PORT: the graph with that link added (a copy, as below).
+      step=$((step + 1))  # each edit writes a copy of its own and removes the one before
+      copy=$(dirname "$graph")/.levers-$i-$step.json
+      /usr/bin/python3 - "$run_graph" "$copy" "${s#+}" <<'PYTHON'
+import json, sys
+graph = json.load(open(sys.argv[1]))
+target, source = sys.argv[3].split("=")
+node, port = target.split(".")
+graph["nodes"][node].setdefault("inputs", {})[port] = source
+json.dump(graph, open(sys.argv[2], "w"), indent=2)
+PYTHON
+      [ "$run_graph" = "$graph" ] || rm -f "$run_graph"
+      run_graph=$copy
     elif [ "${s#-}" != "$s" ]; then
       # -NODE.INPUT: the graph without that link (a copy beside the original, so that paths
       # relative to the graph's folder still resolve).
-      copy=$(dirname "$graph")/.levers-$i.json
+      step=$((step + 1))
+      copy=$(dirname "$graph")/.levers-$i-$step.json
       /usr/bin/python3 - "$run_graph" "$copy" "${s#-}" <<'PYTHON'
 import json, sys
 graph = json.load(open(sys.argv[1]))
