@@ -6,11 +6,13 @@
 //   z = packHalf2x16(albedo.gb)
 //   w = floatBitsToUint(id)          (the object id as the id target's float, 0 = background)
 //
-// Normal and albedo in half precision are what the g-buffer's own normal and albedo targets hold
-// at the graph's half precision, so a light reading `surface` sees the same numbers as one
-// reading those three targets (tests/plugins/gbuffer_surface_test.cpp). Why: on llvmpipe a
-// read is the cost of a pass, and one 16-byte texel costs less than three texels of three
-// textures (docs/performance.md, "gbuffer: one surface texel").
+// Normal and albedo are the float values rounded to the nearest half (packHalf2x16), in every
+// precision: a light reading `surface` sees exactly the g-buffer's float targets rounded so
+// (tests/plugins/gbuffer_surface_test.cpp). That is not always what the RGBA16F targets hold at
+// half precision: llvmpipe rounds those towards zero, so `surface` is the closer of the two.
+// Why pack: on llvmpipe a read is the cost of a pass, and one 16-byte texel costs less than
+// three texels of three textures (docs/performance.md, the lever row "gbuffer: normal, albedo
+// and id in one packed surface texel for the light").
 
 uvec4 aq_surface_pack(vec3 normal, vec3 albedo, float id) {
   return uvec4(packHalf2x16(normal.xy), packHalf2x16(vec2(normal.z, albedo.r)),
