@@ -3,7 +3,7 @@
 #
 #   scripts/ab-plugins.sh [options] NODE VARIANT VARIANT...
 #
-# NODE is a node that runs a pass of its own (a fused node is timed with its reader). A VARIANT
+# NODE is a node that runs a pass of its own (a fused node shows `fused`: time its reader). A VARIANT
 # is a space-separated list of PLUGIN=FILE.so (e.g. "cel_light=/tmp/light_a.so
 # gbuffer=/tmp/gbuffer_a.so"), or "base" for the build as it is. For each round, each variant's
 # plugins are copied over the build's (the build's own are restored afterwards, also on ^C) and
@@ -47,6 +47,22 @@ for variant in "$@"; do
   done
 done
 
+# NODE's median wall ms in both modes, the copy pass and the frame in copy passes, from the
+# bench's JSON report; a node that is fused into its reader has no time of its own.
+summarize='
+import json, sys
+report, node = json.load(sys.stdin), sys.argv[1]
+modes = report["modes"]
+def median(mode):
+    for entry in modes[mode]["nodes"]:
+        if entry["id"] == node:
+            return "fused" if entry["fused"] else "%.3f" % entry["wall_ms"]["median"]
+    sys.exit("ab-plugins.sh: no node %r in the graph (nodes: %s)"
+             % (node, ", ".join(e["id"] for e in modes[mode]["nodes"])))
+print(median("every_node_runs"), median("cached_static_nodes"),
+      "%.3f" % report["copy_pass_ms"], "%.2f" % report["copy_passes_per_frame"])
+'
+
 saved=$(mktemp -d)
 cp "$build"/plugins/aquarelle_*.so "$saved"/
 restore() { cp "$saved"/*.so "$build"/plugins/ && rm -rf "$saved"; }
@@ -59,14 +75,11 @@ for round in $(seq "$rounds"); do
     if [ "$variant" != base ]; then
       for pair in $variant; do cp "${pair#*=}" "$build/plugins/aquarelle_${pair%%=*}.so"; done
     fi
-    # The table pads numbers inside brackets ("[ 3.1 .."): close them up so fields stay put.
-    report=$("$app" bench "$graph" --quality final --size 1280x720 --frames "$frames" \
-      --pipeline-only --no-sweep -q 2>&1 | sed 's/\[ */[/g')
-    every=$(awk -v n="$node" '$1 == n {print $3}' <<<"$report")
-    cached=$(awk -v n="$node" '$1 == n {print $8}' <<<"$report")
-    copy=$(awk '/^copy pass/ {print $4}' <<<"$report")
-    copies=$(awk '/^copy_passes_per_frame/ {print $3}' <<<"$report")
-    printf '%-5s %-40s %10s %10s %8s %8s\n' "$round" "${variant:0:40}" "${every:-?}" \
-      "${cached:-?}" "${copy:-?}" "${copies:-?}"
+    json=$("$app" bench "$graph" --quality final --size 1280x720 --frames "$frames" \
+      --pipeline-only --no-sweep -q --json)
+    summary=$(python3 -c "$summarize" "$node" <<<"$json")
+    read -r every cached copy copies <<<"$summary"
+    printf '%-5s %-40s %10s %10s %8s %8s\n' "$round" "${variant:0:40}" "$every" "$cached" \
+      "$copy" "$copies"
   done
 done
