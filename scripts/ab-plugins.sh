@@ -3,8 +3,8 @@
 #
 #   scripts/ab-plugins.sh [options] NODE VARIANT VARIANT...
 #
-# NODE is a node that runs a pass of its own (a fused node shows `fused`: time its reader). A VARIANT
-# is a space-separated list of PLUGIN=FILE.so (e.g. "cel_light=/tmp/light_a.so
+# NODE is a node that runs a pass of its own (a fused node shows `fused`: time its reader). A
+# VARIANT is a space-separated list of PLUGIN=FILE.so (e.g. "cel_light=/tmp/light_a.so
 # gbuffer=/tmp/gbuffer_a.so"), or "base" for the build as it is. For each round, each variant's
 # plugins are copied over the build's (the build's own are restored afterwards, also on ^C) and
 # `aquarelle bench` times the graph at quality final, 1280x720; one line per run: NODE's median
