@@ -73,7 +73,7 @@
 #include "aquarelle/hdr8.glsl"
 
 in vec2 v_uv;
-#if AQ_MORPH_BLOCKED && (AQ_MORPH_PASS == 0 || AQ_MORPH_OUT_BLOCKS)
+#if AQ_MORPH_BLOCKED && (AQ_MORPH_PASS == 0 || AQ_MORPH_OUT_BLOCKS || defined(AQ_MORPH_PENDING_RADIUS))
 layout(location = 0) out uvec4 o_block;  // four pixels' row extremes, packUnorm4x8 each
 #else
 layout(location = 0) out vec4 o_color;  // pass 1 result, or span 0 in pass 0
@@ -94,7 +94,7 @@ layout(location = 4) out vec4 o_span4;
 const int kHalfWidths[5] = AQ_MORPH_HALF_WIDTHS;
 const int kRowSpans[9] = AQ_MORPH_ROW_SPANS;
 
-#if AQ_MORPH_PASS == 0 && !AQ_MORPH_IN_BLOCKS
+#if AQ_MORPH_PASS == 0 && !AQ_MORPH_IN_BLOCKS && !defined(AQ_MORPH_PENDING_RADIUS)
 uniform sampler2D u_image;
 #elif AQ_MORPH_BLOCKED
 uniform usampler2D u_blocks;
@@ -148,16 +148,8 @@ vec4 aq_morph_output(vec4 best) {
 #endif
 }
 
-#if AQ_MORPH_BLOCKED && (AQ_MORPH_IN_BLOCKS || AQ_MORPH_OUT_BLOCKS)
-// Blocks to blocks: one fragment per 2 x 2 block computes its four pixels' extremes along the
-// pass's axis from the blocks at offsets kLo .. kHi along it, which hold the pixels 2b - r ..
-// 2b + 1 + r of both of the block's lines. Pixels outside the image are left out of the window
-// (the same as clamping the lookups, as everywhere in this file).
-const int kLo = -((AQ_MORPH_RADIUS + 1) >> 1);
-const int kHi = (AQ_MORPH_RADIUS + 1) >> 1;
-const int kSpan = kHi - kLo + 1;
-
-// Pixel `along` (0 or 1 along the axis) of line `across` (0 or 1) of a block's words.
+#if AQ_MORPH_BLOCKED && (AQ_MORPH_IN_BLOCKS || AQ_MORPH_OUT_BLOCKS || defined(AQ_MORPH_PENDING_RADIUS))
+// Pixel `along` (0 or 1 along the pass's axis) of line `across` (0 or 1) of a block's words.
 uint aq_morph_word(uvec4 words, int along, int across) {
 #if AQ_MORPH_PASS == 0
   return across == 0 ? (along == 0 ? words.x : words.y) : (along == 0 ? words.z : words.w);
@@ -165,6 +157,90 @@ uint aq_morph_word(uvec4 words, int along, int across) {
   return across == 0 ? (along == 0 ? words.x : words.z) : (along == 0 ? words.y : words.w);
 #endif
 }
+#endif
+
+#if AQ_MORPH_BLOCKED && defined(AQ_MORPH_PENDING_RADIUS)
+// Neighbourhood fusion (AQ_PORT_DEFER_AXIS): the writer's last 1D pass, left undone (min, or
+// max with AQ_MORPH_PENDING_DILATE 1, of radius r1 = AQ_MORPH_PENDING_RADIUS), then this
+// node's own pass along the same axis (radius r2 = AQ_MORPH_RADIUS, 0: the writer's pass
+// alone), in one pass from blocks to blocks. The intermediate of the writer's pass is computed
+// at the 2 r2 + 2 pixels around the block that the own window reads; both windows leave out
+// pixels outside the image, as the two passes would (each clamps its lookups), so the result
+// is the very bits of the two passes.
+const int kReach = AQ_MORPH_PENDING_RADIUS + AQ_MORPH_RADIUS;
+const int kLo = -((kReach + 1) >> 1);
+const int kHi = (kReach + 1) >> 1;
+const int kSpan = kHi - kLo + 1;
+
+vec4 aq_morph_pending_combine(vec4 best, vec4 candidate) {
+#if AQ_MORPH_PENDING_DILATE
+  return max(best, candidate);
+#else
+  return min(best, candidate);
+#endif
+}
+
+void main() {
+  ivec2 block = ivec2(gl_FragCoord.xy);
+#if AQ_MORPH_PASS == 0
+  const ivec2 axis = ivec2(1, 0);
+  int extent = u_image_size.x;
+#else
+  const ivec2 axis = ivec2(0, 1);
+  int extent = u_image_size.y;
+#endif
+  int b = AQ_MORPH_PASS == 0 ? block.x : block.y;
+  ivec2 last_block = (u_image_size - 1) >> 1;
+  uvec4 words[kSpan];
+  for (int k = 0; k < kSpan; ++k)
+    words[k] = texelFetch(u_blocks, clamp(block + (kLo + k) * axis, ivec2(0), last_block), 0);
+  uint results[4];
+  for (int across = 0; across < 2; ++across) {
+    // The pixels 2b - kReach + i, each unpacked once; outside the image the identity of the
+    // writer's extreme, which leaves them out of its windows (constant bounds: the loops unroll
+    // and every index is a constant).
+    vec4 pixels[2 * kReach + 2];
+    for (int i = 0; i < 2 * kReach + 2; ++i) {
+      int d = i - kReach;
+      int pixel = 2 * b + d;
+      vec4 v = unpackUnorm4x8(aq_morph_word(words[((d - 2 * kLo) >> 1)], (d - 2 * kLo) & 1,
+                                            across));
+      pixels[i] = pixel >= 0 && pixel < extent ? v : vec4(AQ_MORPH_PENDING_DILATE != 0 ? 0.0 : 1.0);
+    }
+    // The writer's pass at the pixels 2b - r2 + j; outside the image the identity of this
+    // node's extreme, which leaves them out of its window.
+    vec4 first[2 * AQ_MORPH_RADIUS + 2];
+    for (int j = 0; j < 2 * AQ_MORPH_RADIUS + 2; ++j) {
+      vec4 best = pixels[j];
+      for (int t = 1; t <= 2 * AQ_MORPH_PENDING_RADIUS; ++t)
+        best = aq_morph_pending_combine(best, pixels[j + t]);
+      int pixel = 2 * b + j - AQ_MORPH_RADIUS;
+#ifdef AQ_MORPH_DILATE
+      first[j] = pixel >= 0 && pixel < extent ? best : vec4(0.0);
+#else
+      first[j] = pixel >= 0 && pixel < extent ? best : vec4(1.0);
+#endif
+    }
+    for (int along = 0; along < 2; ++along) {
+      vec4 best = first[along];
+      for (int s = 1; s <= 2 * AQ_MORPH_RADIUS; ++s) best = aq_morph_combine(best, first[along + s]);
+      results[2 * across + along] = packUnorm4x8(best);
+    }
+  }
+#if AQ_MORPH_PASS == 0
+  o_block = uvec4(results[0], results[1], results[2], results[3]);
+#else
+  o_block = uvec4(results[0], results[2], results[1], results[3]);
+#endif
+}
+#elif AQ_MORPH_BLOCKED && (AQ_MORPH_IN_BLOCKS || AQ_MORPH_OUT_BLOCKS)
+// Blocks to blocks: one fragment per 2 x 2 block computes its four pixels' extremes along the
+// pass's axis from the blocks at offsets kLo .. kHi along it, which hold the pixels 2b - r ..
+// 2b + 1 + r of both of the block's lines. Pixels outside the image are left out of the window
+// (the same as clamping the lookups, as everywhere in this file).
+const int kLo = -((AQ_MORPH_RADIUS + 1) >> 1);
+const int kHi = (AQ_MORPH_RADIUS + 1) >> 1;
+const int kSpan = kHi - kLo + 1;
 
 void main() {
   ivec2 block = ivec2(gl_FragCoord.xy);

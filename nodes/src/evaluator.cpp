@@ -466,7 +466,8 @@ Result<ImageF> Evaluator::read_back(const TextureRef& texture) {
 
 // AQUARELLE_FORMATS_BY_NEED=0 keeps every output in the format its plugin asks for,
 // AQUARELLE_HDR8=0 only turns the encoded HDR formats off, AQUARELLE_MORPH_BLOCKS=0 only the one
-// in 2 x 2 blocks, and AQUARELLE_EPILOGUE_FUSION=0 runs
+// in 2 x 2 blocks, AQUARELLE_DEFER_AXIS=0 keeps a separable filter's last 1D pass in its own
+// node, and AQUARELLE_EPILOGUE_FUSION=0 runs
 // pointwise chains after an AQ_NODE_EPILOGUE node as a pass of their own, so a bench run can
 // measure each lever off without a rebuild (the bench sets no EvalOptions for them).
 static bool enabled_in_environment(const char* name) {
@@ -485,6 +486,7 @@ Result<Plan> compile(const Graph& graph, const Registry& registry, const EvalOpt
       options.formats_by_need && enabled_in_environment("AQUARELLE_FORMATS_BY_NEED");
   plan_options.hdr8 = plan_options.formats_by_need && enabled_in_environment("AQUARELLE_HDR8");
   plan_options.blocks = plan_options.hdr8 && enabled_in_environment("AQUARELLE_MORPH_BLOCKS");
+  plan_options.defer_axis = plan_options.blocks && enabled_in_environment("AQUARELLE_DEFER_AXIS");
   plan_options.epilogue_fusion = enabled_in_environment("AQUARELLE_EPILOGUE_FUSION");
   return compile_plan(graph, registry, plan_options, output);
 }
@@ -581,6 +583,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       *k = hash_value(*k, quality_index(settings.quality));
       if (type->time_dependent()) *k = hash_value(*k, options.frame);
       for (uint32_t stored : planned.stored_formats) *k = hash_value(*k, stored);
+      for (bool deferrable : planned.axis_deferrable) *k = hash_value(*k, deferrable ? 1 : 2);
       *k = builtin_key(*type, params, options, *k);
     }
 
@@ -760,6 +763,7 @@ Result<TextureRef> Evaluator::evaluate(const Graph& given_graph, const EvalOptio
       call.node_id = id;
       call.input_refs = &input_refs;
       call.stored_formats = &planned.stored_formats;
+      call.axis_deferrable = &planned.axis_deferrable;
       call.working_format = format;
       call.sources = &gathered->sources;
       call.input_keys = &gathered->keys;

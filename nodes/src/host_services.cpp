@@ -56,6 +56,9 @@ HostServices::HostServices(GlContext& context, TexturePool& pool) : context_(con
   host_.set_draw_region = &HostServices::set_draw_region;
   host_.set_output_bounds = &HostServices::set_output_bounds;
   host_.input_bounds = &HostServices::input_bounds;
+  host_.may_defer_axis = &HostServices::may_defer_axis;
+  host_.defer_axis = &HostServices::defer_axis;
+  host_.input_deferred_axis = &HostServices::input_deferred_axis;
   empty_vao_ = gl::make_vertex_array();
   GLuint framebuffer = 0;
   glCreateFramebuffers(1, &framebuffer);  // created, not just named: DSA calls need that
@@ -322,6 +325,7 @@ void begin_damage_call(CallState& call, size_t output_count) {
   call.draw_region = Region::everything();
   call.declared_damage.assign(output_count, std::nullopt);
   call.declared_bounds.assign(output_count, std::nullopt);
+  call.declared_deferral.assign(output_count, std::nullopt);
 }
 
 void record_output_damage(NodeState& state, uint64_t previous_key,
@@ -330,6 +334,7 @@ void record_output_damage(NodeState& state, uint64_t previous_key,
   state.previous_key = previous_key;
   state.output_damage.assign(state.images.size(), Region::everything());
   state.output_bounds.assign(state.images.size(), Region::everything());
+  state.output_deferred.assign(state.images.size(), std::nullopt);
   int64_t redrawn = 0, total = 0;
   for (size_t o = 0; o < state.images.size(); ++o) {
     if (o < bounds.size() && bounds[o]) state.output_bounds[o] = *bounds[o];
@@ -347,6 +352,8 @@ void finish_damage_call(NodeState& state, const CallState& call, uint64_t previo
   state.seen_self_key = call.self_key;
   state.seen_input_keys = call.input_keys != nullptr ? *call.input_keys : std::vector<uint64_t>();
   record_output_damage(state, previous_key, call.declared_damage, call.declared_bounds);
+  for (size_t o = 0; o < state.output_deferred.size() && o < call.declared_deferral.size(); ++o)
+    state.output_deferred[o] = call.declared_deferral[o];
 }
 
 int HostServices::input_damage(void* data, uint32_t index, aq_rect* rects, uint32_t capacity) {
@@ -400,6 +407,44 @@ int HostServices::input_bounds(void* data, uint32_t index, aq_rect* rects, uint3
   const DamageSource& source = (*call->sources)[index];
   if (source.state == nullptr || source.output >= source.state->output_bounds.size()) return -1;
   return write_rects(source.state->output_bounds[source.output], rects, capacity);
+}
+
+int HostServices::may_defer_axis(void* data, uint32_t index) {
+  const auto* call = static_cast<const CallState*>(data);
+  return call->axis_deferrable != nullptr && index < call->axis_deferrable->size() &&
+                 (*call->axis_deferrable)[index]
+             ? 1
+             : 0;
+}
+
+int HostServices::defer_axis(void* data, uint32_t index, const aq_axis_pass* pass) {
+  auto* call = static_cast<CallState*>(data);
+  if (may_defer_axis(data, index) == 0 || index >= call->declared_deferral.size()) {
+    fail_call(*call, "defer_axis: output " + std::to_string(index) +
+                         " may not leave a pass to its reader (may_defer_axis is 0); run the "
+                         "pass (a plugin bug: report it to its author)");
+    return AQ_ERROR;
+  }
+  if (pass == nullptr || (pass->axis != 0 && pass->axis != 1) || pass->radius < 1 ||
+      pass->radius > 4) {
+    fail_call(*call,
+              "defer_axis: the pass must have axis 0 or 1 and a radius of 1 to 4 (a "
+              "plugin bug: report it to its author)");
+    return AQ_ERROR;
+  }
+  call->declared_deferral[index] = *pass;
+  return AQ_OK;
+}
+
+int HostServices::input_deferred_axis(void* data, uint32_t index, aq_axis_pass* pass) {
+  const auto* call = static_cast<const CallState*>(data);
+  if (call->sources == nullptr || index >= call->sources->size()) return 0;
+  const DamageSource& source = (*call->sources)[index];
+  if (source.state == nullptr || source.output >= source.state->output_deferred.size() ||
+      !source.state->output_deferred[source.output])
+    return 0;
+  if (pass != nullptr) *pass = *source.state->output_deferred[source.output];
+  return 1;
 }
 
 void HostServices::set_draw_region(void* data, const aq_rect* rects, uint32_t count) {

@@ -46,6 +46,8 @@ struct NodeState {
   std::vector<Region> output_damage;
   // Per output, where it may hold anything but its background (aq_host::set_output_bounds).
   std::vector<Region> output_bounds;
+  // Per output, the 1D pass its writer left to its reader (aq_host::defer_axis), if any.
+  std::vector<std::optional<aq_axis_pass>> output_deferred;
   // Share of the outputs' pixels that call redrew (1 when it said nothing; -1 without image
   // outputs), for --stats.
   double redrawn = 1.0;
@@ -81,6 +83,9 @@ struct CallState {
   // Per output: the format the plan stores it in (PlannedNode::stored_formats, 0: the
   // plugin's choice); null or empty: none changes.
   const std::vector<uint32_t>* stored_formats = nullptr;
+  // Per output: the plan lets it leave its last 1D pass to its reader
+  // (PlannedNode::axis_deferrable); null or empty: none may.
+  const std::vector<bool>* axis_deferrable = nullptr;
   uint32_t working_format = AQ_FORMAT_RGBA16F;
 
   // Epilogue fusion (AQ_NODE_EPILOGUE): the pointwise stages the node's draws into output 0
@@ -106,6 +111,7 @@ struct CallState {
   Region draw_region = Region::everything();
   std::vector<std::optional<Region>> declared_damage;
   std::vector<std::optional<Region>> declared_bounds;
+  std::vector<std::optional<aq_axis_pass>> declared_deferral;  // aq_host::defer_axis
 
   uint32_t stored_format(uint32_t index) const {
     return stored_formats != nullptr && index < stored_formats->size() ? (*stored_formats)[index]
@@ -153,6 +159,9 @@ class HostServices {
   static void set_draw_region(void* data, const aq_rect* rects, uint32_t count);
   static int set_output_bounds(void* data, uint32_t index, const aq_rect* rects, uint32_t count);
   static int input_bounds(void* data, uint32_t index, aq_rect* rects, uint32_t capacity);
+  static int may_defer_axis(void* data, uint32_t index);
+  static int defer_axis(void* data, uint32_t index, const aq_axis_pass* pass);
+  static int input_deferred_axis(void* data, uint32_t index, aq_axis_pass* pass);
 
   GlContext& context_;
   TexturePool& pool_;
@@ -174,11 +183,13 @@ void fail_call(CallState& call, const std::string& message);
 Region input_damage_of(const CallState& call, uint32_t index);
 
 // Before a call: nothing declared, the whole target drawn. After a successful one: what the node
-// saw and where its outputs changed (`previous_key`: the node's key before the call).
+// saw, where its outputs changed (`previous_key`: the node's key before the call) and which 1D
+// passes it left to its readers.
 void begin_damage_call(CallState& call, size_t output_count);
 void finish_damage_call(NodeState& state, const CallState& call, uint64_t previous_key);
 // Where each output changed from what it held under `previous_key` (unset: everywhere) and its
-// bounds (unset: everywhere); finish_damage_call's second half, alone for a fused chain's result.
+// bounds (unset: everywhere), nothing left to the readers; finish_damage_call's second half,
+// alone for a fused chain's result.
 void record_output_damage(NodeState& state, uint64_t previous_key,
                           const std::vector<std::optional<Region>>& damage,
                           const std::vector<std::optional<Region>>& bounds);

@@ -129,6 +129,36 @@ std::vector<uint32_t> stored_formats(const Graph& graph, const Registry& registr
   return any ? formats : std::vector<uint32_t>{};
 }
 
+// Which outputs of `id`, stored as `formats`, may leave their last 1D pass to their one reader
+// (PlannedNode::axis_deferrable). Empty when none may.
+std::vector<bool> axis_deferrable(const Graph& graph, const Registry& registry,
+                                  const std::vector<std::string>& order,
+                                  const std::set<std::string>& deferred, const std::string& id,
+                                  const NodeType& type, const std::vector<uint32_t>& formats) {
+  std::vector<bool> deferrable(type.outputs.size(), false);
+  bool any = false;
+  for (size_t o = 0; o < formats.size() && o < type.outputs.size(); ++o) {
+    if (formats[o] != AQ_FORMAT_RGBA8_HDR_BLOCKS || !type.outputs[o].defer_axis) continue;
+    const std::string& port = type.outputs[o].name;
+    int readers = 0;
+    bool reader_takes_it = false;
+    for (const auto& reader_id : order) {
+      const Node& reader = graph.nodes.at(reader_id);
+      const NodeType* reader_type = registry.find(reader.type);
+      for (const auto& [input, source] : reader.inputs) {
+        if (source.node != id || source.port != port) continue;
+        ++readers;
+        const int index = reader_type->input_index(input);
+        reader_takes_it =
+            index >= 0 && reader_type->inputs[index].defer_axis && deferred.count(reader_id) == 0;
+      }
+    }
+    deferrable[o] = readers == 1 && reader_takes_it;
+    any = any || deferrable[o];
+  }
+  return any ? deferrable : std::vector<bool>{};
+}
+
 }  // namespace
 
 const PlannedNode* Plan::find(const std::string& id) const {
@@ -244,6 +274,9 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
       if (std::all_of(stored.begin(), stored.end(), [](uint32_t f) { return f == 0; }))
         stored.clear();
     }
+    if (options.defer_axis)
+      plan.nodes.back().axis_deferrable = axis_deferrable(graph, registry, order, deferred, id,
+                                                          *type, plan.nodes.back().stored_formats);
     pass.reads_per_pixel = pass.fused && !pass.epilogue ? 1 : -1;
     pass.intermediates_saved = static_cast<int>(pass.chain.size()) - 1;
     pass.cached = !planned.varies && options.retain_static_outputs;
@@ -285,6 +318,11 @@ std::string format_plan(const Plan& plan) {
           narrow += (narrow.empty() ? "" : ", ") + node->type->outputs[o].name;
       if (!narrow.empty()) chain += std::string(" [") + format_name(format) + ": " + narrow + "]";
     }
+    std::string handed;
+    for (size_t o = 0; o < node->axis_deferrable.size(); ++o)
+      if (node->axis_deferrable[o])
+        handed += (handed.empty() ? "" : ", ") + node->type->outputs[o].name;
+    if (!handed.empty()) chain += " [last 1D pass to its reader: " + handed + "]";
     char size[32];
     std::snprintf(size, sizeof(size), "%dx%d", pass.size.width, pass.size.height);
     const std::string reads =
@@ -309,7 +347,9 @@ std::string format_plan(const Plan& plan) {
       "input content with 8 bits; [RGBA8 HDR: port]: linear HDR colour encoded in 8 bits "
       "(sqrt(c / (1 + c))) because its writer and every reader handle that (bandwidth by "
       "need); [RGBA8 HDR 2x2: port]: the same in 2 x 2 blocks of packed pixels, between "
-      "nodes that work on whole blocks (a morphology chain)\n";
+      "nodes that work on whole blocks (a morphology chain); [last 1D pass to its reader: "
+      "port]: a separable filter leaves its last 1D pass undone and its reader runs it in one "
+      "pass with its own first one along the same axis (AQ_PORT_DEFER_AXIS)\n";
   return text;
 }
 

@@ -76,7 +76,7 @@ std::string read_ports(const aq_port_desc* ports, uint32_t count, const char* ki
     }
     if ((port.flags &
          ~static_cast<uint32_t>(AQ_PORT_OPTIONAL | AQ_PORT_MULTI | AQ_PORT_8BIT_ENOUGH |
-                                AQ_PORT_HDR8 | AQ_PORT_BLOCKS)) != 0) {
+                                AQ_PORT_HDR8 | AQ_PORT_BLOCKS | AQ_PORT_DEFER_AXIS)) != 0) {
       return std::string(kind) + " '" + name + "' has unknown flags " + std::to_string(port.flags);
     }
     if ((port.flags & AQ_PORT_MULTI) != 0 &&
@@ -98,6 +98,11 @@ std::string read_ports(const aq_port_desc* ports, uint32_t count, const char* ki
              "' is AQ_PORT_BLOCKS without AQ_PORT_HDR8: 2 x 2 blocks hold encoded 8-bit pixels, "
              "so a port that takes them must handle AQ_FORMAT_RGBA8_HDR too";
     }
+    if ((port.flags & AQ_PORT_DEFER_AXIS) != 0 && (port.flags & AQ_PORT_BLOCKS) == 0) {
+      return std::string(kind) + " '" + name +
+             "' is AQ_PORT_DEFER_AXIS without AQ_PORT_BLOCKS: a 1D pass is handed over only "
+             "on links stored in 2 x 2 blocks, so the port must take them";
+    }
     if (!seen.insert(name).second) {
       return std::string(kind) + " '" + name + "' is declared twice";
     }
@@ -109,6 +114,7 @@ std::string read_ports(const aq_port_desc* ports, uint32_t count, const char* ki
     info.eight_bit_enough = (port.flags & AQ_PORT_8BIT_ENOUGH) != 0;
     info.hdr8 = (port.flags & AQ_PORT_HDR8) != 0;
     info.blocks = (port.flags & AQ_PORT_BLOCKS) != 0;
+    info.defer_axis = (port.flags & AQ_PORT_DEFER_AXIS) != 0;
     info.description = text_or_empty(port.description);
     out->push_back(std::move(info));
   }

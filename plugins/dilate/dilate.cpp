@@ -8,7 +8,9 @@
 namespace {
 
 struct Dilate {
-  int process(aq::Context& ctx) { return aq::morphology::run(ctx, shaders::dilate_frag); }
+  int process(aq::Context& ctx) {
+    return aq::morphology::run(ctx, shaders::dilate_frag, aq::morphology::Op::kDilate);
+  }
 };
 
 }  // namespace

@@ -8,7 +8,9 @@
 namespace {
 
 struct Erode {
-  int process(aq::Context& ctx) { return aq::morphology::run(ctx, shaders::erode_frag); }
+  int process(aq::Context& ctx) {
+    return aq::morphology::run(ctx, shaders::erode_frag, aq::morphology::Op::kErode);
+  }
 };
 
 }  // namespace

@@ -77,8 +77,23 @@ enum {
    * (a morphology chain keeps its images in 2 x 2 blocks between its nodes). The host stores
    * an output so only where it would store AQ_FORMAT_RGBA8_HDR and the writer and every reader
    * say AQ_PORT_BLOCKS. An older host refuses the plugin (unknown flag). */
-  AQ_PORT_BLOCKS = 1u << 4
+  AQ_PORT_BLOCKS = 1u << 4,
+  /* Appended in ABI 1: an AQ_PORT_BLOCKS port of a separable filter that can hand its last 1D
+   * pass to its reader, or take its writer's last 1D pass over (aq_axis_pass): neighbourhood
+   * fusion of a chain such as erode -> dilate -> erode, whose same-axis passes meet at the
+   * nodes' boundaries and run as one. The host allows it on a link stored in blocks whose writer
+   * says it on the output, whose only reader says it on the input, and whose output is not the
+   * requested one (aq_host::may_defer_axis). An older host refuses the plugin (unknown flag). */
+  AQ_PORT_DEFER_AXIS = 1u << 5
 };
+
+/* A 1D min or max pass along one axis that a writer left to its reader (AQ_PORT_DEFER_AXIS):
+ * the output holds the writer's result before this pass. */
+typedef struct aq_axis_pass {
+  int32_t axis;   /* 0: along rows (x), 1: along columns (y) */
+  int32_t dilate; /* 1: max, 0: min (per channel, of the stored 8-bit values) */
+  int32_t radius; /* the window is 2 radius + 1 pixels, clamped to the image; 1..4 */
+} aq_axis_pass;
 
 typedef enum aq_format {
   AQ_FORMAT_RGBA16F = 1,
@@ -482,6 +497,17 @@ typedef struct aq_host {
    * `capacity`. */
   int (*set_output_bounds)(void* host_data, uint32_t index, const aq_rect* rects, uint32_t count);
   int (*input_bounds)(void* host_data, uint32_t input_index, aq_rect* rects, uint32_t capacity);
+  /* Appended in ABI 1 (check struct_size), neighbourhood fusion of separable filters
+   * (AQ_PORT_DEFER_AXIS). may_defer_axis: 1 when output `index` may be left with its last 1D
+   * pass undone for its one reader to run (the plan allows it: see AQ_PORT_DEFER_AXIS), else 0.
+   * defer_axis: this call left that pass undone on output `index`; AQ_ERROR (after failing the
+   * call) where may_defer_axis says 0. The host tells the reader (input_deferred_axis) as long
+   * as the output holds this result. input_deferred_axis: 1 and the pass in `pass` when image
+   * input `input_index` holds its writer's result before that pass, which this node must apply
+   * first; 0 when the input is complete. */
+  int (*may_defer_axis)(void* host_data, uint32_t index);
+  int (*defer_axis)(void* host_data, uint32_t index, const aq_axis_pass* pass);
+  int (*input_deferred_axis)(void* host_data, uint32_t input_index, aq_axis_pass* pass);
 } aq_host;
 
 #ifdef __cplusplus

@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <cstring>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -279,6 +280,27 @@ class Context {
     const std::vector<aq_rect> rects = rects_of(region);
     return raw_->host->set_output_bounds(raw_->host_data, index, rects.data(),
                                          static_cast<uint32_t>(rects.size())) == AQ_OK;
+  }
+  // Neighbourhood fusion of separable filters (AQ_PORT_DEFER_AXIS): whether output `index` may
+  // be left with its last 1D pass undone for its reader (false from an older host) ...
+  bool may_defer_axis(uint32_t index) const {
+    return has_host_call(offsetof(aq_host, may_defer_axis),
+                         raw_->host->may_defer_axis != nullptr) &&
+           raw_->host->may_defer_axis(raw_->host_data, index) == 1;
+  }
+  // ... this call left `pass` undone on output `index` (only where may_defer_axis said so) ...
+  bool defer_axis(uint32_t index, const aq_axis_pass& pass) const {
+    return has_host_call(offsetof(aq_host, defer_axis), raw_->host->defer_axis != nullptr) &&
+           raw_->host->defer_axis(raw_->host_data, index, &pass) == AQ_OK;
+  }
+  // ... and the pass image input `input` still needs, if its writer left one.
+  std::optional<aq_axis_pass> input_deferred_axis(uint32_t input) const {
+    aq_axis_pass pass{};
+    if (!has_host_call(offsetof(aq_host, input_deferred_axis),
+                       raw_->host->input_deferred_axis != nullptr) ||
+        raw_->host->input_deferred_axis(raw_->host_data, input, &pass) != 1)
+      return std::nullopt;
+    return pass;
   }
   // draw() and draw_fullscreen cover only `region` until the next call (all(): everything).
   // False from a host that predates it: then draw everything and declare no damage.

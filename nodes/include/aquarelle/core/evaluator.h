@@ -59,7 +59,8 @@ struct EvalOptions {
   // Store outputs in the narrower format their readers need: RGBA8 for AQ_PORT_8BIT_ENOUGH
   // readers, RGBA8_HDR where writer and readers say AQ_PORT_HDR8 (plan.h). The environment
   // variables AQUARELLE_FORMATS_BY_NEED=0 (both) and AQUARELLE_HDR8=0 (the second) turn it off;
-  // AQUARELLE_MORPH_BLOCKS=0 only RGBA8_HDR_BLOCKS between AQ_PORT_BLOCKS ports.
+  // AQUARELLE_MORPH_BLOCKS=0 only RGBA8_HDR_BLOCKS between AQ_PORT_BLOCKS ports, and
+  // AQUARELLE_DEFER_AXIS=0 the 1D passes handed between AQ_PORT_DEFER_AXIS nodes.
   bool formats_by_need = true;
   // Images for `image_input` nodes, by their `name` parameter (tests, embedding).
   const std::map<std::string, ImageF>* images = nullptr;

@@ -39,6 +39,11 @@ struct PlannedNode {
   // when they also say AQ_PORT_BLOCKS (a morphology chain). Never the requested output. Empty
   // when no output changes.
   std::vector<uint32_t> stored_formats;
+  // Per output port (type order): true where the writer may leave its last 1D pass to the one
+  // node that reads it (AQ_PORT_DEFER_AXIS on both ends of a link stored in blocks, not the
+  // requested output): neighbourhood fusion, the two same-axis passes at the link run as one.
+  // Empty when no output may.
+  std::vector<bool> axis_deferrable;
 };
 
 // One pass of the frame: a node's process(), or one fused shader that computes a chain of
@@ -86,6 +91,8 @@ struct PlanOptions {
   bool hdr8 = true;
   // ... and AQ_FORMAT_RGBA8_HDR_BLOCKS between AQ_PORT_BLOCKS ports (with hdr8).
   bool blocks = true;
+  // ... and a separable filter's last 1D pass handed to its reader (PlannedNode::axis_deferrable).
+  bool defer_axis = true;
 };
 
 // Compiles the plan; errors name the node (cycle, missing node, unknown type, bad output).

@@ -23,6 +23,8 @@ struct PortInfo {
   bool hdr8 = false;
   // ... and AQ_FORMAT_RGBA8_HDR_BLOCKS too (AQ_PORT_BLOCKS).
   bool blocks = false;
+  // ... and may leave its last 1D pass to its reader, or run its writer's (AQ_PORT_DEFER_AXIS).
+  bool defer_axis = false;
 };
 
 struct ParamInfo {

@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@ namespace aq::morphology {
 enum Param : uint32_t { kSize, kFootprint, kMode };
 enum Footprint : int64_t { kSquare = 0, kDisc = 1 };
 enum Mode : int64_t { kPerChannel = 0, kLuminance = 1 };
+enum class Op { kErode, kDilate };  // which extreme the plugin's shader takes
 
 constexpr int kMaxRadius = 4;  // size 9
 constexpr int kMaxSpans = kMaxRadius + 1;
@@ -35,10 +37,10 @@ constexpr int kMaxSpans = kMaxRadius + 1;
 // And AQ_FORMAT_RGBA8_HDR_BLOCKS: between two of these nodes (erode -> dilate -> erode) the
 // image stays in the blocks the blocked path computes in, so each pass works on a quarter of
 // the fragments and reads whole blocks.
-inline constexpr aq_port_desc kInputs[] = {
-    aq::image_port("image", "colour to filter", AQ_PORT_HDR8 | AQ_PORT_BLOCKS)};
+inline constexpr aq_port_desc kInputs[] = {aq::image_port(
+    "image", "colour to filter", AQ_PORT_HDR8 | AQ_PORT_BLOCKS | AQ_PORT_DEFER_AXIS)};
 inline constexpr aq_port_desc kOutputs[] = {
-    aq::image_port("image", "filtered colour", AQ_PORT_HDR8 | AQ_PORT_BLOCKS)};
+    aq::image_port("image", "filtered colour", AQ_PORT_HDR8 | AQ_PORT_BLOCKS | AQ_PORT_DEFER_AXIS)};
 inline constexpr aq_param_desc kParams[] = {
     aq::int_param("size", 3, 1, 2 * kMaxRadius + 1,
                   "window diameter in pixels, odd (1, 3, 5, 7, 9); 1 passes the image through"),
@@ -244,20 +246,123 @@ inline int run_plain(aq::Context& ctx, const aq_shader_source& shader, const aq_
   return ok ? AQ_OK : AQ_ERROR;
 }
 
+// Neighbourhood fusion (AQ_PORT_DEFER_AXIS). One pass from blocks to blocks along `pending`'s
+// axis: the 1D pass the input's writer left undone, then this node's own pass of radius `radius`
+// along the same axis (0: the writer's pass alone), over the blocks of `region`.
+inline bool run_fused_axis(aq::Context& ctx, const aq_shader_source& shader, const aq_image& in,
+                           const aq_image& target, const aq_axis_pass& pending, int radius,
+                           const Region& region) {
+  const std::string text =
+      "#define AQ_MORPH_PENDING_RADIUS " + std::to_string(pending.radius) +
+      "\n#define AQ_MORPH_PENDING_DILATE " + (pending.dilate != 0 ? "1" : "0") +
+      "\n#define AQ_MORPH_IN_BLOCKS 1\n#define AQ_MORPH_OUT_BLOCKS 1\n" +
+      variant_text(shader, pending.axis, plan_spans(radius, kSquare), false, true, true, true);
+  const GLuint program = ctx.program(aq_shader_source{shader.name, text.c_str(), nullptr});
+  if (program == 0) return false;
+  glUseProgram(program);
+  bind_blocks(program, in, in);
+  ctx.set_draw_region(blocks_of(region).for_drawing());
+  const bool ok = ctx.draw(target);
+  aq::unbind_textures(1);
+  return ok;
+}
+
+// One blocked pass of this node's own along `axis` (0 rows, 1 columns) from `in` into `target`,
+// both in blocks, over the blocks of `region`.
+inline bool run_axis_blocks(aq::Context& ctx, const aq_shader_source& shader, const aq_image& in,
+                            const aq_image& target, int axis, const SpanPlan& plan,
+                            const Region& region) {
+  const std::string text = "#define AQ_MORPH_IN_BLOCKS 1\n#define AQ_MORPH_OUT_BLOCKS 1\n" +
+                           variant_text(shader, axis, plan, false, true, true, true);
+  const GLuint program = ctx.program(aq_shader_source{shader.name, text.c_str(), nullptr});
+  if (program == 0) return false;
+  glUseProgram(program);
+  bind_blocks(program, in, in);
+  ctx.set_draw_region(blocks_of(region).for_drawing());
+  const bool ok = ctx.draw(target);
+  aq::unbind_textures(1);
+  return ok;
+}
+
+// The blocked path when a 1D pass moves across the node's boundaries: the input's writer left
+// `pending` undone, and/or this node may leave its own last pass to its reader (`defer`). Runs
+// the same-axis passes at a boundary as one (run_fused_axis): the morphology chain erode ->
+// dilate -> erode takes four passes instead of six, with the same bits. `drawn`: the pixels of
+// the output to compute.
+inline bool run_handing_over(aq::Context& ctx, const aq_shader_source& shader, Op op,
+                             const aq_image& in, const aq_image& out, const SpanPlan& plan,
+                             const Region& drawn, const std::optional<aq_axis_pass>& pending,
+                             bool defer) {
+  const int r = plan.radius;
+  const Region computed = in_blocks(out) ? whole_blocks(drawn, out.width, out.height) : drawn;
+  const aq_axis_pass own_last{pending ? 1 - pending->axis : 1, op == Op::kDilate ? 1 : 0, r};
+  if (!pending) {
+    // Only the rows pass, straight into the output (in blocks); the columns pass is the
+    // reader's.
+    const std::string text = std::string(in_blocks(in) ? "#define AQ_MORPH_IN_BLOCKS 1\n" : "") +
+                             variant_text(shader, 0, plan, false, true, true, true);
+    const GLuint rows = ctx.program(aq_shader_source{shader.name, text.c_str(), nullptr});
+    if (rows == 0) return false;
+    glUseProgram(rows);
+    if (in_blocks(in)) {
+      bind_blocks(rows, in, in);
+    } else {
+      aq::bind_texture(rows, "u_image", 0, in);
+    }
+    ctx.set_draw_region(blocks_of(computed).for_drawing());
+    const bool ok = ctx.draw(out);
+    aq::unbind_textures(1);
+    return ok && ctx.defer_axis(0, own_last);
+  }
+  if (defer) {  // the writer's pass and this node's first, as one; this node's last is handed on
+    return run_fused_axis(ctx, shader, in, out, *pending, r, computed) &&
+           ctx.defer_axis(0, own_last);
+  }
+  aq_image first;
+  if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA8_HDR_BLOCKS, &first)) return false;
+  const Region first_region = own_last.axis == 1 ? computed.dilated(0, r, out.width, out.height)
+                                                 : computed.dilated(r, 0, out.width, out.height);
+  if (!run_fused_axis(ctx, shader, in, first, *pending, r, first_region)) return false;
+  if (own_last.axis == 1) {  // the usual columns pass, into blocks or pixels
+    const std::string text =
+        "#define AQ_MORPH_IN_BLOCKS 1\n" +
+        std::string(in_blocks(out) ? "#define AQ_MORPH_OUT_BLOCKS 1\n" : "") +
+        variant_text(shader, 1, plan, false, true,
+                     out.format == AQ_FORMAT_RGBA8_HDR || in_blocks(out), true);
+    const GLuint columns = ctx.program(aq_shader_source{shader.name, text.c_str(), nullptr});
+    if (columns == 0) return false;
+    glUseProgram(columns);
+    bind_blocks(columns, first, in);
+    ctx.set_draw_region(in_blocks(out) ? blocks_of(drawn).for_drawing() : drawn);
+    const bool ok = ctx.draw(out);
+    aq::unbind_textures(1);
+    return ok;
+  }
+  // The rows pass last: blocks to blocks, then to pixels if the output wants them.
+  if (in_blocks(out)) return run_axis_blocks(ctx, shader, first, out, 0, plan, computed);
+  aq_image rows;
+  if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA8_HDR_BLOCKS, &rows)) return false;
+  return run_axis_blocks(ctx, shader, first, rows, 0, plan, computed) &&
+         run_blocked(ctx, shader, rows, out, plan_spans(0, kSquare), drawn);
+}
+
 // Runs erosion or dilation, whichever `shader` implements.
-inline int run(aq::Context& ctx, const aq_shader_source& shader) {
-  const aq_image in = ctx.input_image(0);
+inline int run(aq::Context& ctx, const aq_shader_source& shader, Op op) {
+  aq_image in = ctx.input_image(0);
   const int64_t size = ctx.param_int(kSize);
   if (size < 1 || size > 2 * kMaxRadius + 1 || size % 2 == 0) {
     return ctx.fail("parameter 'size' is " + std::to_string(size) +
                     ": use an odd size from 1 to 9 (1, 3, 5, 7 or 9) so the window is centred "
                     "on the pixel");
   }
+  // The input's writer may have left its last 1D pass to this node (AQ_PORT_DEFER_AXIS).
+  const std::optional<aq_axis_pass> pending = ctx.input_deferred_axis(0);
   // The host stores the output in 2 x 2 blocks when every reader takes them (AQ_PORT_BLOCKS),
   // else encoded or in the working format.
   aq_image out;
   if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
-  if (size == 1 && out.format == in.format) return ctx.pass_through(0, 0) ? AQ_OK : AQ_ERROR;
+  if (size == 1 && out.format == in.format && !pending)
+    return ctx.pass_through(0, 0) ? AQ_OK : AQ_ERROR;
   // `size` is in output pixels; a proxy render keeps at least a radius of 1 so the effect
   // does not vanish. Size 1 into another format than the input's only converts it.
   const int radius =
@@ -269,15 +374,34 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader) {
   const bool luminance = ctx.param_enum(kMode) == kLuminance;
 
   // Damage tracking: with its output kept, only the pixels whose window holds a changed input
-  // pixel are redrawn; the rows pass covers the rows the columns pass reads around them.
+  // pixel are redrawn (and the writer's pass this node runs widens the window along its axis);
+  // the rows pass covers the rows the columns pass reads around them.
   Region damage = Region::everything();
-  if (ctx.output_kept(0) && in.width == out.width && in.height == out.height)
-    damage = ctx.input_damage(0).dilated(radius, radius, out.width, out.height);
+  if (ctx.output_kept(0) && in.width == out.width && in.height == out.height) {
+    const int reach_x = radius + (pending && pending->axis == 0 ? pending->radius : 0);
+    const int reach_y = radius + (pending && pending->axis == 1 ? pending->radius : 0);
+    damage = ctx.input_damage(0).dilated(reach_x, reach_y, out.width, out.height);
+  }
   if (damage.empty()) return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
   Region drawn = damage.for_drawing();
   if (!ctx.set_draw_region(drawn.dilated(0, radius, out.width, out.height).for_drawing()))
     damage = drawn = Region::everything();
-  if (blocked_path(in, footprint == kDisc ? kDisc : kSquare, luminance)) {
+  const bool blocked = blocked_path(in, footprint == kDisc ? kDisc : kSquare, luminance);
+  const bool defer = blocked && radius >= 1 && in_blocks(out) && ctx.may_defer_axis(0);
+  if (blocked && (pending || defer)) {
+    if (!run_handing_over(ctx, shader, op, in, out, plan, drawn, pending, defer)) return AQ_ERROR;
+    return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
+  }
+  if (pending) {  // a disc or the luminance order: the writer's pass first, on its own
+    aq_image completed;
+    if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA8_HDR_BLOCKS, &completed)) return AQ_ERROR;
+    if (!run_fused_axis(ctx, shader, in, completed, *pending, 0, Region::everything()))
+      return AQ_ERROR;
+    in = completed;
+    damage = drawn = Region::everything();
+    ctx.set_draw_region(Region::everything());
+  }
+  if (blocked) {
     if (!run_blocked(ctx, shader, in, out, plan, drawn)) return AQ_ERROR;
     return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
   }
