@@ -149,12 +149,49 @@ vec4 aq_morph_output(vec4 best) {
 }
 
 #if AQ_MORPH_BLOCKED && (AQ_MORPH_IN_BLOCKS || AQ_MORPH_OUT_BLOCKS || defined(AQ_MORPH_PENDING_RADIUS))
+// Blocks to blocks along one axis: one fragment per 2 x 2 block reads the blocks at offsets
+// kLo .. kHi along the pass's axis, which hold the pixels 2b - kReach .. 2b + 1 + kReach of
+// both of the block's lines (kReach: how far the pass reads).
+#ifdef AQ_MORPH_PENDING_RADIUS
+const int kReach = AQ_MORPH_PENDING_RADIUS + AQ_MORPH_RADIUS;
+#else
+const int kReach = AQ_MORPH_RADIUS;
+#endif
+const int kLo = -((kReach + 1) >> 1);
+const int kHi = (kReach + 1) >> 1;
+const int kSpan = kHi - kLo + 1;
+#if AQ_MORPH_PASS == 0
+const ivec2 kAxis = ivec2(1, 0);
+#else
+const ivec2 kAxis = ivec2(0, 1);
+#endif
+
+// The fragment's block index along the axis, the image's extent along it, and the blocks.
+void aq_morph_axis_blocks(out int b, out int extent, out uvec4 words[kSpan]) {
+  ivec2 block = ivec2(gl_FragCoord.xy);
+  b = AQ_MORPH_PASS == 0 ? block.x : block.y;
+  extent = AQ_MORPH_PASS == 0 ? u_image_size.x : u_image_size.y;
+  ivec2 last_block = (u_image_size - 1) >> 1;
+  for (int k = 0; k < kSpan; ++k)
+    words[k] = texelFetch(u_blocks, clamp(block + (kLo + k) * kAxis, ivec2(0), last_block), 0);
+}
+
 // Pixel `along` (0 or 1 along the pass's axis) of line `across` (0 or 1) of a block's words.
 uint aq_morph_word(uvec4 words, int along, int across) {
 #if AQ_MORPH_PASS == 0
   return across == 0 ? (along == 0 ? words.x : words.y) : (along == 0 ? words.z : words.w);
 #else
   return across == 0 ? (along == 0 ? words.x : words.z) : (along == 0 ? words.y : words.w);
+#endif
+}
+
+// The four results in the block's word order (indexed [2 * across + along]).
+uvec4 aq_morph_block_out(uint results[4]) {
+#if AQ_MORPH_PASS == 0
+  return uvec4(results[0], results[1], results[2], results[3]);
+#else
+  // along runs down the columns here: x = (0, 0), y = (1, 0), z = (0, 1), w = (1, 1).
+  return uvec4(results[0], results[2], results[1], results[3]);
 #endif
 }
 #endif
@@ -167,11 +204,6 @@ uint aq_morph_word(uvec4 words, int along, int across) {
 // at the 2 r2 + 2 pixels around the block that the own window reads; both windows leave out
 // pixels outside the image, as the two passes would (each clamps its lookups), so the result
 // is the very bits of the two passes.
-const int kReach = AQ_MORPH_PENDING_RADIUS + AQ_MORPH_RADIUS;
-const int kLo = -((kReach + 1) >> 1);
-const int kHi = (kReach + 1) >> 1;
-const int kSpan = kHi - kLo + 1;
-
 vec4 aq_morph_pending_combine(vec4 best, vec4 candidate) {
 #if AQ_MORPH_PENDING_DILATE
   return max(best, candidate);
@@ -181,19 +213,9 @@ vec4 aq_morph_pending_combine(vec4 best, vec4 candidate) {
 }
 
 void main() {
-  ivec2 block = ivec2(gl_FragCoord.xy);
-#if AQ_MORPH_PASS == 0
-  const ivec2 axis = ivec2(1, 0);
-  int extent = u_image_size.x;
-#else
-  const ivec2 axis = ivec2(0, 1);
-  int extent = u_image_size.y;
-#endif
-  int b = AQ_MORPH_PASS == 0 ? block.x : block.y;
-  ivec2 last_block = (u_image_size - 1) >> 1;
+  int b, extent;
   uvec4 words[kSpan];
-  for (int k = 0; k < kSpan; ++k)
-    words[k] = texelFetch(u_blocks, clamp(block + (kLo + k) * axis, ivec2(0), last_block), 0);
+  aq_morph_axis_blocks(b, extent, words);
   uint results[4];
   for (int across = 0; across < 2; ++across) {
     // The pixels 2b - kReach + i, each unpacked once; outside the image the identity of the
@@ -227,35 +249,18 @@ void main() {
       results[2 * across + along] = packUnorm4x8(best);
     }
   }
-#if AQ_MORPH_PASS == 0
-  o_block = uvec4(results[0], results[1], results[2], results[3]);
-#else
-  o_block = uvec4(results[0], results[2], results[1], results[3]);
-#endif
+  o_block = aq_morph_block_out(results);
 }
 #elif AQ_MORPH_BLOCKED && (AQ_MORPH_IN_BLOCKS || AQ_MORPH_OUT_BLOCKS)
 // Blocks to blocks: one fragment per 2 x 2 block computes its four pixels' extremes along the
-// pass's axis from the blocks at offsets kLo .. kHi along it, which hold the pixels 2b - r ..
-// 2b + 1 + r of both of the block's lines. Pixels outside the image are left out of the window
-// (the same as clamping the lookups, as everywhere in this file).
-const int kLo = -((AQ_MORPH_RADIUS + 1) >> 1);
-const int kHi = (AQ_MORPH_RADIUS + 1) >> 1;
-const int kSpan = kHi - kLo + 1;
+// pass's axis from the blocks that hold the pixels 2b - r .. 2b + 1 + r of both of the block's
+// lines. Pixels outside the image are left out of the window (the same as clamping the lookups,
+// as everywhere in this file).
 
 void main() {
-  ivec2 block = ivec2(gl_FragCoord.xy);
-#if AQ_MORPH_PASS == 0
-  const ivec2 axis = ivec2(1, 0);
-  int extent = u_image_size.x;
-#else
-  const ivec2 axis = ivec2(0, 1);
-  int extent = u_image_size.y;
-#endif
-  int b = AQ_MORPH_PASS == 0 ? block.x : block.y;
-  ivec2 last_block = (u_image_size - 1) >> 1;
+  int b, extent;
   uvec4 words[kSpan];
-  for (int k = 0; k < kSpan; ++k)
-    words[k] = texelFetch(u_blocks, clamp(block + (kLo + k) * axis, ivec2(0), last_block), 0);
+  aq_morph_axis_blocks(b, extent, words);
   uint results[4];
   for (int across = 0; across < 2; ++across) {
     for (int along = 0; along < 2; ++along) {
@@ -276,12 +281,7 @@ void main() {
       results[2 * across + along] = packUnorm4x8(aq_morph_output(best));
     }
   }
-#if AQ_MORPH_PASS == 0
-  o_block = uvec4(results[0], results[1], results[2], results[3]);
-#else
-  // results are indexed [column * 2 + row] here: x = (0, 0), y = (1, 0), z = (0, 1), w = (1, 1).
-  o_block = uvec4(results[0], results[2], results[1], results[3]);
-#endif
+  o_block = aq_morph_block_out(results);
 }
 #elif AQ_MORPH_BLOCKED && AQ_MORPH_PASS == 0
 void main() {

@@ -84,6 +84,29 @@ std::set<std::string> deferred_nodes(const Graph& graph, const Registry& registr
   return deferred;
 }
 
+// One input that reads a node's output port: the reader, its type and the input's index in it
+// (-1 when the type has no such input).
+struct ReaderInput {
+  std::string reader;
+  const NodeType* type = nullptr;
+  int index = -1;
+};
+
+std::vector<ReaderInput> readers_of(const Graph& graph, const Registry& registry,
+                                    const std::vector<std::string>& order, const std::string& id,
+                                    const std::string& port) {
+  std::vector<ReaderInput> readers;
+  for (const auto& reader_id : order) {
+    const Node& reader = graph.nodes.at(reader_id);
+    const NodeType* reader_type = registry.find(reader.type);
+    for (const auto& [input, source] : reader.inputs) {
+      if (source.node != id || source.port != port) continue;
+      readers.push_back({reader_id, reader_type, reader_type->input_index(input)});
+    }
+  }
+  return readers;
+}
+
 // The format each image output of `id` is stored in when its readers need less than the
 // writer's own format (bandwidth by need), 0 where the writer's choice stands:
 // - AQ_FORMAT_RGBA8_HDR when the writer and every reader handle it (AQ_PORT_HDR8) and the graph
@@ -101,23 +124,17 @@ std::vector<uint32_t> stored_formats(const Graph& graph, const Registry& registr
     if (type.outputs[o].type != AQ_PORT_IMAGE) continue;
     const std::string& port = type.outputs[o].name;
     if (target.node == id && target.port == port) continue;
-    int readers = 0;
+    const std::vector<ReaderInput> readers = readers_of(graph, registry, order, id, port);
+    if (readers.empty()) continue;
     bool all_eight_bit = true;
     bool all_hdr8 = true;
     bool all_blocks = true;
-    for (const auto& reader_id : order) {
-      const Node& reader = graph.nodes.at(reader_id);
-      const NodeType* reader_type = registry.find(reader.type);
-      for (const auto& [input, source] : reader.inputs) {
-        if (source.node != id || source.port != port) continue;
-        ++readers;
-        const int index = reader_type->input_index(input);
-        all_eight_bit = all_eight_bit && index >= 0 && reader_type->inputs[index].eight_bit_enough;
-        all_hdr8 = all_hdr8 && index >= 0 && reader_type->inputs[index].hdr8;
-        all_blocks = all_blocks && index >= 0 && reader_type->inputs[index].blocks;
-      }
+    for (const ReaderInput& r : readers) {
+      const PortInfo* input = r.index >= 0 ? &r.type->inputs[r.index] : nullptr;
+      all_eight_bit = all_eight_bit && input != nullptr && input->eight_bit_enough;
+      all_hdr8 = all_hdr8 && input != nullptr && input->hdr8;
+      all_blocks = all_blocks && input != nullptr && input->blocks;
     }
-    if (readers == 0) continue;
     if (all_hdr8 && hdr8 && half && type.outputs[o].hdr8) {
       formats[o] = all_blocks && blocks && type.outputs[o].blocks ? AQ_FORMAT_RGBA8_HDR_BLOCKS
                                                                   : AQ_FORMAT_RGBA8_HDR;
@@ -139,21 +156,11 @@ std::vector<bool> axis_deferrable(const Graph& graph, const Registry& registry,
   bool any = false;
   for (size_t o = 0; o < formats.size() && o < type.outputs.size(); ++o) {
     if (formats[o] != AQ_FORMAT_RGBA8_HDR_BLOCKS || !type.outputs[o].defer_axis) continue;
-    const std::string& port = type.outputs[o].name;
-    int readers = 0;
-    bool reader_takes_it = false;
-    for (const auto& reader_id : order) {
-      const Node& reader = graph.nodes.at(reader_id);
-      const NodeType* reader_type = registry.find(reader.type);
-      for (const auto& [input, source] : reader.inputs) {
-        if (source.node != id || source.port != port) continue;
-        ++readers;
-        const int index = reader_type->input_index(input);
-        reader_takes_it =
-            index >= 0 && reader_type->inputs[index].defer_axis && deferred.count(reader_id) == 0;
-      }
-    }
-    deferrable[o] = readers == 1 && reader_takes_it;
+    const std::vector<ReaderInput> readers =
+        readers_of(graph, registry, order, id, type.outputs[o].name);
+    deferrable[o] = readers.size() == 1 && readers[0].index >= 0 &&
+                    readers[0].type->inputs[readers[0].index].defer_axis &&
+                    deferred.count(readers[0].reader) == 0;
     any = any || deferrable[o];
   }
   return any ? deferrable : std::vector<bool>{};

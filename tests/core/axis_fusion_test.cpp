@@ -18,21 +18,10 @@
 #include <string>
 
 #include "support/harness.h"
+#include "support/morphology_graphs.h"
 
 namespace aq::test {
 namespace {
-
-// The flagship's opening and closing.
-const char* kChain = R"({
-  "aquarelle": 1,
-  "nodes": {
-    "input": {"type": "image_input", "params": {"name": "image"}},
-    "open_erode": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "input.image"}},
-    "dilate": {"type": "dilate", "params": {"size": 5}, "inputs": {"image": "open_erode.image"}},
-    "close_erode": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "dilate.image"}}
-  },
-  "output": "close_erode.image"
-})";
 
 // Every radius from 1 to 4 on both sides of a handed-on pass, a size-1 node (radius 0) that
 // takes one over, and a disc, which cannot fuse and runs the pass it was left on its own.
@@ -95,14 +84,14 @@ Result<ImageF> render(const std::string& graph, const ImageF& input, bool hand_o
 }
 
 TEST(AxisFusion, ThePlanHandsALastPassOnlyToTheOneReaderThatTakesIt) {
-  const Plan plan = plan_of(kChain, "half");
+  const Plan plan = plan_of(kMorphologyChain, "half");
   EXPECT_TRUE(hands_on(plan, "open_erode"));
   EXPECT_TRUE(hands_on(plan, "dilate"));
   EXPECT_FALSE(hands_on(plan, "close_erode")) << "the requested output is whole";
   EXPECT_NE(format_plan(plan).find("[last 1D pass to its reader: image]"), std::string::npos);
 
   // Viewing an intermediate (the editor, --layer) makes it whole.
-  const Plan viewed = plan_of(kChain, "half", PortRef{"dilate", "image"});
+  const Plan viewed = plan_of(kMorphologyChain, "half", PortRef{"dilate", "image"});
   EXPECT_TRUE(hands_on(viewed, "open_erode"));
   EXPECT_FALSE(hands_on(viewed, "dilate"));
 
@@ -122,7 +111,7 @@ TEST(AxisFusion, ThePlanHandsALastPassOnlyToTheOneReaderThatTakesIt) {
   EXPECT_FALSE(hands_on(shared, "dilate")) << "edge does not take blocks";
 
   // Float precision stores no blocks: nothing is handed on.
-  const Plan full = plan_of(kChain, "float");
+  const Plan full = plan_of(kMorphologyChain, "float");
   EXPECT_FALSE(hands_on(full, "open_erode"));
   EXPECT_FALSE(hands_on(full, "dilate"));
 }
@@ -130,7 +119,7 @@ TEST(AxisFusion, ThePlanHandsALastPassOnlyToTheOneReaderThatTakesIt) {
 TEST(AxisFusion, HandedOnPassesGiveTheSameBitsAsPassesInTheirOwnNodes) {
   const Plan plan = plan_of(kWideChain, "half");
   for (const char* id : {"d3", "e9", "d7", "e5", "d9"}) EXPECT_TRUE(hands_on(plan, id)) << id;
-  for (const char* graph : {kChain, kWideChain}) {
+  for (const char* graph : {kMorphologyChain, kWideChain}) {
     for (const auto& [width, height] : {std::pair{64, 48}, {63, 47}, {17, 9}, {5, 3}}) {
       const ImageF light = random_light(width, height, 11);
       auto whole = render(graph, light, false);
@@ -149,9 +138,9 @@ TEST(AxisFusion, HandedOnPassesGiveTheSameBitsAsPassesInTheirOwnNodes) {
 TEST(AxisFusion, ARequestedIntermediateIsWhole) {
   const ImageF light = random_light(40, 30, 5);
   for (const char* output : {"open_erode.image", "dilate.image"}) {
-    auto whole = render(kChain, light, false, output);
-    ASSERT_TRUE(render(kChain, random_light(40, 30, 6), true, output).ok());
-    auto viewed = render(kChain, light, true, output);
+    auto whole = render(kMorphologyChain, light, false, output);
+    ASSERT_TRUE(render(kMorphologyChain, random_light(40, 30, 6), true, output).ok());
+    auto viewed = render(kMorphologyChain, light, true, output);
     ASSERT_TRUE(whole.ok()) << whole.message();
     ASSERT_TRUE(viewed.ok()) << viewed.message();
     EXPECT_EQ(max_abs_diff(*viewed, *whole), 0.0) << output;

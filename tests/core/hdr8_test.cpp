@@ -17,6 +17,7 @@
 #include <string>
 
 #include "support/harness.h"
+#include "support/morphology_graphs.h"
 
 namespace aq::test {
 namespace {
@@ -36,18 +37,6 @@ double bound(double c) {
 double half_slack(double c) {
   return 1.0e-3 * std::max(1.0, std::abs(c));
 }
-
-// erode 3, dilate 5, erode 3: the flagship's opening and closing, on an HDR image.
-const char* kMorphologyChain = R"({
-  "aquarelle": 1,
-  "nodes": {
-    "input": {"type": "image_input", "params": {"name": "image"}},
-    "open_erode": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "input.image"}},
-    "dilate": {"type": "dilate", "params": {"size": 5}, "inputs": {"image": "open_erode.image"}},
-    "close_erode": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "dilate.image"}}
-  },
-  "output": "close_erode.image"
-})";
 
 // An encoded image passed through (erode of size 1) to a reader that cannot decode it.
 const char* kPassThrough = R"({

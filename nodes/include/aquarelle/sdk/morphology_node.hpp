@@ -246,42 +246,43 @@ inline int run_plain(aq::Context& ctx, const aq_shader_source& shader, const aq_
   return ok ? AQ_OK : AQ_ERROR;
 }
 
-// Neighbourhood fusion (AQ_PORT_DEFER_AXIS). One pass from blocks to blocks along `pending`'s
-// axis: the 1D pass the input's writer left undone, then this node's own pass of radius `radius`
-// along the same axis (0: the writer's pass alone), over the blocks of `region`.
-inline bool run_fused_axis(aq::Context& ctx, const aq_shader_source& shader, const aq_image& in,
-                           const aq_image& target, const aq_axis_pass& pending, int radius,
-                           const Region& region) {
+// One blocked pass (`pass`: 0 rows, 1 columns) from `in` (blocks, or pixels for a rows pass)
+// into `target`, over the pixels `region` (for_drawing: blocks where `target` is in blocks);
+// `prefix`: defines before the variant's own.
+inline bool draw_blocked_pass(aq::Context& ctx, const aq_shader_source& shader,
+                              const std::string& prefix, int pass, const SpanPlan& plan,
+                              const aq_image& in, const aq_image& target, const Region& region) {
+  const bool out_hdr8 = target.format == AQ_FORMAT_RGBA8_HDR || in_blocks(target);
   const std::string text =
-      "#define AQ_MORPH_PENDING_RADIUS " + std::to_string(pending.radius) +
-      "\n#define AQ_MORPH_PENDING_DILATE " + (pending.dilate != 0 ? "1" : "0") +
-      "\n#define AQ_MORPH_IN_BLOCKS 1\n#define AQ_MORPH_OUT_BLOCKS 1\n" +
-      variant_text(shader, pending.axis, plan_spans(radius, kSquare), false, true, true, true);
+      prefix + (in_blocks(in) ? "#define AQ_MORPH_IN_BLOCKS 1\n" : "") +
+      (pass == 1 && in_blocks(target) ? "#define AQ_MORPH_OUT_BLOCKS 1\n" : "") +
+      variant_text(shader, pass, plan, false, true, pass == 0 || out_hdr8, true);
   const GLuint program = ctx.program(aq_shader_source{shader.name, text.c_str(), nullptr});
   if (program == 0) return false;
   glUseProgram(program);
-  bind_blocks(program, in, in);
-  ctx.set_draw_region(blocks_of(region).for_drawing());
+  if (in_blocks(in)) {
+    bind_blocks(program, in, in);
+  } else {
+    aq::bind_texture(program, "u_image", 0, in);
+  }
+  ctx.set_draw_region(in_blocks(target) ? blocks_of(region).for_drawing() : region);
   const bool ok = ctx.draw(target);
   aq::unbind_textures(1);
   return ok;
 }
 
-// One blocked pass of this node's own along `axis` (0 rows, 1 columns) from `in` into `target`,
-// both in blocks, over the blocks of `region`.
-inline bool run_axis_blocks(aq::Context& ctx, const aq_shader_source& shader, const aq_image& in,
-                            const aq_image& target, int axis, const SpanPlan& plan,
-                            const Region& region) {
-  const std::string text = "#define AQ_MORPH_IN_BLOCKS 1\n#define AQ_MORPH_OUT_BLOCKS 1\n" +
-                           variant_text(shader, axis, plan, false, true, true, true);
-  const GLuint program = ctx.program(aq_shader_source{shader.name, text.c_str(), nullptr});
-  if (program == 0) return false;
-  glUseProgram(program);
-  bind_blocks(program, in, in);
-  ctx.set_draw_region(blocks_of(region).for_drawing());
-  const bool ok = ctx.draw(target);
-  aq::unbind_textures(1);
-  return ok;
+// Neighbourhood fusion (AQ_PORT_DEFER_AXIS): one pass from blocks to blocks along `pending`'s
+// axis: the 1D pass the input's writer left undone, then this node's own pass of radius `radius`
+// along the same axis (0: the writer's pass alone), over the blocks of `region`.
+inline bool run_fused_axis(aq::Context& ctx, const aq_shader_source& shader, const aq_image& in,
+                           const aq_image& target, const aq_axis_pass& pending, int radius,
+                           const Region& region) {
+  const std::string prefix = "#define AQ_MORPH_PENDING_RADIUS " + std::to_string(pending.radius) +
+                             "\n#define AQ_MORPH_PENDING_DILATE " +
+                             (pending.dilate != 0 ? "1" : "0") +
+                             "\n#define AQ_MORPH_OUT_BLOCKS 1\n";
+  return draw_blocked_pass(ctx, shader, prefix, pending.axis, plan_spans(radius, kSquare), in,
+                           target, region);
 }
 
 // The blocked path when a 1D pass moves across the node's boundaries: the input's writer left
@@ -296,23 +297,9 @@ inline bool run_handing_over(aq::Context& ctx, const aq_shader_source& shader, O
   const int r = plan.radius;
   const Region computed = in_blocks(out) ? whole_blocks(drawn, out.width, out.height) : drawn;
   const aq_axis_pass own_last{pending ? 1 - pending->axis : 1, op == Op::kDilate ? 1 : 0, r};
-  if (!pending) {
-    // Only the rows pass, straight into the output (in blocks); the columns pass is the
-    // reader's.
-    const std::string text = std::string(in_blocks(in) ? "#define AQ_MORPH_IN_BLOCKS 1\n" : "") +
-                             variant_text(shader, 0, plan, false, true, true, true);
-    const GLuint rows = ctx.program(aq_shader_source{shader.name, text.c_str(), nullptr});
-    if (rows == 0) return false;
-    glUseProgram(rows);
-    if (in_blocks(in)) {
-      bind_blocks(rows, in, in);
-    } else {
-      aq::bind_texture(rows, "u_image", 0, in);
-    }
-    ctx.set_draw_region(blocks_of(computed).for_drawing());
-    const bool ok = ctx.draw(out);
-    aq::unbind_textures(1);
-    return ok && ctx.defer_axis(0, own_last);
+  if (!pending) {  // only the rows pass, straight into the output; the columns pass is the reader's
+    return draw_blocked_pass(ctx, shader, "", 0, plan, in, out, computed) &&
+           ctx.defer_axis(0, own_last);
   }
   if (defer) {  // the writer's pass and this node's first, as one; this node's last is handed on
     return run_fused_axis(ctx, shader, in, out, *pending, r, computed) &&
@@ -323,26 +310,16 @@ inline bool run_handing_over(aq::Context& ctx, const aq_shader_source& shader, O
   const Region first_region = own_last.axis == 1 ? computed.dilated(0, r, out.width, out.height)
                                                  : computed.dilated(r, 0, out.width, out.height);
   if (!run_fused_axis(ctx, shader, in, first, *pending, r, first_region)) return false;
-  if (own_last.axis == 1) {  // the usual columns pass, into blocks or pixels
-    const std::string text =
-        "#define AQ_MORPH_IN_BLOCKS 1\n" +
-        std::string(in_blocks(out) ? "#define AQ_MORPH_OUT_BLOCKS 1\n" : "") +
-        variant_text(shader, 1, plan, false, true,
-                     out.format == AQ_FORMAT_RGBA8_HDR || in_blocks(out), true);
-    const GLuint columns = ctx.program(aq_shader_source{shader.name, text.c_str(), nullptr});
-    if (columns == 0) return false;
-    glUseProgram(columns);
-    bind_blocks(columns, first, in);
-    ctx.set_draw_region(in_blocks(out) ? blocks_of(drawn).for_drawing() : drawn);
-    const bool ok = ctx.draw(out);
-    aq::unbind_textures(1);
-    return ok;
-  }
+  // The usual columns pass, into blocks or pixels.
+  if (own_last.axis == 1) return draw_blocked_pass(ctx, shader, "", 1, plan, first, out, drawn);
   // The rows pass last: blocks to blocks, then to pixels if the output wants them.
-  if (in_blocks(out)) return run_axis_blocks(ctx, shader, first, out, 0, plan, computed);
+  if (in_blocks(out))
+    return draw_blocked_pass(ctx, shader, "#define AQ_MORPH_OUT_BLOCKS 1\n", 0, plan, first, out,
+                             computed);
   aq_image rows;
   if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA8_HDR_BLOCKS, &rows)) return false;
-  return run_axis_blocks(ctx, shader, first, rows, 0, plan, computed) &&
+  return draw_blocked_pass(ctx, shader, "#define AQ_MORPH_OUT_BLOCKS 1\n", 0, plan, first, rows,
+                           computed) &&
          run_blocked(ctx, shader, rows, out, plan_spans(0, kSquare), drawn);
 }
 
@@ -387,7 +364,11 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader, Op op) {
   if (!ctx.set_draw_region(drawn.dilated(0, radius, out.width, out.height).for_drawing()))
     damage = drawn = Region::everything();
   const bool blocked = blocked_path(in, footprint == kDisc ? kDisc : kSquare, luminance);
-  const bool defer = blocked && radius >= 1 && in_blocks(out) && ctx.may_defer_axis(0);
+  // Handed on, the output holds encoded row extremes: so the input must be encoded too (plain
+  // 8-bit input is encoded only by the columns pass).
+  const bool encoded_in = in.format == AQ_FORMAT_RGBA8_HDR || in_blocks(in);
+  const bool defer =
+      blocked && encoded_in && radius >= 1 && in_blocks(out) && ctx.may_defer_axis(0);
   if (blocked && (pending || defer)) {
     if (!run_handing_over(ctx, shader, op, in, out, plan, drawn, pending, defer)) return AQ_ERROR;
     return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
