@@ -125,7 +125,7 @@ class GBuffer {
     }
     aq::unbind_textures(1);
     if (layered) {
-      drawn_.record(layer_, boxes_.world_boxes(*scene), unchanged,
+      drawn_.record(layer_, *scene, boxes_.world_boxes(*scene), unchanged,
                     glm::dmat4(projection) * glm::dmat4(view), width, height);
       damage.add(drawn_.moving());
     }

@@ -119,7 +119,7 @@ class ShadowMap {
     draw_meshes(*scene, layered ? &unchanged : nullptr, false, program);
     aq::unbind_textures(1);  // the cut-out texture unit, and the program
     if (layered) {
-      drawn_.record(layer_, world_boxes, unchanged, glm::dmat4(light), size, size);
+      drawn_.record(layer_, *scene, world_boxes, unchanged, glm::dmat4(light), size, size);
       damage.add(drawn_.moving());
     }
     return kept && !ctx.set_output_damage(0, damage) ? AQ_ERROR : AQ_OK;

@@ -263,3 +263,63 @@ TEST(ShadowFit, SizeGivesATexelPerPixelAtTheNearestReceiver) {
 }
 
 }  // namespace
+
+// Two thin blades two units apart in one mesh (the flagship's seaweed cluster): each chunk's box
+// holds every corner of its triangles, moved by the mesh's model matrix; together they cover far
+// less than the mesh's one box, which spans the gap; bad indices and non-finite corners are
+// skipped, and a mesh without indices has no chunks (its box is used instead).
+TEST(TriangleChunkBoxes, EachChunkHoldsItsTrianglesAndTheGapIsLeftOut) {
+  std::vector<float> positions;
+  std::vector<uint32_t> indices;
+  for (int blade = 0; blade < 2; ++blade) {
+    const float x = 2.0f * static_cast<float>(blade);
+    for (int k = 0; k <= 8; ++k) {  // a strip of 16 triangles up to y = 2
+      const float y = 0.25f * static_cast<float>(k);
+      positions.insert(positions.end(), {x, y, 0.0f, x + 0.1f, y, 0.0f});
+    }
+    const uint32_t base = static_cast<uint32_t>(blade) * 18;
+    for (uint32_t k = 0; k < 8; ++k) {
+      const uint32_t a = base + 2 * k;
+      indices.insert(indices.end(), {a, a + 1, a + 2, a + 1, a + 3, a + 2});
+    }
+  }
+  indices.insert(indices.end(), {0, 1, 999});  // an index past the vertices: skipped
+  aq_mesh mesh{};
+  mesh.positions = positions.data();
+  mesh.indices = indices.data();
+  mesh.vertex_count = static_cast<uint32_t>(positions.size() / 3);
+  mesh.index_count = static_cast<uint32_t>(indices.size());
+  const glm::dvec3 offset(5.0, -1.0, 3.0);
+  for (int c = 0; c < 16; ++c) mesh.model[c] = (c % 5 == 0) ? 1.0f : 0.0f;
+  mesh.model[12] = 5.0f;
+  mesh.model[13] = -1.0f;
+  mesh.model[14] = 3.0f;
+
+  const std::vector<Box> chunks = aq::view_bounds::triangle_chunk_boxes(mesh, 4);
+  ASSERT_EQ(chunks.size(), 9u);  // 33 triangles: eight chunks of four and the last one
+  for (size_t t = 0; t + 3 <= indices.size(); t += 3) {
+    const Box& box = chunks[t / 12];
+    for (size_t k = t; k < t + 3; ++k) {
+      if (indices[k] >= mesh.vertex_count) continue;
+      const glm::dvec3 p = glm::dvec3(positions[3 * indices[k]], positions[3 * indices[k] + 1],
+                                      positions[3 * indices[k] + 2]) +
+                           offset;
+      EXPECT_TRUE(glm::all(glm::greaterThanEqual(p, box.lo)) &&
+                  glm::all(glm::lessThanEqual(p, box.hi)))
+          << "triangle " << t / 3 << " corner outside its chunk's box";
+    }
+  }
+  double area = 0.0;  // the chunks' x-y extent, against the mesh box's 2.1 x 2
+  for (const Box& box : chunks) {
+    EXPECT_TRUE(box.hi.x - box.lo.x < 0.2) << "a chunk spans the gap between the blades";
+    area += (box.hi.x - box.lo.x) * (box.hi.y - box.lo.y);
+  }
+  EXPECT_LT(area, 0.1 * 2.1 * 2.0);
+
+  positions[0] = std::nanf("");  // a non-finite corner is left out of its box
+  const std::vector<Box> without_nan = aq::view_bounds::triangle_chunk_boxes(mesh, 4);
+  ASSERT_EQ(without_nan.size(), 9u);
+  EXPECT_TRUE(std::isfinite(without_nan[0].lo.x));
+  mesh.indices = nullptr;
+  EXPECT_TRUE(aq::view_bounds::triangle_chunk_boxes(mesh, 4).empty());
+}

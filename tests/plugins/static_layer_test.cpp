@@ -134,5 +134,56 @@ TEST(CoveredPixels, AcrossTheWholeViewIsTheWholeTargetAndNoVerticesIsNothing) {
   EXPECT_LE(off.x1 - off.x0, 0);
 }
 
+// A moving mesh of two thin upright blades at either side of the view (a seaweed cluster): what
+// record() says may be covered holds every pixel of each blade's vertices, and not the open
+// space between them, which the mesh's one box would span.
+TEST(DrawnOverLayer, AMovingMeshCoversItsTrianglesNotItsWholeBox) {
+  const glm::mat4 projection = glm::perspective(glm::radians(50.0f), 2.0f, 0.1f, 100.0f);
+  const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
+  const glm::dmat4 view_projection = glm::dmat4(projection * view);
+  std::vector<float> positions;
+  std::vector<uint32_t> indices;
+  for (float x : {-3.0f, 3.0f}) {
+    const uint32_t base = static_cast<uint32_t>(positions.size() / 3);
+    for (int k = 0; k <= 4; ++k) {
+      const float y = -1.0f + 0.5f * static_cast<float>(k);
+      positions.insert(positions.end(), {x, y, 0.0f, x + 0.05f, y, 0.0f});
+    }
+    for (uint32_t k = 0; k < 4; ++k) {
+      const uint32_t a = base + 2 * k;
+      indices.insert(indices.end(), {a, a + 1, a + 2, a + 1, a + 3, a + 2});
+    }
+  }
+  aq_mesh mesh{};
+  mesh.positions = positions.data();
+  mesh.indices = indices.data();
+  mesh.vertex_count = static_cast<uint32_t>(positions.size() / 3);
+  mesh.index_count = static_cast<uint32_t>(indices.size());
+  const glm::mat4 identity(1.0f);
+  std::copy(glm::value_ptr(identity), glm::value_ptr(identity) + 16, mesh.model);
+  aq_scene scene{};
+  scene.struct_size = sizeof(aq_scene);
+  scene.meshes = &mesh;
+  scene.mesh_count = 1;
+  view_bounds::MeshBoxes boxes;
+  const CachedTargets layer;  // record() reads only its key; no GL
+  DrawnOverLayer drawn;
+  drawn.record(layer, scene, boxes.world_boxes(scene), {false}, view_projection, 256, 128);
+  Region covered;
+  covered.add(drawn.moving());
+  ASSERT_FALSE(covered.empty());
+  for (size_t v = 0; v < positions.size() / 3; ++v) {
+    const glm::dvec4 clip = view_projection * glm::dvec4(positions[3 * v], positions[3 * v + 1],
+                                                         positions[3 * v + 2], 1);
+    const int x = static_cast<int>(std::floor((clip.x / clip.w * 0.5 + 0.5) * 256));
+    const int y = static_cast<int>(std::floor((clip.y / clip.w * 0.5 + 0.5) * 128));
+    EXPECT_TRUE(covered.covers(Region::of(PixelRect{x, y, x + 1, y + 1})))
+        << "vertex " << v << " at pixel " << x << ", " << y;
+  }
+  EXPECT_FALSE(covered.covers(Region::of(PixelRect{128, 64, 129, 65})))
+      << "the gap between the blades is marked as covered";
+  EXPECT_LT(covered.area(256, 128), 256 * 128 / 8);
+}
+
 }  // namespace
 }  // namespace aq

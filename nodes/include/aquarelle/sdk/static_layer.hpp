@@ -306,22 +306,35 @@ class DrawnOverLayer {
   // The pixels record() found the moving meshes may cover.
   const std::vector<PixelRect>& moving() const { return moving_; }
 
-  // After the moving meshes (those not `unchanged`) were drawn with `view_projection`;
-  // `world_boxes` are the scene's meshes' (view_bounds::MeshBoxes).
-  void record(const CachedTargets& layer, const std::vector<view_bounds::Box>& world_boxes,
-              const std::vector<bool>& unchanged, const glm::dmat4& view_projection, int width,
-              int height) {
-    moving_.clear();
+  // After the moving meshes (those not `unchanged`) of `scene` were drawn with
+  // `view_projection`; `world_boxes` are the scene's meshes' (view_bounds::MeshBoxes). What a
+  // moving mesh may cover is the union of its triangle chunks' projected boxes (a swaying
+  // blade's, not its cluster's), at most Region::kMaxDrawRects rects in all: each is a copy
+  // per target at the next restore().
+  void record(const CachedTargets& layer, const aq_scene& scene,
+              const std::vector<view_bounds::Box>& world_boxes, const std::vector<bool>& unchanged,
+              const glm::dmat4& view_projection, int width, int height) {
+    std::vector<PixelRect> covered;
     for (size_t i = 0; i < world_boxes.size() && i < unchanged.size(); ++i) {
-      if (!unchanged[i])
-        moving_.push_back(covered_pixels(world_boxes[i], view_projection, width, height));
+      if (unchanged[i]) continue;
+      std::vector<view_bounds::Box> chunks =
+          i < scene.mesh_count ? view_bounds::triangle_chunk_boxes(scene.meshes[i], kChunk)
+                               : std::vector<view_bounds::Box>{};
+      if (chunks.empty()) chunks.push_back(world_boxes[i]);
+      for (const view_bounds::Box& box : chunks)
+        covered.push_back(covered_pixels(box, view_projection, width, height));
     }
+    Region region;
+    region.add(covered);
+    moving_ = region.for_drawing().rects();
     layer_key_ = layer.key;
     layer_textures_ = layer.textures_made();
     valid_ = true;
   }
 
  private:
+  // Triangles per box: two segments of a seaweed blade, a quarter ring of the fish's body.
+  static constexpr uint32_t kChunk = 4;
   bool valid_ = false;
   uint64_t layer_key_ = 0;
   uint64_t layer_textures_ = 0;

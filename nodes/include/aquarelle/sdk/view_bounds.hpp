@@ -168,6 +168,39 @@ class MeshBoxes {
   std::vector<Box> world_;
 };
 
+// World-space boxes of a mesh's triangles, `triangles_per_chunk` consecutive triangles each:
+// a finer cover than the mesh's one box. A triangle's pixels lie inside the projection of its
+// corners, so the chunks' projected boxes together cover the mesh; for a moving mesh made of
+// thin parts (seaweed blades, a fish's fins) they cover a small part of its box's projection.
+// Indices out of range or non-finite corners are skipped; an empty result means "use the
+// mesh's box".
+inline std::vector<Box> triangle_chunk_boxes(const aq_mesh& mesh, uint32_t triangles_per_chunk) {
+  std::vector<Box> boxes;
+  if (mesh.positions == nullptr || mesh.indices == nullptr || triangles_per_chunk == 0)
+    return boxes;
+  glm::dmat4 model;
+  for (int c = 0; c < 16; ++c) model[c / 4][c % 4] = mesh.model[c];
+  const uint32_t per_chunk = 3 * triangles_per_chunk;
+  const uint32_t index_count = mesh.index_count - mesh.index_count % 3;
+  for (uint32_t first = 0; first < index_count; first += per_chunk) {
+    Box object;
+    const uint32_t end = std::min(index_count, first + per_chunk);
+    for (uint32_t k = first; k < end; ++k) {
+      const uint32_t v = mesh.indices[k];
+      if (v >= mesh.vertex_count) continue;
+      const float* p = mesh.positions + 3 * static_cast<size_t>(v);
+      if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+        object.add(glm::dvec3(p[0], p[1], p[2]));
+    }
+    if (object.empty()) continue;
+    Box world;
+    for (int corner = 0; corner < 8; ++corner)
+      world.add(glm::dvec3(model * glm::dvec4(object.corner(corner), 1.0)));
+    boxes.push_back(world);
+  }
+  return boxes;
+}
+
 // Every vertex of (each box ∩ planes); empty when no box reaches into the planes.
 inline std::vector<glm::dvec3> visible_points(std::span<const Box> boxes,
                                               std::span<const Plane> planes) {
