@@ -19,18 +19,35 @@
 namespace aq {
 namespace {
 
-// The rectangle the g-buffer and the shadow map restore for a mesh of `positions` placed by
-// `model`: its world box as they get it (view_bounds::MeshBoxes), projected.
-PixelRect rect_of(const std::vector<float>& positions, const glm::mat4& model,
-                  const glm::mat4& view_projection, int width, int height) {
+// A mesh of `positions` (and `indices`, when given) placed by `model`.
+aq_mesh mesh_of(const std::vector<float>& positions, const glm::mat4& model,
+                const std::vector<uint32_t>* indices = nullptr) {
   aq_mesh mesh{};
   mesh.positions = positions.data();
   mesh.vertex_count = static_cast<uint32_t>(positions.size() / 3);
+  if (indices != nullptr) {
+    mesh.indices = indices->data();
+    mesh.index_count = static_cast<uint32_t>(indices->size());
+  }
   std::copy(glm::value_ptr(model), glm::value_ptr(model) + 16, mesh.model);
+  return mesh;
+}
+
+// A scene of that one mesh.
+aq_scene scene_of(const aq_mesh& mesh) {
   aq_scene scene{};
   scene.struct_size = sizeof(aq_scene);
   scene.meshes = &mesh;
   scene.mesh_count = 1;
+  return scene;
+}
+
+// The rectangle the g-buffer and the shadow map restore for a mesh of `positions` placed by
+// `model`: its world box as they get it (view_bounds::MeshBoxes), projected.
+PixelRect rect_of(const std::vector<float>& positions, const glm::mat4& model,
+                  const glm::mat4& view_projection, int width, int height) {
+  const aq_mesh mesh = mesh_of(positions, model);
+  const aq_scene scene = scene_of(mesh);
   view_bounds::MeshBoxes boxes;
   return covered_pixels(boxes.world_boxes(scene)[0], glm::dmat4(view_projection), width, height);
 }
@@ -154,17 +171,8 @@ TEST(DrawnOverLayer, AMovingMeshCoversItsTrianglesNotItsWholeBox) {
       indices.insert(indices.end(), {a, a + 1, a + 2, a + 1, a + 3, a + 2});
     }
   }
-  aq_mesh mesh{};
-  mesh.positions = positions.data();
-  mesh.indices = indices.data();
-  mesh.vertex_count = static_cast<uint32_t>(positions.size() / 3);
-  mesh.index_count = static_cast<uint32_t>(indices.size());
-  const glm::mat4 identity(1.0f);
-  std::copy(glm::value_ptr(identity), glm::value_ptr(identity) + 16, mesh.model);
-  aq_scene scene{};
-  scene.struct_size = sizeof(aq_scene);
-  scene.meshes = &mesh;
-  scene.mesh_count = 1;
+  const aq_mesh mesh = mesh_of(positions, glm::mat4(1.0f), &indices);
+  const aq_scene scene = scene_of(mesh);
   view_bounds::MeshBoxes boxes;
   const CachedTargets layer;  // record() reads only its key; no GL
   DrawnOverLayer drawn;
