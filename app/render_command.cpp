@@ -259,8 +259,11 @@ int run_render(int argc, char** argv) {
                  out_dir.string().c_str());
     return kExitBadInput;
   }
-  const std::vector<std::string> inputs = graph_input_files(graph, registry);
-  if (auto s = check_output_is_not_input(frame_path(output, first), graph_path, inputs); !s.ok()) {
+  const std::vector<ReadFile> inputs = graph_input_files(graph, registry);
+  auto side_file = [&](const std::string& path) { return layers.empty() ? "" : layers_path(path); };
+  if (auto s = check_frame_outputs(frame_path(output, first), side_file(frame_path(output, first)),
+                                   inputs);
+      !s.ok()) {
     std::fprintf(stderr, "aquarelle render: %s\n", s.message().c_str());
     return kExitBadInput;
   }
@@ -317,7 +320,7 @@ int run_render(int argc, char** argv) {
   RangeHooks hooks;
   hooks.stop_requested = stop_requested;
   hooks.check_path = [&](const std::string& path) {
-    return check_output_is_not_input(path, graph_path, inputs);
+    return check_frame_outputs(path, side_file(path), inputs);
   };
   hooks.write_frame = [&](const std::string& path, const EvalOptions& options,
                           const ImageF& pixels) -> Status {

@@ -1,5 +1,6 @@
 #include "render_guards.h"
 
+#include <aquarelle/core/color.h>
 #include <aquarelle/core/graph_io.h>
 #include <aquarelle/core/image_io.h>
 
@@ -76,46 +77,16 @@ Status probe_gl_in_child(GlBackend backend, const std::string& device) {
   return Ok{};
 }
 
-std::vector<std::string> graph_input_files(const Graph& graph, const Registry& registry) {
-  std::filesystem::path graph_dir = graph.source_path.empty()
-                                        ? std::filesystem::path()
-                                        : std::filesystem::path(graph.source_path).parent_path();
-  std::vector<std::string> files;
-  for (const auto& [id, node] : graph.nodes) {
-    const NodeType* type = registry.find(node.type);
-    if (type == nullptr) continue;
-    for (const ParamInfo& info : type->params) {
-      if (info.type != AQ_PARAM_PATH) continue;
-      nlohmann::json value = param_value_or_default(node, info);
-      if (!value.is_string() || value.get<std::string>().empty()) continue;
-      std::filesystem::path path = value.get<std::string>();
-      if (path.is_relative() && !graph_dir.empty()) path = graph_dir / path;
-      files.push_back(path.lexically_normal().string());
-    }
-  }
-  return files;
+std::vector<ReadFile> graph_input_files(const Graph& graph, const Registry& registry) {
+  auto color = ColorConfig::load();  // a broken config is reported where it is used
+  return files_read_by(graph, registry, color.ok() ? &*color : nullptr);
 }
 
-Status check_output_is_not_input(const std::string& output, const std::string& graph_path,
-                                 const std::vector<std::string>& inputs) {
-  auto same = [](const std::string& a, const std::string& b) {
-    std::error_code ec;
-    if (std::filesystem::equivalent(a, b, ec) && !ec) return true;
-    const auto ca = std::filesystem::weakly_canonical(a, ec);
-    if (ec) return false;
-    const auto cb = std::filesystem::weakly_canonical(b, ec);
-    return !ec && ca == cb;
-  };
-  if (same(output, graph_path)) {
-    return make_error("-o '" + output + "' is the graph file " + graph_path +
-                      "; writing it would destroy the graph: choose another output path");
-  }
-  for (const auto& input : inputs) {
-    if (same(output, input)) {
-      return make_error("-o '" + output + "' is the input file " + input +
-                        " that the graph reads; writing it would destroy the input: choose "
-                        "another output path");
-    }
+Status check_frame_outputs(const std::string& frame_file, const std::string& layers_file,
+                           const std::vector<ReadFile>& reads) {
+  if (auto s = check_may_write("-o", frame_file, reads); !s.ok()) return s;
+  if (!layers_file.empty() && layers_file != frame_file) {
+    if (auto s = check_may_write("--layer's side file", layers_file, reads); !s.ok()) return s;
   }
   return Ok{};
 }

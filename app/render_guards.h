@@ -8,6 +8,7 @@
 #include <aquarelle/core/graph.h>
 #include <aquarelle/core/registry.h>
 #include <aquarelle/core/result.h>
+#include <aquarelle/core/write_guard.h>
 
 #include <string>
 #include <vector>
@@ -22,13 +23,14 @@ namespace aq::app {
 // the child needs). Costs about 40 ms (one extra context on llvmpipe).
 Status probe_gl_in_child(GlBackend backend, const std::string& device);
 
-// The files the graph's path parameters name, resolved as the evaluator resolves them.
-std::vector<std::string> graph_input_files(const Graph& graph, const Registry& registry);
+// Every file the render reads (aq::files_read_by, with the colour config and its LUTs).
+std::vector<ReadFile> graph_input_files(const Graph& graph, const Registry& registry);
 
-// Refuses writing `output` when it is the graph file or one of `inputs` (same file, through
-// any link or relative spelling).
-Status check_output_is_not_input(const std::string& output, const std::string& graph_path,
-                                 const std::vector<std::string>& inputs);
+// Refuses writing a frame's file, or its layers' side file (`layers_file`, empty when none),
+// onto a file the render reads or onto something that is not a regular file
+// (aq::check_may_write: the same file through any link or relative spelling).
+Status check_frame_outputs(const std::string& frame_file, const std::string& layers_file,
+                           const std::vector<ReadFile>& reads);
 
 // SIGINT/SIGTERM: the render loop stops between frames when it can; when a node or a file
 // load does not return within kStopGraceSeconds the process ends at once with exit code 130

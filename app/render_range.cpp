@@ -1,6 +1,8 @@
 // The shared frame loop of `aquarelle render` and the Python module (see render_range.h).
 #include "render_range.h"
 
+#include <aquarelle/core/graph_io.h>
+
 #include <cstdio>
 #include <filesystem>
 
@@ -24,6 +26,12 @@ RangeOutcome render_range(Evaluator& evaluator, const Graph& graph, const RangeR
     return outcome;
   };
   auto at = [](int frame) { return "frame " + std::to_string(frame) + ": "; };
+  // Checked here too (callers may build a request by hand): a range ending at INT_MAX would
+  // wrap and never end.
+  if (std::string why = frame_range_problem(request.first, request.last); !why.empty()) {
+    return fail(false, "frames " + std::to_string(request.first) + "-" +
+                           std::to_string(request.last) + ": " + why);
+  }
   const int total = request.last - request.first + 1;
   std::error_code ec;
   for (int frame = request.first; frame <= request.last; ++frame) {

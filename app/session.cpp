@@ -1,6 +1,8 @@
 // Shared set-up of the subcommands: plugins, overrides, argument parsing helpers.
 #include "session.h"
 
+#include <aquarelle/core/graph_io.h>
+
 #include <cstdio>
 #include <regex>
 
@@ -83,6 +85,9 @@ Status parse_frames(const std::string& text, int* first, int* last) {
   if (a > b) {
     return make_error("--frames '" + text + "': the first frame is after the last; write " +
                       std::to_string(b) + "-" + std::to_string(a));
+  }
+  if (std::string why = frame_range_problem(a, b); !why.empty()) {
+    return make_error("--frames '" + text + "': " + why);
   }
   *first = a;
   *last = b;

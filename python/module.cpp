@@ -12,6 +12,7 @@
 #include <aquarelle/core/color.h>
 #include <aquarelle/core/graph_io.h>
 #include <aquarelle/core/image_io.h>
+#include <aquarelle/core/write_guard.h>
 
 #include "python_graph.h"
 #include "python_renderer.h"
@@ -63,12 +64,8 @@ ImageF from_array(const py::array_t<float, py::array::c_style | py::array::force
   return image;
 }
 
-}  // namespace
-
-PYBIND11_MODULE(aquarelle, m) {
-  m.doc() =
-      "Aquarelle: node-graph compositor for stylized rendering. Read and edit graphs, list node "
-      "types, evaluate any node output as a NumPy array, render frame ranges.";
+// aquarelle.Error (a RuntimeError) and aquarelle.GraphError carrying .problems.
+void bind_errors(py::module_& m) {
   static py::exception<Failure> error(m, "Error", PyExc_RuntimeError);
   static py::exception<GraphFailure> graph_error(m, "GraphError", error.ptr());
   py::register_exception_translator([](std::exception_ptr thrown) {
@@ -82,7 +79,10 @@ PYBIND11_MODULE(aquarelle, m) {
       error(failure.what());
     }
   });
+}
 
+// Problem, Port, Param and NodeType: read-only descriptions.
+void bind_descriptions(py::module_& m) {
   py::class_<Problem>(m, "Problem", "A located problem of a graph file")
       .def_readonly("file", &Problem::file)
       .def_readonly("line", &Problem::line)
@@ -126,7 +126,10 @@ PYBIND11_MODULE(aquarelle, m) {
       .def_property_readonly("time_dependent", &NodeType::time_dependent)
       .def_property_readonly("pointwise", &NodeType::pointwise)
       .def("__repr__", [](const NodeType& t) { return "<aquarelle.NodeType " + t.name + ">"; });
+}
 
+// The installed node types, the plugin path and file validation.
+void bind_registry(py::module_& m) {
   m.def("node_types", &node_types, py::return_value_policy::reference,
         "Every installed node type (built in and plugins), by name");
   m.def("node_type", &node_type, py::arg("name"), py::return_value_policy::reference,
@@ -135,7 +138,10 @@ PYBIND11_MODULE(aquarelle, m) {
   m.def(
       "validate_file", [](const std::string& path) { return validate_file(path); }, py::arg("path"),
       "Every problem of a graph file (an empty list when it is valid)");
+}
 
+// Graph: reading, editing with the command line's checks, saving.
+void bind_graph(py::module_& m) {
   py::class_<PyGraph>(m, "Graph", "A graph: nodes, links, parameters, settings and output")
       .def_static("load", &PyGraph::load, py::arg("path"),
                   "Reads a graph file; GraphError with .problems when it is invalid")
@@ -166,7 +172,10 @@ PYBIND11_MODULE(aquarelle, m) {
       .def_property("precision", &PyGraph::precision, &PyGraph::set_precision)
       .def_property("quality", &PyGraph::quality, &PyGraph::set_quality)
       .def_property_readonly("path", &PyGraph::path);
+}
 
+// Renderer: a headless GL context that evaluates and renders.
+void bind_renderer(py::module_& m) {
   py::class_<PyRenderer>(m, "Renderer", "A headless GL context with an evaluator")
       .def(py::init<const std::string&, const std::string&>(), py::arg("gl") = "auto",
            py::arg("device") = "auto")
@@ -187,7 +196,10 @@ PYBIND11_MODULE(aquarelle, m) {
            "number of frames written")
       .def("last_timings", &PyRenderer::last_timings,
            "[(node, type, gpu ms, cpu ms, cached)] of the last evaluation");
+}
 
+// Image files as NumPy arrays; writing goes through the shared write guard.
+void bind_images(py::module_& m) {
   m.def(
       "read_image",
       [](const std::string& path) {
@@ -203,6 +215,7 @@ PYBIND11_MODULE(aquarelle, m) {
       [](const std::string& path,
          const py::array_t<float, py::array::c_style | py::array::forcecast>& pixels,
          bool float_data) {
+        if (auto s = check_may_write("write_image", path); !s.ok()) throw Failure(s.message());
         WriteOptions options;
         options.float_data = float_data;
         if (auto s = write_image(path, from_array(pixels), options); !s.ok()) {
@@ -212,6 +225,20 @@ PYBIND11_MODULE(aquarelle, m) {
       py::arg("path"), py::arg("pixels"), py::arg("float_data") = false,
       "Writes H x W x 1|3|4 float pixels (row 0 at the top) atomically: EXR keeps them linear; "
       "PNG/JPEG/TIFF store them as display values in [0, 1]");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(aquarelle, m) {
+  m.doc() =
+      "Aquarelle: node-graph compositor for stylized rendering. Read and edit graphs, list node "
+      "types, evaluate any node output as a NumPy array, render frame ranges.";
+  bind_errors(m);
+  bind_descriptions(m);
+  bind_registry(m);
+  bind_graph(m);
+  bind_renderer(m);
+  bind_images(m);
 }
 
 }  // namespace aq::python

@@ -1,6 +1,8 @@
 // Node types and graph editing for the Python module (see python_graph.h).
 #include "python_graph.h"
 
+#include "python_values.h"
+
 #include <pybind11/stl.h>
 
 #include <aquarelle/core/plugin_loader.h>
@@ -45,29 +47,6 @@ std::vector<std::string> plugin_path() {
 }
 
 namespace {
-
-nlohmann::json json_from_python(const py::handle& value) {
-  if (value.is_none()) return nullptr;
-  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
-  if (py::isinstance<py::int_>(value)) return value.cast<int64_t>();
-  if (py::isinstance<py::float_>(value)) return value.cast<double>();
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  if (py::isinstance<py::dict>(value)) {
-    nlohmann::json object = nlohmann::json::object();
-    for (auto item : value.cast<py::dict>()) {
-      object[py::str(item.first).cast<std::string>()] = json_from_python(item.second);
-    }
-    return object;
-  }
-  if (py::hasattr(value, "__iter__")) {  // list, tuple, NumPy array
-    nlohmann::json array = nlohmann::json::array();
-    for (auto item : value) array.push_back(json_from_python(item));
-    return array;
-  }
-  if (py::hasattr(value, "__float__")) return value.cast<double>();  // NumPy scalars
-  throw Failure("cannot use a Python " + std::string(py::str(value.get_type().attr("__name__"))) +
-                " as a parameter value: give a number, bool, string or list");
-}
 
 py::object from_json(const nlohmann::json& value) {
   if (value.is_null()) return py::none();
@@ -232,7 +211,9 @@ py::object PyGraph::get(const std::string& id, const std::string& param) const {
 
 void PyGraph::set(const std::string& id, const std::string& param, const py::object& value) {
   // The command line's --set, so the checks and messages are the same.
-  const std::string assignment = id + "." + param + "=" + json_from_python(value).dump();
+  const nlohmann::json converted = parameter_value_from_python(
+      value, "node " + quote_for_message(id) + ", parameter " + quote_for_message(param));
+  const std::string assignment = id + "." + param + "=" + converted.dump();
   std::optional<nlohmann::json> previous;
   if (auto found = graph_.nodes.find(id); found != graph_.nodes.end()) {
     if (auto it = found->second.params.find(param); it != found->second.params.end()) {
@@ -241,7 +222,7 @@ void PyGraph::set(const std::string& id, const std::string& param, const py::obj
   }
   check_status(app::apply_setting(graph_, registry(), assignment));
   // --set keeps text that is not JSON as a string; here the value is always JSON.
-  graph_.nodes.at(id).params[param] = json_from_python(value);
+  graph_.nodes.at(id).params[param] = converted;
   auto bad = validate_graph(graph_, registry());
   std::vector<Problem> mine;
   for (auto& p : bad) {

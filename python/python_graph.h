@@ -7,6 +7,7 @@
 
 #include <aquarelle/core/graph.h>
 #include <aquarelle/core/graph_io.h>
+#include <aquarelle/core/message_text.h>
 #include <aquarelle/core/registry.h>
 
 #include <map>
@@ -17,12 +18,20 @@
 
 namespace aq::python {
 
+// One-line messages: control characters in them (a name holding a newline or ESC) are
+// escaped, as in every message of the command line.
 struct Failure : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit Failure(const std::string& message) : std::runtime_error(escape_for_message(message)) {}
+
+ protected:
+  struct Lines {};
+  Failure(const std::string& message, Lines)
+      : std::runtime_error(escape_for_message(message, true)) {}
 };
-// An invalid graph: the message lists every problem, `problems` keeps them as values.
+// An invalid graph: the message lists every problem (one a line), `problems` keeps them.
 struct GraphFailure : Failure {
-  GraphFailure(const std::vector<Problem>& list) : Failure(format_problems(list)), problems(list) {}
+  GraphFailure(const std::vector<Problem>& list)
+      : Failure(format_problems(list), Lines{}), problems(list) {}
   std::vector<Problem> problems;
 };
 

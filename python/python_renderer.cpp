@@ -5,6 +5,7 @@
 #include <aquarelle/core/color.h>
 #include <aquarelle/core/display_transform.h>
 #include <aquarelle/core/image_io.h>
+#include <aquarelle/core/write_guard.h>
 
 #include <filesystem>
 
@@ -92,6 +93,16 @@ int PyRenderer::render(const PyGraph& graph, const std::string& output,
   request.eval.retain_outputs = false;
   request.transform = transform ? &*transform : nullptr;
   app::RangeHooks hooks;
+  // The command line's rule: never write onto a file the graph reads, nor onto a FIFO.
+  auto color = ColorConfig::load();
+  const std::vector<ReadFile> reads =
+      files_read_by(graph.graph(), registry(), color.ok() ? &*color : nullptr);
+  if (auto s = check_may_write("output", frame_path(output, first), reads); !s.ok()) {
+    throw Failure(s.message());
+  }
+  hooks.check_path = [&](const std::string& path) {
+    return check_may_write("output", path, reads);
+  };
   // Ctrl-C between frames: the pending KeyboardInterrupt is raised once the range stops.
   hooks.stop_requested = [] { return PyErr_CheckSignals() != 0; };
   if (!progress.is_none()) {

@@ -49,13 +49,28 @@ fail() {
   echo "slurm-render: $*" >&2
   exit 1
 }
-[[ "$frames" =~ ^(-?[0-9]+)-(-?[0-9]+)$ ]] || fail "--frames A-B is required, e.g. --frames 1-48"
-first="${BASH_REMATCH[1]}"
-last="${BASH_REMATCH[2]}"
-[ "$first" -le "$last" ] || fail "--frames $frames: the first frame is after the last"
-[[ "$chunk" =~ ^[0-9]+$ ]] && [ "$chunk" -ge 1 ] || fail "--chunk N (frames per task, >= 1) is required"
-[[ "$output" == *"#"* ]] || fail "OUT '$output' needs #### for the frame number, e.g. out/####.exr"
-[ -f "$graph" ] || fail "graph file '$graph' does not exist"
+# Values from the command line reach messages and the job scripts only quoted (%q: a newline
+# in a file name cannot start a line of its own) and numbers only as decimal: bash arithmetic
+# reads 0240 as octal (160), so every number is rebuilt with 10# from at most 7 digits.
+quoted() { printf '%q' "$1"; }
+decimal() { # SIGN DIGITS -> the decimal number
+  local value=$((10#$2))
+  [ "$1" = "-" ] && value=$((-value))
+  echo "$value"
+}
+[[ "$frames" =~ ^(-?)([0-9]{1,7})-(-?)([0-9]{1,7})$ ]] ||
+  fail "--frames $(quoted "$frames"): A-B is required, frame numbers of at most 7 digits, e.g. --frames 1-48"
+first="$(decimal "${BASH_REMATCH[1]}" "${BASH_REMATCH[2]}")"
+last="$(decimal "${BASH_REMATCH[3]}" "${BASH_REMATCH[4]}")"
+[ "$first" -le "$last" ] || fail "--frames $(quoted "$frames"): the first frame is after the last"
+[[ "$chunk" =~ ^[0-9]{1,7}$ ]] && chunk=$((10#$chunk)) && [ "$chunk" -ge 1 ] ||
+  fail "--chunk N (frames per task, 1..9999999) is required"
+if [ -n "$array_limit" ]; then
+  [[ "$array_limit" =~ ^%([0-9]{1,7})$ ]] && array_limit="%$((10#${BASH_REMATCH[1]}))" ||
+    fail "--array-limit=K: K must be a whole number"
+fi
+[[ "$output" == *"#"* ]] || fail "OUT $(quoted "$output") needs #### for the frame number, e.g. out/####.exr"
+[ -f "$graph" ] || fail "graph file $(quoted "$graph") does not exist or is not a regular file"
 command -v sbatch >/dev/null || fail "sbatch not found: run this on a Slurm login node (apt-get install slurm-client)"
 
 # Tasks run on other machines: every path they see is absolute.
@@ -65,20 +80,22 @@ if [ -z "$aquarelle" ]; then
   aquarelle="$(command -v aquarelle || true)"
   [ -n "$aquarelle" ] || aquarelle="$here/build/app/aquarelle"
 fi
-[ -x "$aquarelle" ] || fail "no aquarelle executable at '$aquarelle' (build it, or set AQUARELLE)"
-aquarelle="$(cd "$(dirname "$aquarelle")" && pwd)/$(basename "$aquarelle")"
-graph="$(cd "$(dirname "$graph")" && pwd)/$(basename "$graph")"
-out_dir="$(dirname "$output")"
-mkdir -p "$out_dir"
-out_dir="$(cd "$out_dir" && pwd)"
-output="$out_dir/$(basename "$output")"
+[ -x "$aquarelle" ] || fail "no aquarelle executable at $(quoted "$aquarelle") (build it, or set AQUARELLE)"
+# Made absolute by prefixing the working folder, not through $(dirname/basename): command
+# substitution drops a name's trailing newlines and would name another file.
+[[ "$aquarelle" == /* ]] || aquarelle="$PWD/$aquarelle"
+[[ "$graph" == /* ]] || graph="$PWD/$graph"
+[[ "$output" == /* ]] || output="$PWD/$output"
+out_dir="${output%/*}"
+out_dir="${out_dir:-/}"
+mkdir -p -- "$out_dir"
 logs="${AQ_SLURM_LOGS:-$out_dir/slurm-logs}"
-mkdir -p "$logs"
-logs="$(cd "$logs" && pwd)"
+[[ "$logs" == /* ]] || logs="$PWD/$logs"
+mkdir -p -- "$logs"
 
 tasks=$(((last - first + chunk) / chunk))
 quoted_render_options=""
-for option in "${render_options[@]}"; do quoted_render_options+=" $(printf '%q' "$option")"; done
+for option in "${render_options[@]}"; do quoted_render_options+=" $(quoted "$option")"; done
 
 # The job scripts are written beside the logs, so what ran can be read and re-submitted.
 stamp="$(date +%Y%m%d-%H%M%S)-$$"
@@ -86,7 +103,7 @@ render_script="$logs/render-$stamp.sbatch"
 check_script="$logs/check-$stamp.sbatch"
 cat >"$render_script" <<EOF
 #!/usr/bin/env bash
-# One chunk of frames $first-$last of $graph ($chunk per task), from SLURM_ARRAY_TASK_ID.
+# One chunk of frames $first-$last of $(quoted "$graph") ($chunk per task), from SLURM_ARRAY_TASK_ID.
 set -euo pipefail
 task=\${SLURM_ARRAY_TASK_ID:?run this as a Slurm array task}
 chunk_first=\$(($first + task * $chunk))
@@ -131,8 +148,8 @@ check_job=$(sbatch --parsable --job-name=aq-check --dependency="afterany:$render
   --kill-on-invalid-dep=no --output="$logs/check-%j.log" "${sbatch_options[@]}" "$check_script")
 check_job="${check_job%%;*}"
 
-echo "slurm-render: frames $first-$last of $graph in $tasks task(s) of $chunk"
-echo "  render array job $render_job  (logs: $logs/render-${render_job}_<task>.log)"
-echo "  check job        $check_job  (log:  $logs/check-$check_job.log)"
+echo "slurm-render: frames $first-$last of $(quoted "$graph") in $tasks task(s) of $chunk"
+echo "  render array job $render_job  (logs: $(quoted "$logs")/render-${render_job}_<task>.log)"
+echo "  check job        $check_job  (log:  $(quoted "$logs")/check-$check_job.log)"
 echo "  follow with: squeue -j $render_job,$check_job"
 echo "$render_job $check_job" >"$logs/last-submission"

@@ -200,17 +200,20 @@ int replot(const Arguments& args) {
     std::fprintf(stderr, "aquarelle bench: --plot-from needs --plot OUT.png\n");
     return kExitBadInput;
   }
-  std::ifstream in(args.plot_from);
-  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
-  if (!in.is_open() || report.is_discarded()) {
-    std::fprintf(stderr, "aquarelle bench: --plot-from %s: cannot read it as JSON\n",
-                 args.plot_from.c_str());
+  if (auto s = check_bench_outputs(nullptr, Registry(), "", args.plot, args.plot_from); !s.ok()) {
+    std::fprintf(stderr, "aquarelle bench: %s\n", s.message().c_str());
     return kExitBadInput;
   }
+  auto read = read_report_file(args.plot_from);
+  if (!read.ok()) {
+    std::fprintf(stderr, "aquarelle bench: %s\n", read.message().c_str());
+    return kExitBadInput;
+  }
+  const nlohmann::json& report = *read;
   auto sweeps = sweeps_from_report(report);
   if (!sweeps.ok()) {
-    std::fprintf(stderr, "aquarelle bench: --plot-from %s: %s\n", args.plot_from.c_str(),
-                 sweeps.message().c_str());
+    std::fprintf(stderr, "aquarelle bench: --plot-from %s: %s\n",
+                 quote_for_message(args.plot_from).c_str(), sweeps.message().c_str());
     return kExitBadInput;
   }
   std::string title = report.value("graph", std::string());
@@ -272,6 +275,10 @@ int run_bench(int argc, char** argv) {
       std::fprintf(stderr, "aquarelle bench: --set: %s\n", s.message().c_str());
       return kExitBadInput;
     }
+  }
+  if (auto s = check_bench_outputs(&graph, registry, args.csv, args.plot, ""); !s.ok()) {
+    std::fprintf(stderr, "aquarelle bench: %s\n", s.message().c_str());
+    return kExitBadInput;
   }
 
   auto context = create_headless_context(*backend, args.gl_device);

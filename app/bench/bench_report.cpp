@@ -1,6 +1,9 @@
 // Text, JSON and CSV renderings of a `aquarelle bench` report (see bench_report.h).
 #include "bench_report.h"
 
+#include <aquarelle/core/write_guard.h>
+#include <aquarelle/sdk/regular_file.hpp>
+
 #include <unistd.h>
 #include <algorithm>
 #include <cmath>
@@ -263,6 +266,37 @@ Status write_report_csv(const BenchReport& r, const std::string& path) {
     return make_error("cannot write '" + path + "': " + ec.message());
   }
   return Ok{};
+}
+
+Status check_bench_outputs(const Graph* graph, const Registry& registry, const std::string& csv,
+                           const std::string& plot, const std::string& plot_from) {
+  std::vector<ReadFile> reads;
+  if (graph != nullptr) reads = files_read_by(*graph, registry);
+  if (!plot_from.empty()) reads.push_back({plot_from, "the report --plot-from reads"});
+  if (!csv.empty()) {
+    if (auto s = check_may_write("--csv", csv, reads); !s.ok()) return s;
+  }
+  if (!plot.empty()) {
+    if (auto s = check_may_write("--plot", plot, reads); !s.ok()) return s;
+    if (!csv.empty() && check_may_write("--plot", plot, {{csv, "--csv"}}).ok() == false) {
+      return make_error("--plot and --csv name the same file " + quote_for_message(plot) +
+                        ": give each its own");
+    }
+  }
+  return Ok{};
+}
+
+Result<nlohmann::json> read_report_file(const std::string& path) {
+  constexpr uint64_t kMaxReportBytes = 64ull << 20;
+  std::string text, why;
+  if (!files::read_regular_file(path, kMaxReportBytes, &text, &why)) {
+    return make_error("--plot-from " + quote_for_message(path) + ": " + why);
+  }
+  nlohmann::json report = nlohmann::json::parse(text, nullptr, false);
+  if (report.is_discarded()) {
+    return make_error("--plot-from " + quote_for_message(path) + ": cannot read it as JSON");
+  }
+  return report;
 }
 
 }  // namespace aq::app

@@ -2,6 +2,8 @@
 // (`--json`) and the CSV of every measurement (`--csv`).
 #pragma once
 
+#include <aquarelle/core/graph.h>
+#include <aquarelle/core/registry.h>
 #include <aquarelle/core/result.h>
 
 #include <nlohmann/json.hpp>
@@ -41,5 +43,15 @@ nlohmann::json report_json(const BenchReport& report);
 void print_report(const BenchReport& report, std::FILE* out);
 // One row per measurement (copy pass, node timings of both modes, sweep points).
 Status write_report_csv(const BenchReport& report, const std::string& path);
+
+// Before anything is measured: --csv and --plot (either may be empty) may be written, i.e.
+// neither is the graph, a file it reads, --plot-from's report, the other one or a special file
+// (aq::check_may_write). `graph` is null for --plot-from.
+Status check_bench_outputs(const Graph* graph, const Registry& registry, const std::string& csv,
+                           const std::string& plot, const std::string& plot_from);
+
+// A saved `--json` report, for --plot-from: a regular file (a FIFO would block, a folder
+// throws) of at most 64 MiB, parsed as JSON; errors name the file.
+Result<nlohmann::json> read_report_file(const std::string& path);
 
 }  // namespace aq::app

@@ -233,7 +233,7 @@ Status Document::open(const std::string& path) {
   // the user can fix it here.
   if (!nlohmann::json::accept(text.str())) {
     ReadResult read = read_graph_text(text.str(), registry_, path);
-    return make_error("cannot read '" + path + "': " + format_problems(read.problems));
+    return make_error_lines("cannot read '" + path + "': " + format_problems(read.problems));
   }
   ReadResult read = read_graph_text(text.str(), registry_, path);
   graph_ = std::move(read.graph);

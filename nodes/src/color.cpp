@@ -117,10 +117,9 @@ void collect_file_transforms(const OCIO::ConstTransformRcPtr& transform,
   }
 }
 
-// OCIO opens a config's LUT files only when a processor needs them, and would block on a FIFO
-// or read /dev/zero without end as it would for the config itself: every file named by a
-// colour space, look or view transform must resolve to a regular file before it is used.
-Status check_lut_files(const OCIO::Config& config) {
+// Every LUT file the config names (colour spaces, looks, view transforms), resolved as OCIO
+// resolves it; names OCIO cannot resolve are left out (OCIO reports them if ever needed).
+std::vector<std::string> lut_files(const OCIO::Config& config) {
   std::vector<std::string> sources;
   for (int i = 0; i < config.getNumColorSpaces(); ++i) {
     auto space = config.getColorSpace(config.getColorSpaceNameByIndex(i));
@@ -141,13 +140,21 @@ Status check_lut_files(const OCIO::Config& config) {
     collect_file_transforms(view->getTransform(OCIO::VIEWTRANSFORM_DIR_FROM_REFERENCE), &sources);
   }
   auto context = config.getCurrentContext();
+  std::vector<std::string> resolved;
   for (const std::string& source : sources) {
-    std::string resolved;
     try {
-      resolved = context->resolveFileLocation(source.c_str());
+      resolved.emplace_back(context->resolveFileLocation(source.c_str()));
     } catch (const OCIO::Exception&) {
-      continue;  // missing: OCIO says so, by name, if a transform ever needs it
     }
+  }
+  return resolved;
+}
+
+// OCIO opens a config's LUT files only when a processor needs them, and would block on a FIFO
+// or read /dev/zero without end as it would for the config itself: every file named by a
+// colour space, look or view transform must resolve to a regular file before it is used.
+Status check_lut_files(const OCIO::Config& config) {
+  for (const std::string& resolved : lut_files(config)) {
     if (std::string why = files::regular_file_problem(resolved); !why.empty()) {
       return make_error("its LUT file " + resolved + ": " + why);
     }
@@ -185,6 +192,12 @@ Result<ColorConfig> ColorConfig::load_file(const std::string& path) {
 
 const std::string& ColorConfig::path() const {
   return data_->path;
+}
+
+std::vector<std::string> ColorConfig::files() const {
+  std::vector<std::string> files = lut_files(*data_->config);
+  files.insert(files.begin(), data_->path);
+  return files;
 }
 
 std::string ColorConfig::working_space() const {

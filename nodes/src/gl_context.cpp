@@ -109,7 +109,7 @@ Result<std::unique_ptr<GlContext>> create_headless_context(GlBackend backend,
   if (egl.ok()) return egl;
   auto osmesa = create_osmesa_context();
   if (osmesa.ok()) return osmesa;
-  return make_error("no OpenGL 4.5 core context could be created.\n  EGL: " + egl.message() +
+  return make_error_lines("no OpenGL 4.5 core context could be created.\n  EGL: " + egl.message() +
                     "\n  OSMesa: " + osmesa.message() +
                     "\n  Install Mesa's EGL and OSMesa drivers (apt-get install libegl1 "
                     "libegl-mesa0 libosmesa6) or run on a machine with a GPU driver.");

@@ -1,6 +1,7 @@
 // Formatting graph problems the way compilers format diagnostics, so editors and terminals
 // can jump to the place: "graph.json:12:7: node 'blur', parameter 'sigma': message".
 #include <aquarelle/core/graph_io.h>
+#include <aquarelle/core/message_text.h>
 
 #include "json_locator.h"
 
@@ -21,23 +22,25 @@ const char* field_kind(const Problem& problem) {
 }  // namespace
 
 std::string format_problem(const Problem& problem) {
-  std::string place = problem.file;
+  // Every part is user text (a file name, a node id, a key): escaped, so a newline in one
+  // cannot forge a `file:line:col: ...` line of its own.
+  std::string place = escape_for_message(problem.file);
   if (problem.line > 0) {
     place += (place.empty() ? "" : ":") + std::to_string(problem.line);
     if (problem.column > 0) place += ":" + std::to_string(problem.column);
   } else if (!problem.pointer.empty()) {
     // Without a line (a model validated in memory) the pointer is the place.
-    place += (place.empty() ? "" : ": ") + problem.pointer;
+    place += (place.empty() ? "" : ": ") + escape_for_message(problem.pointer);
   }
   std::string subject;
-  if (!problem.node.empty()) subject = "node '" + problem.node + "'";
+  if (!problem.node.empty()) subject = "node " + quote_for_message(problem.node);
   if (!problem.field.empty()) {
-    subject += (subject.empty() ? "" : ", ") + std::string(field_kind(problem)) + " '" +
-               problem.field + "'";
+    subject += (subject.empty() ? "" : ", ") + std::string(field_kind(problem)) + " " +
+               quote_for_message(problem.field);
   }
   std::string text = place;
   if (!subject.empty()) text += (text.empty() ? "" : ": ") + subject;
-  text += (text.empty() ? "" : ": ") + problem.message;
+  text += (text.empty() ? "" : ": ") + escape_for_message(problem.message);
   return text;
 }
 

@@ -139,11 +139,11 @@ void check_settings(const Settings& settings, std::vector<Problem>* problems) {
     problems->push_back(problem_at(
         "/settings/fps", "fps " + number_text(settings.fps) + " must be a positive number"));
   }
-  if (settings.first_frame > settings.last_frame) {
+  if (std::string why = frame_range_problem(settings.first_frame, settings.last_frame);
+      !why.empty()) {
     problems->push_back(
         problem_at("/settings/frames", "frames [" + std::to_string(settings.first_frame) + ", " +
-                                           std::to_string(settings.last_frame) +
-                                           "]: the first frame must not come after the last"));
+                                           std::to_string(settings.last_frame) + "]: " + why));
   }
   if (settings.precision != "half" && settings.precision != "float") {
     problems->push_back(
@@ -508,6 +508,19 @@ nlohmann::json param_value_or_default(const Node& node, const ParamInfo& param) 
           {param.default_value[0], param.default_value[1], param.default_value[2]});
   }
   return nlohmann::json();
+}
+
+std::string frame_range_problem(long long first, long long last) {
+  if (first > last) return "the first frame must not come after the last";
+  if (first < -kMaxFrameNumber || last > kMaxFrameNumber) {
+    return "frame numbers must lie in -" + std::to_string(kMaxFrameNumber) + ".." +
+           std::to_string(kMaxFrameNumber);
+  }
+  if (last - first + 1 > kMaxFrameCount) {
+    return "a range holds at most " + std::to_string(kMaxFrameCount) +
+           " frames; render it in parts";
+  }
+  return "";
 }
 
 }  // namespace aq

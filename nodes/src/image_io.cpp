@@ -147,6 +147,14 @@ Result<std::unique_ptr<OIIO::ImageInput>> open_input(const std::string& path,
     return make_error("cannot read image " + path +
                       ": the file is empty (0 bytes); re-export or re-download it");
   }
+  // Format probes read a file that no reader recognises, sometimes whole (a 200 GB sparse
+  // file named .png): no image this large could be decoded within the budget anyway.
+  if (const uint64_t size = files::regular_file_size(path); size > files::memory_budget_bytes()) {
+    return make_error("cannot read image " + path + ": it is " + std::to_string(size >> 20) +
+                      " MiB, more than the memory budget of " +
+                      std::to_string(files::memory_budget_bytes() >> 20) +
+                      " MiB (raise AQUARELLE_MEMORY_BUDGET_MB if it is genuine)");
+  }
   if (auto ok = check_exr_header(path); !ok) return ok.error();
   if (auto ok = check_png_chunks(path); !ok) return ok.error();
   if (auto ok = check_jpeg_iptc(path); !ok) return ok.error();
@@ -200,8 +208,19 @@ Status check_spec(const std::string& path, const OIIO::ImageSpec& spec) {
     return make_error("cannot read image " + path + ": it has " + std::to_string(spec.nchannels) +
                       " channels; 1 to " + std::to_string(kMaxChannels) + " are supported");
   }
-  return check_declared_size(path, lowercase_extension(path), files::regular_file_size(path),
-                             spec.width, spec.height, spec.nchannels, shown.width, shown.height);
+  const std::string ext = lowercase_extension(path);
+  const uint64_t file_bytes = files::regular_file_size(path);
+  if (ext == "tif" || ext == "tiff") {
+    const int bits =
+        spec.get_int_attribute("oiio:BitsPerSample", static_cast<int>(spec.format.size()) * 8);
+    if (auto ok = check_tiff_length(path, spec.get_string_attribute("compression"), file_bytes,
+                                    spec.width, spec.height, spec.nchannels, bits);
+        !ok) {
+      return ok;
+    }
+  }
+  return check_declared_size(path, ext, file_bytes, spec.width, spec.height, spec.nchannels,
+                             shown.width, shown.height, static_cast<int>(spec.format.size()));
 }
 
 }  // namespace
@@ -244,8 +263,30 @@ size_t replace_non_finite(std::vector<float>& values) {
 
 }  // namespace
 
+namespace {
+Result<ImageF> read_image_within_budget(const std::string& path, const ColorConfig& config,
+                                        const std::string& colorspace_override,
+                                        ImageReadNotes* notes);
+}  // namespace
+
 Result<ImageF> read_image(const std::string& path, const ColorConfig& config,
                           const std::string& colorspace_override, ImageReadNotes* notes) {
+  // The budget is checked before decoding; what the machine refuses below it (a ulimit, other
+  // processes) is still an error naming the file, never an uncaught exception.
+  try {
+    return read_image_within_budget(path, config, colorspace_override, notes);
+  } catch (const std::bad_alloc&) {
+    return make_error("cannot read image " + path +
+                      ": out of memory while decoding it (lower AQUARELLE_MEMORY_BUDGET_MB so "
+                      "such files are refused, or free memory)");
+  }
+}
+
+namespace {
+
+Result<ImageF> read_image_within_budget(const std::string& path, const ColorConfig& config,
+                                        const std::string& colorspace_override,
+                                        ImageReadNotes* notes) {
   // Ask for straight alpha as stored, so colour is linearised before alpha is associated.
   OIIO::ImageSpec hints;
   hints.attribute("oiio:UnassociatedAlpha", 1);
@@ -328,6 +369,8 @@ Result<ImageF> read_image(const std::string& path, const ColorConfig& config,
   replace_non_finite(image.pixels);
   return image;
 }
+
+}  // namespace
 
 bool is_display_referred_format(const std::string& path) {
   const std::string ext = lowercase_extension(path);

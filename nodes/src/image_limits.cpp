@@ -55,14 +55,30 @@ Result<std::unique_ptr<HeaderFile>> open_header(const std::string& path) {
 
 }  // namespace
 
-uint64_t decoded_image_bytes(int w, int h, int n, int full_w, int full_h) {
+uint64_t decoded_image_bytes(int w, int h, int n, int full_w, int full_h, int native_bytes) {
   const auto area = static_cast<uint64_t>(w) * static_cast<uint64_t>(h);
   const auto shown = static_cast<uint64_t>(full_w) * static_cast<uint64_t>(full_h);
-  return area * static_cast<uint64_t>(n) * sizeof(float) + shown * 4 * sizeof(float);
+  const auto per_value = sizeof(float) + static_cast<uint64_t>(std::max(native_bytes, 1));
+  return area * static_cast<uint64_t>(n) * per_value + 2 * shown * 4 * sizeof(float);
+}
+
+Status check_tiff_length(const std::string& path, const std::string& compression,
+                         uint64_t file_bytes, int w, int h, int n, int bits_per_sample) {
+  if (!(compression.empty() || compression == "none")) return Ok{};
+  const uint64_t row_bits = static_cast<uint64_t>(w) * static_cast<uint64_t>(n) *
+                            static_cast<uint64_t>(std::max(bits_per_sample, 1));
+  const uint64_t pixel_bytes = (row_bits + 7) / 8 * static_cast<uint64_t>(h);
+  if (pixel_bytes > file_bytes) {
+    return make_error("cannot read image " + path + ": it declares " + std::to_string(w) + "x" +
+                      std::to_string(h) + " uncompressed pixels (" + std::to_string(pixel_bytes) +
+                      " bytes) but the file holds only " + std::to_string(file_bytes) +
+                      " bytes: it is truncated; re-export it");
+  }
+  return Ok{};
 }
 
 Status check_declared_size(const std::string& path, const std::string& ext, uint64_t file_bytes,
-                           int w, int h, int n, int full_w, int full_h) {
+                           int w, int h, int n, int full_w, int full_h, int native_bytes) {
   if (w <= 0 || h <= 0 || n <= 0 || full_w <= 0 || full_h <= 0) {
     return make_error("cannot read image " + path + ": its header declares no pixels");
   }
@@ -79,7 +95,7 @@ Status check_declared_size(const std::string& path, const std::string& ext, uint
                         " bytes (the header is corrupt or forged; re-export the image)");
     }
   }
-  const uint64_t need = decoded_image_bytes(w, h, n, full_w, full_h);
+  const uint64_t need = decoded_image_bytes(w, h, n, full_w, full_h, native_bytes);
   const uint64_t budget = files::memory_budget_bytes();
   if (need > budget) {
     return make_error("cannot read image " + path + ": decoding its " + std::to_string(w) + "x" +

@@ -13,13 +13,22 @@
 namespace aq {
 
 // Bytes that decoding a w x h image of n channels (data window) shown in a full_w x full_h
-// display window allocates while reading: the file's float pixels plus the RGBA float result.
-uint64_t decoded_image_bytes(int w, int h, int n, int full_w, int full_h);
+// display window allocates while reading and using it: the reader's native buffer
+// (`native_bytes` per channel value: 1 for 8-bit, 2 for half or 16-bit, 4 for float; OIIO's
+// PNG and TIFF readers hold the whole image), the float pixels converted from it, the RGBA
+// float result and its texture (up to RGBA float again; on llvmpipe textures live in host
+// memory).
+uint64_t decoded_image_bytes(int w, int h, int n, int full_w, int full_h, int native_bytes = 4);
 
 // Refuses a header whose declared size does not fit `file_bytes` (by the format's best
 // compression ratio, where one is known) or the memory budget. `ext` is lower case.
 Status check_declared_size(const std::string& path, const std::string& ext, uint64_t file_bytes,
-                           int w, int h, int n, int full_w, int full_h);
+                           int w, int h, int n, int full_w, int full_h, int native_bytes = 4);
+
+// An uncompressed TIFF holds every pixel: a file shorter than its declared pixels is truncated
+// (OIIO filled the missing strips with black, silently). `compression` as OIIO names it.
+Status check_tiff_length(const std::string& path, const std::string& compression,
+                         uint64_t file_bytes, int w, int h, int n, int bits_per_sample);
 
 // OpenEXR reads header attributes by their declared size before OIIO sees the file (a 28-byte
 // file declaring a 1.8 GB attribute made it allocate 1.8 GB): walks the attributes of an EXR

@@ -237,10 +237,6 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
     varies[id] = planned.varies;
     planned.deferred = deferred.count(id) != 0;
     planned.producer = planned.deferred && type->fusable == nullptr;
-    if (options.formats_by_need && !planned.deferred)
-      planned.stored_formats =
-          stored_formats(graph, registry, order, id, *type, *target, options.hdr8, options.blocks);
-    plan.nodes.push_back(planned);
 
     // The chain of deferred nodes feeding this one through its first input.
     std::vector<std::string> chain;
@@ -253,6 +249,16 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
       }
     }
     chain.push_back(id);
+    // A fused pass is one shader holding every stage: its size, and the driver's compile
+    // time (worse than linear: a 1,000-node chain took over a minute), grow with the chain.
+    // A long chain is cut into passes of at most kMaxFusedStages stages instead.
+    if (planned.deferred && !planned.producer && chain.size() >= kMaxFusedStages) {
+      planned.deferred = false;
+    }
+    if (options.formats_by_need && !planned.deferred)
+      planned.stored_formats =
+          stored_formats(graph, registry, order, id, *type, *target, options.hdr8, options.blocks);
+    plan.nodes.push_back(planned);
     if (planned.deferred) {
       chain_of[id] = std::move(chain);
       continue;

@@ -1,5 +1,6 @@
 // PluginSet: dlopen's plugins from the plugin path and registers their node types.
 #include <aquarelle/core/plugin_loader.h>
+#include <aquarelle/sdk/regular_file.hpp>
 
 #include <dlfcn.h>
 #include <unistd.h>
@@ -32,6 +33,12 @@ PluginSet::PluginSet(PluginSet&&) noexcept = default;
 PluginSet& PluginSet::operator=(PluginSet&&) noexcept = default;
 
 bool PluginSet::load_file(const std::string& path, Registry& registry, std::string* why) {
+  // dlopen blocks forever on a FIFO named *.so and reads a device without end: only regular
+  // files are candidates (links are followed, as dlopen would).
+  if (std::string problem = files::regular_file_problem(path); !problem.empty()) {
+    *why = "cannot be opened: " + problem;
+    return false;
+  }
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (handle == nullptr) {
     const char* error = dlerror();

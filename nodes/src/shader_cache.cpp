@@ -120,7 +120,7 @@ Result<gl::Shader> compile(GLenum stage, const Expanded& source) {
   glGetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &length);
   std::string log(static_cast<size_t>(std::max(length, 1)), '\0');
   glGetShaderInfoLog(shader.get(), length, nullptr, log.data());
-  return make_error("shader does not compile:\n" + map_log(log.c_str(), source.files));
+  return make_error_lines("shader does not compile:\n" + map_log(log.c_str(), source.files));
 }
 
 }  // namespace

@@ -590,6 +590,138 @@ std::string check_mesh_file_bytes(const std::string& ext, std::string_view bytes
   if (ext == "gltf") return check_gltf_json(bytes, folder, -1, budget);
   if (ext == "glb") return check_glb(bytes, folder, budget);
   if (ext == "fbx") return check_fbx(bytes, file_size, budget);
+  if (ext == "obj") return check_obj(bytes, budget);
+  return "";
+}
+
+}  // namespace scene
+
+namespace scene {
+
+std::string check_mesh_file_size(uint64_t file_size, uint64_t budget) {
+  if (times(file_size, kFileBytesInMemory) <= budget) return "";
+  return "it is " + mib(file_size) + "; reading a mesh file of that size needs more than the " +
+         "memory budget of " + mib(budget) +
+         " (split the mesh, or raise AQUARELLE_MEMORY_BUDGET_MB)";
+}
+
+uint64_t count_obj_meshes(std::string_view bytes) {
+  uint64_t meshes = 0;
+  size_t at = 0;
+  while (at < bytes.size()) {
+    size_t eol = bytes.find('\n', at);
+    if (eol == std::string_view::npos) eol = bytes.size();
+    const std::string_view line = bytes.substr(at, eol - at);
+    at = eol + 1;
+    if (line.size() >= 2 && (line[0] == 'o' || line[0] == 'g') &&
+        (line[1] == ' ' || line[1] == '\t')) {
+      ++meshes;
+    } else if (line.rfind("usemtl", 0) == 0) {
+      ++meshes;
+    }
+  }
+  return meshes;
+}
+
+std::string obj_meshes_problem(uint64_t meshes, uint64_t budget) {
+  // Assimp's cost per mesh of an OBJ (its aiMesh, material and node), measured about 10 KB.
+  constexpr uint64_t kBytesPerMesh = 16 << 10;
+  if (meshes > kMaxObjMeshes || times(meshes, kBytesPerMesh) > budget) {
+    return "it declares " + std::to_string(meshes) + " objects, groups or material changes; at " +
+           "most " + std::to_string(kMaxObjMeshes) + " are read (merge them in the modelling tool)";
+  }
+  return "";
+}
+
+std::string check_obj(std::string_view bytes, uint64_t budget) {
+  return obj_meshes_problem(count_obj_meshes(bytes), budget);
+}
+
+namespace {
+
+// One PLY property: a fixed-size value, or a list (count type, item type).
+struct PlyProperty {
+  bool list = false;
+  int count_size = 0;
+  int size = 0;  // the value's, or a list item's
+};
+struct PlyElement {
+  std::string name;
+  uint64_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+// Reads a little- or big-endian unsigned count of `size` bytes.
+uint64_t decode_count(const char* bytes, int size, bool big_endian) {
+  uint64_t value = 0;
+  for (int i = 0; i < size; ++i) {
+    const int at = big_endian ? i : size - 1 - i;
+    value = (value << 8) | static_cast<unsigned char>(bytes[at]);
+  }
+  return value;
+}
+
+}  // namespace
+
+std::string check_ply_body(std::string_view header, uint64_t file_size,
+                           const std::function<bool(uint64_t, char*, size_t)>& read) {
+  const size_t end = header.find("end_header");
+  if (end == std::string_view::npos) return "";
+  size_t body = header.find('\n', end);
+  body = body == std::string_view::npos ? header.size() : body + 1;
+  std::string format = "ascii";
+  std::vector<PlyElement> elements;
+  size_t at = 0;
+  while (at < end) {
+    size_t eol = header.find('\n', at);
+    if (eol == std::string_view::npos || eol > end) eol = end;
+    const auto w = words(header.substr(at, eol - at));
+    at = eol + 1;
+    if (w.empty()) continue;
+    if (w[0] == "format" && w.size() >= 2) format = std::string(w[1]);
+    if (w[0] == "element" && w.size() >= 3) {
+      elements.push_back({std::string(w[1]), parse_count(w[2]).value_or(0), {}});
+    } else if (w[0] == "property" && !elements.empty()) {
+      if (w.size() >= 5 && w[1] == "list") {
+        elements.back().properties.push_back({true, ply_type_size(w[2]), ply_type_size(w[3])});
+      } else if (w.size() >= 3) {
+        elements.back().properties.push_back({false, 0, ply_type_size(w[1])});
+      }
+    }
+  }
+  const bool big_endian = format == "binary_big_endian";
+  uint64_t offset = body;
+  auto too_long = [&](const PlyElement& e, uint64_t count) {
+    return "a " + e.name + " element declares a list of " + std::to_string(count) +
+           " items, more than the " + std::to_string(file_size - std::min(offset, file_size)) +
+           " bytes left in the file hold (the file is truncated or forged)";
+  };
+  if (format == "ascii") {
+    // Each list item takes at least two bytes (a digit and a separator): a count token
+    // larger than what is left cannot be right. Only counts are checked, not the numbers.
+    return "";
+  }
+  for (const PlyElement& e : elements) {
+    for (uint64_t i = 0; i < e.count; ++i) {
+      for (const PlyProperty& p : e.properties) {
+        if (p.size == 0 || (p.list && p.count_size == 0)) return "";  // unknown type: Assimp's
+        if (!p.list) {
+          offset = plus(offset, static_cast<uint64_t>(p.size));
+          continue;
+        }
+        char bytes[8] = {};
+        if (!read(offset, bytes, static_cast<size_t>(p.count_size))) {
+          return "its " + e.name + " elements end before the file says (truncated)";
+        }
+        const uint64_t count = decode_count(bytes, p.count_size, big_endian);
+        offset = plus(offset, static_cast<uint64_t>(p.count_size));
+        const uint64_t items = times(count, static_cast<uint64_t>(p.size));
+        if (plus(offset, items) > file_size) return too_long(e, count);
+        offset = plus(offset, items);
+      }
+      if (offset > file_size) return "its " + e.name + " elements end before the file says";
+    }
+  }
   return "";
 }
 

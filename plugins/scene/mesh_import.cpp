@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -297,21 +298,56 @@ std::string triangulate_large_polygons(aiScene& scene) {
   return "";
 }
 
+// Reads a PLY body through a 64 KiB window for check_ply_body.
+std::function<bool(uint64_t, char*, size_t)> ply_reader(int fd) {
+  auto window = std::make_shared<std::pair<uint64_t, std::string>>(UINT64_MAX, std::string());
+  return [fd, window](uint64_t offset, char* dst, size_t n) {
+    auto& [start, bytes] = *window;
+    if (offset < start || offset + n > start + bytes.size()) {
+      bytes.resize(64 << 10);
+      const ssize_t got = ::pread(fd, bytes.data(), bytes.size(), static_cast<off_t>(offset));
+      bytes.resize(got > 0 ? static_cast<size_t>(got) : 0);
+      start = offset;
+      if (n > bytes.size()) return false;
+    }
+    std::memcpy(dst, bytes.data() + (offset - start), n);
+    return true;
+  };
+}
+
 std::string header_problem(const std::string& path, const std::string& folder) {
   const std::string ext = lowercase_extension(path);
-  if (ext != "ply" && ext != "gltf" && ext != "glb" && ext != "fbx") return "";
   const uint64_t budget = aq::files::memory_budget_bytes();
   const uint64_t size = aq::files::regular_file_size(path);
+  if (std::string why = check_mesh_file_size(size, budget); !why.empty()) return why;
+  if (ext != "ply" && ext != "gltf" && ext != "glb" && ext != "fbx" && ext != "obj") return "";
   std::string bytes, why;
   if (ext == "ply") {
     std::string header;
     const int fd = aq::files::open_regular_file(path, &why);
     if (fd < 0) return why;
     header.resize(static_cast<size_t>(std::min(size, kPlyHeaderBytes)));
-    const ssize_t got = ::read(fd, header.data(), header.size());
-    ::close(fd);
+    const ssize_t got = ::pread(fd, header.data(), header.size(), 0);
     header.resize(got > 0 ? static_cast<size_t>(got) : 0);
-    return check_ply_header(header, size, budget);
+    std::string problem = check_ply_header(header, size, budget);
+    if (problem.empty()) problem = check_ply_body(header, size, ply_reader(fd));
+    ::close(fd);
+    return problem;
+  }
+  if (ext == "obj") {  // read in chunks: the file can be large, only its lines are counted
+    const int fd = aq::files::open_regular_file(path, &why);
+    if (fd < 0) return why;
+    uint64_t meshes = 0;
+    std::string chunk(1 << 20, '\0'), carry;
+    for (ssize_t got; (got = ::read(fd, chunk.data(), chunk.size())) > 0;) {
+      carry.append(chunk.data(), static_cast<size_t>(got));
+      const size_t last = carry.rfind('\n');
+      if (last == std::string::npos) continue;
+      meshes += count_obj_meshes(std::string_view(carry).substr(0, last + 1));
+      carry.erase(0, last + 1);
+    }
+    ::close(fd);
+    return obj_meshes_problem(meshes + count_obj_meshes(carry), budget);
   }
   if (!aq::files::read_regular_file(path, budget, &bytes, &why)) return why;
   return check_mesh_file_bytes(ext, bytes, size, folder, budget);

@@ -27,6 +27,8 @@ class ColorConfig {
 
   // The file the config was read from.
   const std::string& path() const;
+  // The config file and every LUT file it names (what writers must never overwrite).
+  std::vector<std::string> files() const;
   // The scene-linear working space: the config's "scene_linear" role ("lin_rec709" in ours).
   std::string working_space() const;
   std::vector<std::string> colorspaces() const;

@@ -42,6 +42,14 @@ ReadResult read_graph_file(const std::string& path, const Registry& registry);
 // Validates a graph model (e.g. after editing); locations are JSON pointers only.
 std::vector<Problem> validate_graph(const Graph& graph, const Registry& registry);
 
+// Frame numbers lie in -kMaxFrameNumber..kMaxFrameNumber and a range holds at most
+// kMaxFrameCount frames: a range at the top of `int` would wrap around and write files
+// forever. The settings' frames (validate_graph), --frames and the renderer all check it.
+inline constexpr int kMaxFrameNumber = 9'999'999;
+inline constexpr int kMaxFrameCount = 1'000'000;
+// Empty when [first, last] is a usable range; else why not (one line).
+std::string frame_range_problem(long long first, long long last);
+
 // Canonical JSON text: keys sorted, one node per block, two-space indent, trailing newline.
 std::string write_graph_text(const Graph& graph);
 // The text the graph was read from, patched to hold `graph`: members that did not change keep

@@ -79,6 +79,9 @@ struct Plan {
   const PlannedPass* pass_of(const std::string& id) const;  // the pass that computes node id
 };
 
+// The most stages one fused pass holds (plan.cpp: longer chains are cut into several passes).
+inline constexpr size_t kMaxFusedStages = 32;
+
 struct PlanOptions {
   bool fuse_pointwise = true;
   // With fuse_pointwise: a pointwise chain runs in the last draw of an AQ_NODE_EPILOGUE node it

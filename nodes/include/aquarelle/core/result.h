@@ -2,6 +2,8 @@
 // says what went wrong, where, and how to fix it.
 #pragma once
 
+#include <aquarelle/core/message_text.h>
+
 #include <optional>
 #include <string>
 #include <utility>
@@ -38,8 +40,19 @@ class [[nodiscard]] Result {
 struct Ok {};
 using Status = Result<Ok>;
 
+// Messages are one line: control characters in them (a path or a name holding a newline or
+// an ESC sequence) are escaped; a trailing newline is dropped.
 inline Error make_error(std::string message) {
-  return Error{std::move(message)};
+  while (!message.empty() && message.back() == '\n') message.pop_back();
+  return Error{escape_for_message(message)};
+}
+
+// For the few messages made of several lines on purpose (a shader's compile log, every
+// backend's failure, a file's list of problems): control characters other than newlines are
+// escaped.
+inline Error make_error_lines(std::string message) {
+  while (!message.empty() && message.back() == '\n') message.pop_back();
+  return Error{escape_for_message(message, true)};
 }
 
 }  // namespace aq

@@ -117,10 +117,11 @@ inline uint64_t regular_file_size(const std::string& path) {
 }
 
 // How much memory one input file may make the process allocate (decoded pixels, mesh
-// vertices): AQUARELLE_MEMORY_BUDGET_MB, 4096 MiB by default. Declared sizes beyond it are
+// vertices): AQUARELLE_MEMORY_BUDGET_MB, 1024 MiB by default (a studio machine renders several
+// frames at once; hostile files must stay well under a gigabyte). Declared sizes beyond it are
 // refused before anything is allocated.
 inline uint64_t memory_budget_bytes() {
-  uint64_t megabytes = 4096;
+  uint64_t megabytes = 1024;
   if (const char* text = std::getenv("AQUARELLE_MEMORY_BUDGET_MB"); text != nullptr) {
     char* end = nullptr;
     const unsigned long long value = std::strtoull(text, &end, 10);
