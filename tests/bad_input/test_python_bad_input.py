@@ -34,10 +34,16 @@ def graph_dir(tmp_path):
     return tmp_path
 
 
+TINT_JSON = (
+    '{"aquarelle": 1, "settings": {"width": 8, "height": 8, "frames": [1, 1]},'
+    ' "nodes": {"m": {"type": "scene", "params": {"preset": "cube"}},'
+    ' "g": {"type": "gbuffer", "inputs": {"scene": "m.scene"}},'
+    ' "t": {"type": "tint", "inputs": {"image": "g.albedo"}}}, "output": "t.image"}')
+
+
 def tint_graph():
     graph = aquarelle.Graph.from_json(
-        '{"aquarelle": 1, "settings": {"width": 8, "height": 8, "frames": [1, 1]},'
-        ' "nodes": {"t": {"type": "tint"}}, "output": "t.image"}')
+        TINT_JSON)
     return graph
 
 
@@ -100,9 +106,7 @@ def test_sigint_stops_the_conversion_of_an_endless_iterator():
     child = textwrap.dedent("""
         import functools, hashlib, sys, aquarelle
         slow = functools.partial(hashlib.pbkdf2_hmac, "sha256", b"k", b"salt", 20000)
-        graph = aquarelle.Graph.from_json('{"aquarelle": 1, "settings": {"width": 8,'
-            ' "height": 8, "frames": [1, 1]}, "nodes": {"t": {"type": "tint"}},'
-            ' "output": "t.image"}')
+        graph = aquarelle.Graph.from_json(%r)
         print("ready", flush=True)
         try:
             graph.set("t", "amount", iter(slow, None))
@@ -110,7 +114,7 @@ def test_sigint_stops_the_conversion_of_an_endless_iterator():
             print("interrupted", flush=True)
             sys.exit(0)
         sys.exit(3)
-    """)
+    """) % TINT_JSON
     process = subprocess.Popen([sys.executable, "-c", child], stdout=subprocess.PIPE, text=True)
     assert process.stdout.readline().strip() == "ready"
     import time
