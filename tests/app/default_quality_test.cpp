@@ -29,12 +29,12 @@ TEST(DefaultQuality, EveryShippedGraphDefaultsToFinal) {
 }
 
 TEST(DefaultQuality, RenderWithoutQualityWorksAtFullSize) {
-  auto plan = aq::test::aquarelle("render " + aq::test::source_path("graphs/underwater.json") +
-                                  " --plan");
+  auto plan =
+      aq::test::aquarelle("render " + aq::test::source_path("graphs/underwater.json") + " --plan");
   EXPECT_EQ(plan.exit_code, 0) << plan.output;
   EXPECT_NE(plan.output.find("working size 1280x720"), std::string::npos) << plan.output;
-  auto files = aq::test::aquarelle("render " + aq::test::source_path("graphs/files.json") +
-                                   " --plan");
+  auto files =
+      aq::test::aquarelle("render " + aq::test::source_path("graphs/files.json") + " --plan");
   EXPECT_EQ(files.exit_code, 0) << files.output;
   EXPECT_EQ(files.output.find("working size 640x360"), std::string::npos) << files.output;
 }
