@@ -3,8 +3,8 @@
 // screen-space pass (bleeding, edge darkening, tremor) reads what the artist asked for per pixel:
 //
 //   scene ──► per mesh: aq::surface_art (object node's bleed, edge darkening, tremor, FBM)
-//         ──► control  r bleed · f_b   g edge darkening · f_e   b grazing 1 − |N·V|   a tremor ·
-//         f_t
+//         ──► control  r bleed · f_b   g edge darkening · f_e   b grazing 1 − |N·V|
+//                      a f_t where the object trembles (unitless: the screen tremor's pixels ×)
 //             object   object-space position (w = 1 on geometry): anchors noise to objects
 //
 // f = clamp(1 + 2 · fbm_density · fbm3(object position · fbm_scale), 0, 2), one lattice offset
@@ -26,8 +26,8 @@ constexpr aq_port_desc kInputs[] = {aq::scene_port("scene", "objects with their 
 enum Output { kControl, kObject, kOutputCount };
 constexpr aq_port_desc kOutputs[] = {
     aq::image_port("control",
-                   "r bleed, g edge darkening, b grazing (1 - |N.V|), a tremor; 0 on the "
-                   "background"),
+                   "r bleed, g edge darkening, b grazing (1 - |N.V|), a tremor mask (unitless, 1 = "
+                   "full, FBM-varied; 0 where the object has no tremor); 0 on the background"),
     aq::image_port("object", "object-space position (xyz), w = 1 on geometry (RGBA32F)")};
 enum Param { kOctaves };
 constexpr aq_param_desc kParams[] = {

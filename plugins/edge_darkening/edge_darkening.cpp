@@ -4,7 +4,8 @@
 //
 //   source (or image) ──► aq::gaussian::blur σ ──► d = max_rgb |blur − source|
 //   control (optional): k = strength · (g edge amount + grazing · b grazing angle)
-//   image ──► C · min(C, 1)^(k·d) ──► image          (C^(1 + k d) for C in [0, 1])
+//   e = e_max (1 − exp(−k d / e_max))   (saturates: corners and thin geometry never turn black)
+//   image ──► C · min(C, 1)^e ──► image          (C^(1 + e) for C in [0, 1])
 //
 // The blur is the SDK's shared exact Gaussian; reference/edge_darkening.h is the reference.
 #include <aquarelle/plugin.hpp>
@@ -24,14 +25,17 @@ constexpr aq_port_desc kInputs[] = {
                             "control map: g edge-darkening amount, b grazing angle; "
                             "unconnected: k = strength everywhere")};
 constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "colour with darkened edges")};
-enum Param : uint32_t { kSigma, kStrength, kGrazing };
+enum Param : uint32_t { kSigma, kStrength, kGrazing, kMaxExponent };
 constexpr aq_param_desc kParams[] = {
     aq::float_param("sigma", 3.0, 0.0, 64.0,
                     "Gaussian sigma in output pixels (the seed's 3); 0 passes the image through"),
     aq::float_param("strength", 4.0, 0.0, 100.0,
                     "k: exponent gain per unit of blur difference; 0 passes the image through"),
     aq::float_param("grazing", 1.0, 0.0, 10.0,
-                    "how much the grazing angle (control map blue) adds to k at silhouettes")};
+                    "how much the grazing angle (control map blue) adds to k at silhouettes"),
+    aq::float_param("max_exponent", 1.0, 0.0, 100.0,
+                    "the darkening exponent saturates smoothly at this (1: at most C^2, no "
+                    "black blots); 0: unbounded (C^(1 + k d))")};
 
 // The rounding of a blurred constant image stays under this (relative to max(1, |source|)).
 constexpr double kDeadZone = 1e-5;
@@ -62,6 +66,7 @@ struct EdgeDarkening {
     aq::set_float(program, "u_strength", ctx.param_float(kStrength));
     aq::set_float(program, "u_grazing", ctx.param_float(kGrazing));
     aq::set_float(program, "u_dead_zone", kDeadZone);
+    aq::set_float(program, "u_max_exponent", ctx.param_float(kMaxExponent));
     const bool drawn = ctx.draw(out);
     aq::unbind_textures(4);
     return drawn ? AQ_OK : AQ_ERROR;

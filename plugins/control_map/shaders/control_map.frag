@@ -1,6 +1,9 @@
 // The art-direction channels of one object (plugins/control_map/README.md):
-//   control = (bleed·f_b, edge·f_e, 1 − |N·V|, tremor·f_t),  f = clamp(1 + 2·density·fbm3, 0, 2)
+//   control = (bleed·f_b, edge·f_e, 1 − |N·V|, [tremor > 0]·f_t),  f = clamp(1 + 2·density·fbm3, 0, 2)
 // with one object-space FBM per channel (offset lattices), so the variation sticks to the object.
+// The tremor channel is unitless (1 = the full screen-space tremor): the object's `tremor` is a
+// length in world units for the geometry tremor, which the screen-space `tremor` node, measuring
+// its amplitude in pixels, must not multiply (that turned 2 px into 0.06 px).
 #include "aquarelle/noise.glsl"
 
 in vec3 v_object;
@@ -33,6 +36,6 @@ void main() {
   float grazing = clamp(1.0 - abs(dot(n, v)), 0.0, 1.0);
   o_control = vec4(clamp(u_amounts.x * variation(vec3(0.0)), 0.0, 1.0),
                    max(u_amounts.y * variation(vec3(101.3, 0.0, 0.0)), 0.0), grazing,
-                   max(u_amounts.z * variation(vec3(0.0, 203.7, 0.0)), 0.0));
+                   u_amounts.z > 0.0 ? variation(vec3(0.0, 203.7, 0.0)) : 0.0);
   o_object = vec4(v_object, 1.0);
 }
