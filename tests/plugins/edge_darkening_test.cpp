@@ -14,8 +14,10 @@ namespace {
 using aq::ImageF;
 using aq::reference::EdgeDarkeningParams;
 
+// resolution 1: the blur on every pixel, what reference::blur_difference_darkening computes.
 aq::Result<ImageF> run(const ImageF& image, const ImageF* source, const ImageF* control,
-                       const EdgeDarkeningParams& p, const char* precision = "float") {
+                       const EdgeDarkeningParams& p, const char* precision = "float",
+                       int resolution = 1) {
   std::map<std::string, ImageF> inputs{{"image", image}};
   if (source) inputs["source"] = *source;
   if (control) inputs["control"] = *control;
@@ -25,7 +27,8 @@ aq::Result<ImageF> run(const ImageF& image, const ImageF* source, const ImageF* 
                             {{"sigma", p.sigma},
                              {"strength", p.strength},
                              {"grazing", p.grazing},
-                             {"max_exponent", p.max_exponent}},
+                             {"max_exponent", p.max_exponent},
+                             {"resolution", resolution}},
                             options);
 }
 
@@ -142,6 +145,28 @@ TEST(EdgeDarkening, ThinGeometryGetsNoBlotsOrAliasedLines) {
   EXPECT_GT(line / 24.0, centre / 24.0 - 0.08) << "a dark aliased line along the sail";
   const ImageF expected = aq::reference::blur_difference_darkening(image, nullptr, &control, p);
   EXPECT_LE(aq::test::max_abs_diff(*got, expected), 4e-4);
+}
+
+// The default blurs on 2x2 cells (σ narrowed by what the averaging and the bilinear read-back
+// add): close to the exact blur on a painted-like image, and a constant image is still exact.
+TEST(EdgeDarkening, BlurOnCellsStaysCloseToTheExactOne) {
+  const ImageF image = step_image(96, 64);
+  ImageF source = image;
+  for (int y = 20; y < 40; ++y)
+    for (int x = 10; x < 30; ++x) source.at(x, y, 1) = 0.2f;  // a block of another colour
+  const EdgeDarkeningParams p;
+  auto exact = run(image, &source, nullptr, p, "float", 1);
+  auto cells = run(image, &source, nullptr, p, "float", 2);
+  ASSERT_TRUE(exact.ok() && cells.ok()) << exact.message() << cells.message();
+  const double max = aq::test::max_abs_diff(*cells, *exact);
+  const double mean = aq::test::mean_abs_diff(*cells, *exact);
+  std::printf("[edge_darkening] 2x2 cells against every pixel: max %.3g, mean %.3g\n", max, mean);
+  EXPECT_LE(mean, 2e-3);
+  EXPECT_LE(max, 0.03);
+  const ImageF flat = aq::test::constant_image(40, 30, 0.25f, 0.5f, 0.875f, 0.5f);
+  auto same = run(flat, nullptr, nullptr, p, "half", 2);
+  ASSERT_TRUE(same.ok());
+  EXPECT_EQ(aq::test::max_abs_diff(*same, flat), 0.0);
 }
 
 }  // namespace

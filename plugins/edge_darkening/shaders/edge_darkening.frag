@@ -12,7 +12,7 @@ out vec4 o_color;
 
 uniform sampler2D u_image;
 uniform sampler2D u_source;
-uniform sampler2D u_blurred;  // blur(source), same size as source
+uniform sampler2D u_blurred;  // blur(source), at the source's size or on 2×2 cells (bilinear)
 uniform sampler2D u_control;
 uniform int u_has_control;
 uniform float u_strength;
@@ -25,7 +25,7 @@ void main() {
   vec4 c = texelFetch(u_image, p, 0);
   ivec2 ps = min(p * textureSize(u_source, 0) / textureSize(u_image, 0), textureSize(u_source, 0) - 1);
   vec3 s = texelFetch(u_source, ps, 0).rgb;
-  vec3 b = texelFetch(u_blurred, ps, 0).rgb;
+  vec3 b = texture(u_blurred, (vec2(ps) + 0.5) / vec2(textureSize(u_source, 0))).rgb;
   vec3 diff = abs(b - s);
   float d = max(diff.r, max(diff.g, diff.b));
   float scale = max(1.0, max(abs(s.r), max(abs(s.g), abs(s.b))));
