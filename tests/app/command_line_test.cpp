@@ -30,6 +30,7 @@ TEST(CommandLine, EveryCommandHasHelpInTheSameStyle) {
   EXPECT_EQ(aquarelle("validate -h").output, aquarelle("validate --help").output);
   auto top = aquarelle("--help");
   EXPECT_EQ(top.exit_code, 0);
+  EXPECT_EQ(aquarelle("help").output, top.output);
   EXPECT_EQ(top.output.rfind("usage: aquarelle <command>", 0), 0u) << top.output;
   for (const char* command : {"render", "validate", "nodes", "bench", "edit"})
     EXPECT_TRUE(says(top, std::string("\n  ") + command + " ")) << top.output;
