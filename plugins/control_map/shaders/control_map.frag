@@ -6,6 +6,10 @@
 // its amplitude in pixels, must not multiply (that turned 2 px into 0.06 px).
 #include "aquarelle/noise.glsl"
 
+// The depth pre-pass (control_map_depth.frag) laid the nearest surface and applied the cut-outs;
+// this pass runs with depth test EQUAL before the shader, so hidden fragments never pay the FBM.
+layout(early_fragment_tests) in;
+
 in vec3 v_object;
 in vec3 v_world;
 in vec3 v_normal;
@@ -19,8 +23,6 @@ uniform vec4 u_amounts;  // bleed, edge darkening, tremor, (unused)
 uniform float u_fbm_density;
 uniform float u_fbm_scale;
 uniform int u_octaves;
-uniform sampler2D u_base_color;
-uniform float u_alpha_cutoff;
 
 float variation(vec3 offset) {
   if (u_fbm_density <= 0.0) return 1.0;  // exactly the object's amount
@@ -29,7 +31,6 @@ float variation(vec3 offset) {
 }
 
 void main() {
-  if (texture(u_base_color, v_uv).a < u_alpha_cutoff) discard;  // the gbuffer's cut-outs
   vec3 n = dot(v_normal, v_normal) > 1e-12 ? normalize(v_normal) : vec3(0.0, 1.0, 0.0);
   vec3 to_eye = u_camera - v_world;
   vec3 v = dot(to_eye, to_eye) > 1e-20 ? normalize(to_eye) : n;

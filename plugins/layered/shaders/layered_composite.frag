@@ -23,7 +23,6 @@ uniform sampler2D u_depth;
 uniform sampler2D u_paper;
 #endif
 uniform vec2 u_size;
-uniform ivec4 u_region;  // x0, y0, x1, y1 (inclusive): the range paints only there
 uniform sampler2D u_peak;  // peak of the blurred intensity over a window of radius ~σa
 uniform float u_thin;      // thin_shapes: how much of a thin shape the abstraction keeps
 uniform float u_line_width_scale;  // √(2π) σa: a thin line's blurred peak times it = its width
@@ -63,7 +62,8 @@ vec3 glaze(vec3 under, vec3 colour, float thickness) {
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec3 under = texelFetch(u_under, p, 0).rgb;
-  if (any(lessThan(p, u_region.xy)) || any(greaterThan(p, u_region.zw))) {
+  vec4 owner = texelFetch(u_owner, p, 0);
+  if (all(lessThan(owner, vec4(0.5)))) {  // no layer of the range paints here
     o_color = vec4(under, 1.0);
     return;
   }
@@ -94,7 +94,6 @@ void main() {
   float h = 0.5;
 #endif
   float granulation = mix(1.0, 2.0 * (1.0 - h), u_granulation);
-  vec4 owner = texelFetch(u_owner, p, 0);
   for (int k = 0; k < 4; ++k) {
     if (!(owner[k] > 0.5)) continue;
     int layer = int(owner[k]) - 1;
