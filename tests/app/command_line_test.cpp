@@ -72,7 +72,7 @@ TEST(CommandLine, ATypoGetsASuggestionAndExitCodeOne) {
 TEST(CommandLine, AMissingValueIsExitCodeOne) {
   auto result = aquarelle("render " + source_path("graphs/tint.json") + " -o out.exr --size");
   EXPECT_EQ(result.exit_code, 1) << result.output;
-  EXPECT_TRUE(says(result, "aquarelle render: --size")) << result.output;
+  EXPECT_TRUE(says(result, "aquarelle render: --size needs a value")) << result.output;
 }
 
 TEST(CommandLine, TheEnvironmentIsExitCodeTwo) {
