@@ -168,7 +168,7 @@ void normalise(double v[3], const double fallback[3]) {
 
 struct Layered {
   // Composed shader texts (the host compiles them at once and caches by text).
-  std::string segment_text, edges_text, paper_text, composite_text, peak_text;
+  std::string segment_text, edges_text, paper_text, composite_text, peak_text, colours_text;
   std::vector<float> id_pixels, depth_pixels, albedo_pixels, owner_pixels, table_pixels;
 
   // What the passes of one frame share.
@@ -183,9 +183,14 @@ struct Layered {
     bool thin = false;
     bool whole = false, run_edges = false, has_paper = false;
     int64_t wet_edges = kWetToDry;
-    GLuint segment = 0, edge = 0, paper = 0, composite = 0, peak_program = 0;
+    GLuint segment = 0, edge = 0, paper = 0, composite = 0, peak_program = 0, colours_program = 0;
     aq_image intensity{}, diffuse{}, depth{}, blur_intensity{}, blur_diffuse{}, blur_depth{},
-        edges{}, blur_edges{}, horizontal{}, under[2]{}, out{}, owner{}, table{}, peak{};
+        edges{}, blur_edges{}, horizontal{}, under[2]{}, out{}, owner{}, table{}, peak{}, colours{};
+  };
+
+  // The boxes each pass of a range fills around one of its layers (see range_rects).
+  struct RangeRects {
+    Rect paint, blurred, blurred_rows, segmented, edge_rect, edge_rows, peak_rows;
   };
 
   // The texture's first `components` channels as floats; false on a GL error.
@@ -214,10 +219,11 @@ struct Layered {
     // The ping-pong textures agree everywhere but in the box the last range painted, which is
     // copied across before the next range paints its own box (so only the last composite
     // covers the whole image).
-    Rect last_paint{0, 0, -1, -1};
+    std::vector<Rect> last_paint;
+    if (f.range_count > 0) ok = ok && gooch_colours(ctx, f);
     for (size_t r = 0; ok && r < f.range_count; ++r) ok = run_range(ctx, f, r, last_paint);
     glDisable(GL_SCISSOR_TEST);
-    aq::unbind_textures(12);
+    aq::unbind_textures(13);
     return ok ? AQ_OK : AQ_ERROR;
   }
 
@@ -327,7 +333,7 @@ struct Layered {
       if (!ctx.scratch(f.w, f.h, f32, t)) return false;
     }
     const int n = static_cast<int>(f.layers.size());
-    if (!ctx.scratch(n, 3, f32, &f.table)) return false;
+    if (!ctx.scratch(n, 3, f32, &f.table) || !ctx.scratch(n, 2, f32, &f.colours)) return false;
     table_pixels.assign(static_cast<size_t>(n) * 3 * 4, 0.0f);
     for (int i = 0; i < n; ++i) {
       const layered::Layer& layer = f.layers[i];
@@ -362,6 +368,10 @@ struct Layered {
     f.composite = ctx.program({"layered_composite.frag", composite_text.c_str(), nullptr});
     peak_text = compose(defines, shaders::layered_peak_frag, "");
     f.peak_program = ctx.program({"layered_peak.frag", peak_text.c_str(), nullptr});
+    colours_text =
+        compose(defines, shaders::layered_colours_frag, "#include \"aquarelle/pigment.glsl\"\n");
+    f.colours_program = ctx.program({"layered_colours.frag", colours_text.c_str(), nullptr});
+    if (f.colours_program == 0) return false;
     return f.segment != 0 && f.edge != 0 && f.paper != 0 && f.composite != 0 && f.peak_program != 0;
   }
 
@@ -385,62 +395,104 @@ struct Layered {
   }
 
   // The owner image of range r: per channel, 1 + the index of the layer painting there (0:
-  // none), over `rect` (the largest area a pass of the range reads).
-  void upload_owner(const Frame& f, size_t r, const Rect& rect) {
+  // none), over each of the range's `segmented` rects (the largest areas its passes read).
+  void upload_owner(const Frame& f, size_t r, const std::vector<RangeRects>& rects) {
     owner_pixels.resize(static_cast<size_t>(f.w) * f.h * 4);
-    for (int y = rect.y0; y <= rect.y1; ++y) {
-      float* row = &owner_pixels[4 * (static_cast<size_t>(y) * f.w + rect.x0)];
-      std::fill(row, row + 4 * (rect.x1 - rect.x0 + 1), 0.0f);
+    for (const RangeRects& rr : rects) {
+      const Rect& rect = rr.segmented;
+      for (int y = rect.y0; y <= rect.y1; ++y) {
+        float* row = &owner_pixels[4 * (static_cast<size_t>(y) * f.w + rect.x0)];
+        std::fill(row, row + 4 * (rect.x1 - rect.x0 + 1), 0.0f);
+      }
     }
     for (size_t i = 0; i < f.layers.size(); ++i) {
       if (static_cast<size_t>(f.channel[i]) / kLayersPerRange != r) continue;
       const int k = f.channel[i] % kLayersPerRange;
       const Rect box = paint_box(f, f.layers[i]);
-      for (int y = std::max(box.y0, rect.y0); y <= std::min(box.y1, rect.y1); ++y) {
-        for (int x = std::max(box.x0, rect.x0); x <= std::min(box.x1, rect.x1); ++x) {
+      for (int y = box.y0; y <= box.y1; ++y) {
+        for (int x = box.x0; x <= box.x1; ++x) {
           owner_pixels[4 * (static_cast<size_t>(y) * f.w + x) + k] = static_cast<float>(i + 1);
         }
       }
     }
     glPixelStorei(GL_UNPACK_ROW_LENGTH, f.w);
-    glTextureSubImage2D(f.owner.texture, 0, rect.x0, rect.y0, rect.x1 - rect.x0 + 1,
-                        rect.y1 - rect.y0 + 1, GL_RGBA, GL_FLOAT,
-                        &owner_pixels[4 * (static_cast<size_t>(rect.y0) * f.w + rect.x0)]);
+    for (const RangeRects& rr : rects) {
+      const Rect& rect = rr.segmented;
+      glTextureSubImage2D(f.owner.texture, 0, rect.x0, rect.y0, rect.x1 - rect.x0 + 1,
+                          rect.y1 - rect.y0 + 1, GL_RGBA, GL_FLOAT,
+                          &owner_pixels[4 * (static_cast<size_t>(rect.y0) * f.w + rect.x0)]);
+    }
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
   }
 
-  // The boxes each pass of a range fills so the next reads only what it wrote this range
-  // (README: "Only where the range can paint").
-  struct RangeRects {
-    Rect paint, blurred, blurred_rows, segmented, edge_rect, edge_rows, peak_rows;
-  };
-  static RangeRects range_rects(const Frame& f, size_t r) {
+  // (RangeRects:) the boxes each pass fills around one layer so the next pass reads only what it
+  // wrote this range (README: "Only where the range can paint"). A range draws each pass once per
+  // layer box: the work follows the pixels the layers cover, not the box around them all. A pixel
+  // in two boxes is drawn twice with the same result (every pass reads other textures than it
+  // writes).
+  static std::vector<RangeRects> range_rects(const Frame& f, size_t r) {
     const Rect full{0, 0, f.w - 1, f.h - 1};
-    if (f.whole) return {full, full, full, full, full, full, full};
-    Rect paint{f.w, f.h, -1, -1};
+    if (f.whole) return {{full, full, full, full, full, full, full}};
+    std::vector<Rect> boxes;
     for (size_t i = 0; i < f.layers.size(); ++i) {
-      if (static_cast<size_t>(f.channel[i]) / kLayersPerRange != r) continue;
-      const Rect b = paint_box(f, f.layers[i]);
-      paint = {std::min(paint.x0, b.x0), std::min(paint.y0, b.y0), std::max(paint.x1, b.x1),
-               std::max(paint.y1, b.y1)};
+      if (static_cast<size_t>(f.channel[i]) / kLayersPerRange == r) {
+        boxes.push_back(paint_box(f, f.layers[i]));
+      }
     }
-    RangeRects rr;
-    rr.paint = paint;
-    rr.blurred = paint.grown(std::max(2 * f.reach_e + 1, f.reach_peak), f.w, f.h);
-    rr.blurred_rows = rr.blurred.grown(f.reach_a, f.w, f.h);
-    rr.segmented = rr.blurred_rows.grown(f.reach_a, f.w, f.h);
-    rr.edge_rect = paint.grown(2 * f.reach_e, f.w, f.h);
-    rr.edge_rows = paint.grown(f.reach_e, f.w, f.h);
-    rr.peak_rows = paint.grown(f.reach_peak, f.w, f.h);
-    return rr;
+    merge_overlapping(boxes);
+    std::vector<RangeRects> out;
+    for (const Rect& paint : boxes) {
+      RangeRects rr;
+      rr.paint = paint;
+      rr.blurred = rr.paint.grown(std::max(2 * f.reach_e + 1, f.reach_peak), f.w, f.h);
+      rr.blurred_rows = rr.blurred.grown(f.reach_a, f.w, f.h);
+      rr.segmented = rr.blurred_rows.grown(f.reach_a, f.w, f.h);
+      rr.edge_rect = rr.paint.grown(2 * f.reach_e, f.w, f.h);
+      rr.edge_rows = rr.paint.grown(f.reach_e, f.w, f.h);
+      rr.peak_rows = rr.paint.grown(f.reach_peak, f.w, f.h);
+      out.push_back(rr);
+    }
+    return out;
   }
 
-  bool run_range(aq::Context& ctx, const Frame& f, size_t r, Rect& last_paint) {
-    const RangeRects rr = range_rects(f, r);
-    upload_owner(f, r, rr.segmented);
+  // Boxes of one range overlap where layers of different channels meet: two boxes whose
+  // bounding box is no larger than their areas together become that box, so no pixel is drawn
+  // many times over.
+  static void merge_overlapping(std::vector<Rect>& boxes) {
+    auto area = [](const Rect& b) {
+      return static_cast<int64_t>(b.x1 - b.x0 + 1) * (b.y1 - b.y0 + 1);
+    };
+    for (bool merged = true; merged;) {
+      merged = false;
+      for (size_t i = 0; i < boxes.size() && !merged; ++i) {
+        for (size_t j = i + 1; j < boxes.size() && !merged; ++j) {
+          const Rect u{std::min(boxes[i].x0, boxes[j].x0), std::min(boxes[i].y0, boxes[j].y0),
+                       std::max(boxes[i].x1, boxes[j].x1), std::max(boxes[i].y1, boxes[j].y1)};
+          if (area(u) <= area(boxes[i]) + area(boxes[j])) {
+            boxes[i] = u;
+            boxes.erase(boxes.begin() + static_cast<std::ptrdiff_t>(j));
+            merged = true;
+          }
+        }
+      }
+    }
+  }
+
+  // Runs `draw` once per layer box of the range, scissored to that box's `which` rect.
+  template <class Draw>
+  static bool each(const std::vector<RangeRects>& rects, Rect RangeRects::*which, Draw draw) {
+    for (const RangeRects& rr : rects) {
+      (rr.*which).scissor();
+      if (!draw()) return false;
+    }
+    return true;
+  }
+
+  bool run_range(aq::Context& ctx, const Frame& f, size_t r, std::vector<Rect>& last_paint) {
+    const std::vector<RangeRects> rects = range_rects(f, r);
+    upload_owner(f, r, rects);
     glEnable(GL_SCISSOR_TEST);
     // Segmentation and lighting, four channels (any number of objects) at once.
-    rr.segmented.scissor();
     glUseProgram(f.segment);
     aq::bind_texture(f.segment, "u_id", 0, ctx.input_image(0));
     aq::bind_texture(f.segment, "u_normal", 1, ctx.input_image(1));
@@ -453,20 +505,24 @@ struct Layered {
     aq::set_float(f.segment, "u_specular_threshold", ctx.param_float(kSpecularThreshold));
     const aq_image targets[3] = {f.intensity, f.diffuse, f.depth};
     if (!ctx.bind_targets(targets, 3)) return false;
-    ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+    each(rects, &RangeRects::segmented, [&] {
+      ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+      return true;
+    });
     aq::unbind_textures(5);
 
     // Abstraction: the shared Gaussian.
-    bool ok = true;
     for (auto [in, blurred_out] :
          {std::pair{f.intensity, f.blur_intensity}, std::pair{f.diffuse, f.blur_diffuse},
           std::pair{f.depth, f.blur_depth}}) {
-      rr.blurred_rows.scissor();
-      ok = ok && aq::gaussian::blur_pass(ctx, in, f.horizontal, f.sigma, 0);
-      rr.blurred.scissor();
-      ok = ok && aq::gaussian::blur_pass(ctx, f.horizontal, blurred_out, f.sigma, 1);
+      if (!each(rects, &RangeRects::blurred_rows,
+                [&] { return aq::gaussian::blur_pass(ctx, in, f.horizontal, f.sigma, 0); }) ||
+          !each(rects, &RangeRects::blurred, [&] {
+            return aq::gaussian::blur_pass(ctx, f.horizontal, blurred_out, f.sigma, 1);
+          })) {
+        return false;
+      }
     }
-    if (!ok) return false;
 
     // Wet edges: 3x3 Laplacian and threshold, widened by the Gaussian.
     if (f.run_edges) {
@@ -474,52 +530,54 @@ struct Layered {
       aq::bind_texture(f.edge, "u_blurred", 0, f.blur_intensity);
       set_common(ctx, f.edge);
       aq::set_float(f.edge, "u_edge_threshold", ctx.param_float(kEdgeThreshold));
-      rr.edge_rect.scissor();
-      ok = ctx.draw(f.edges);
-      rr.edge_rows.scissor();
-      ok = ok && aq::gaussian::blur_pass(ctx, f.edges, f.horizontal, f.edge_sigma, 0);
-      rr.paint.scissor();
-      ok = ok && aq::gaussian::blur_pass(ctx, f.horizontal, f.blur_edges, f.edge_sigma, 1);
-      if (!ok) return false;
+      if (!each(rects, &RangeRects::edge_rect, [&] { return ctx.draw(f.edges); }) ||
+          !each(rects, &RangeRects::edge_rows,
+                [&] {
+                  return aq::gaussian::blur_pass(ctx, f.edges, f.horizontal, f.edge_sigma, 0);
+                }) ||
+          !each(rects, &RangeRects::paint, [&] {
+            return aq::gaussian::blur_pass(ctx, f.horizontal, f.blur_edges, f.edge_sigma, 1);
+          })) {
+        return false;
+      }
     }
-    if (f.thin && !peaks(ctx, f, rr)) return false;
-    return composite_range(ctx, f, r, rr.paint, last_paint);
+    if (f.thin && !peaks(ctx, f, rects)) return false;
+    return composite_range(ctx, f, r, rects, last_paint);
   }
 
   // Thin shapes: each layer's peak blurred intensity over a (2r+1)^2 window, r = ceil(σa) + 1.
-  static bool peaks(aq::Context& ctx, const Frame& f, const RangeRects& rr) {
+  static bool peaks(aq::Context& ctx, const Frame& f, const std::vector<RangeRects>& rects) {
     glUseProgram(f.peak_program);
     aq::set_int(f.peak_program, "u_radius", f.reach_peak);
     const int axes[2][2] = {{1, 0}, {0, 1}};
     const aq_image sources[2] = {f.blur_intensity, f.horizontal};
     const aq_image targets[2] = {f.horizontal, f.peak};
-    const Rect rects[2] = {rr.peak_rows, rr.paint};
+    Rect RangeRects::*const which[2] = {&RangeRects::peak_rows, &RangeRects::paint};
     for (int pass = 0; pass < 2; ++pass) {
       aq::bind_texture(f.peak_program, "u_source", 0, sources[pass]);
       glUniform2i(glGetUniformLocation(f.peak_program, "u_axis"), axes[pass][0], axes[pass][1]);
-      rects[pass].scissor();
-      if (!ctx.draw(targets[pass])) return false;
+      if (!each(rects, which[pass], [&] { return ctx.draw(targets[pass]); })) return false;
     }
     return true;
   }
 
-  // Glaze the range over what lies under it, inside `paint` (the last range: everywhere, into
-  // the output).
-  static bool composite_range(aq::Context& ctx, const Frame& f, size_t r, const Rect& paint,
-                              Rect& last_paint) {
+  // Glaze the range over what lies under it, inside its layers' paint boxes (the last range:
+  // everywhere, into the output).
+  static bool composite_range(aq::Context& ctx, const Frame& f, size_t r,
+                              const std::vector<RangeRects>& rects, std::vector<Rect>& last_paint) {
     const bool last = r + 1 == f.range_count;
     const aq_image& below = f.under[r % 2];
     const aq_image& target = last ? f.out : f.under[(r + 1) % 2];
     if (last) {
       glDisable(GL_SCISSOR_TEST);
     } else {
-      if (last_paint.x1 >= last_paint.x0) {
-        glCopyImageSubData(below.texture, GL_TEXTURE_2D, 0, last_paint.x0, last_paint.y0, 0,
-                           target.texture, GL_TEXTURE_2D, 0, last_paint.x0, last_paint.y0, 0,
-                           last_paint.x1 - last_paint.x0 + 1, last_paint.y1 - last_paint.y0 + 1, 1);
+      // The ping-pong textures differ only where the previous range painted.
+      for (const Rect& b : last_paint) {
+        glCopyImageSubData(below.texture, GL_TEXTURE_2D, 0, b.x0, b.y0, 0, target.texture,
+                           GL_TEXTURE_2D, 0, b.x0, b.y0, 0, b.x1 - b.x0 + 1, b.y1 - b.y0 + 1, 1);
       }
-      paint.scissor();
-      last_paint = paint;
+      last_paint.clear();
+      for (const RangeRects& rr : rects) last_paint.push_back(rr.paint);
     }
     const GLuint p = f.composite;
     glUseProgram(p);
@@ -541,7 +599,6 @@ struct Layered {
     aq::set_float(p, "u_line_width_scale", 2.5066283 * f.sigma);
     set_common(ctx, p);
     aq::set_vec2(p, "u_size", f.w, f.h);
-    glUniform4i(glGetUniformLocation(p, "u_region"), paint.x0, paint.y0, paint.x1, paint.y1);
     // A one-pixel edge band blurred by σ peaks near 2/(√(2π)σ): the gain brings it to ~1.
     const double gain = f.run_edges ? std::max(1.0, 1.2533 * f.edge_sigma) : 0.0;
     aq::set_float(p, "u_edge_gain", gain);
@@ -551,8 +608,22 @@ struct Layered {
     aq::set_float(p, "u_depth_band", ctx.param_float(kDepthBand));
     aq::set_float(p, "u_granulation", f.has_paper ? ctx.param_float(kGranulation) : 0.0);
     aq::set_float(p, "u_density", ctx.param_float(kDensity));
-    set_gooch(ctx, p);
-    return ctx.draw(target);
+    aq::bind_texture(p, "u_colours", 12, f.colours);
+    if (last) return ctx.draw(target);
+    if (!ctx.bind_targets(&target, 1)) return false;
+    return each(rects, &RangeRects::paint, [&] {
+      ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+      return true;
+    });
+  }
+
+  // The Gooch-mixed light and dark colour of every layer, once per frame (layered_colours).
+  static bool gooch_colours(aq::Context& ctx, const Frame& f) {
+    glDisable(GL_SCISSOR_TEST);
+    glUseProgram(f.colours_program);
+    aq::bind_texture(f.colours_program, "u_table", 0, f.table);
+    set_gooch(ctx, f.colours_program);
+    return ctx.draw(f.colours);
   }
 
   // Uniforms of layered_common.glsl.

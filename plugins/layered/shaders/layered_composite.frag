@@ -23,7 +23,6 @@ uniform sampler2D u_depth;
 uniform sampler2D u_paper;
 #endif
 uniform vec2 u_size;
-uniform ivec4 u_region;  // x0, y0, x1, y1 (inclusive): the range paints only there
 uniform sampler2D u_peak;  // peak of the blurred intensity over a window of radius ~σa
 uniform float u_thin;      // thin_shapes: how much of a thin shape the abstraction keeps
 uniform float u_line_width_scale;  // √(2π) σa: a thin line's blurred peak times it = its width
@@ -36,9 +35,7 @@ uniform float u_edge_darkening;
 uniform float u_depth_band;
 uniform float u_granulation;
 uniform float u_density;
-uniform float u_gooch;  // Gooch: light towards warm, dark towards cool
-uniform vec3 u_warm;
-uniform vec3 u_cool;
+uniform sampler2D u_colours;  // per layer: Gooch light (row 0) and dark (row 1), see layered_colours
 
 vec3 pigment_mix(vec3 a, vec3 b, float t) {
 #if AQ_MIX_MODE == 0
@@ -63,7 +60,8 @@ vec3 glaze(vec3 under, vec3 colour, float thickness) {
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec3 under = texelFetch(u_under, p, 0).rgb;
-  if (any(lessThan(p, u_region.xy)) || any(greaterThan(p, u_region.zw))) {
+  vec4 owner = texelFetch(u_owner, p, 0);
+  if (all(lessThan(owner, vec4(0.5)))) {  // no layer of the range paints here
     o_color = vec4(under, 1.0);
     return;
   }
@@ -94,7 +92,6 @@ void main() {
   float h = 0.5;
 #endif
   float granulation = mix(1.0, 2.0 * (1.0 - h), u_granulation);
-  vec4 owner = texelFetch(u_owner, p, 0);
   for (int k = 0; k < 4; ++k) {
     if (!(owner[k] > 0.5)) continue;
     int layer = int(owner[k]) - 1;
@@ -109,8 +106,8 @@ void main() {
 #else
     if (!(b[k] > 1.0e-6)) continue;
     float d = clamp(bd[k] / b[k], 0.0, 1.0);
-    vec3 light = pigment_mix(light_color, u_warm, u_gooch);
-    vec3 dark = pigment_mix(dark_color, u_cool, u_gooch);
+    vec3 light = texelFetch(u_colours, ivec2(layer, 0), 0).rgb;  // Gooch-mixed, per layer
+    vec3 dark = texelFetch(u_colours, ivec2(layer, 1), 0).rgb;
     vec3 colour = pigment_mix(dark, light, d);
 #if AQ_VIEW == 3  // abstraction only
     under = glaze(under, colour, a[k]);
