@@ -35,9 +35,7 @@ uniform float u_edge_darkening;
 uniform float u_depth_band;
 uniform float u_granulation;
 uniform float u_density;
-uniform float u_gooch;  // Gooch: light towards warm, dark towards cool
-uniform vec3 u_warm;
-uniform vec3 u_cool;
+uniform sampler2D u_colours;  // per layer: Gooch light (row 0) and dark (row 1), see layered_colours
 
 vec3 pigment_mix(vec3 a, vec3 b, float t) {
 #if AQ_MIX_MODE == 0
@@ -108,8 +106,8 @@ void main() {
 #else
     if (!(b[k] > 1.0e-6)) continue;
     float d = clamp(bd[k] / b[k], 0.0, 1.0);
-    vec3 light = pigment_mix(light_color, u_warm, u_gooch);
-    vec3 dark = pigment_mix(dark_color, u_cool, u_gooch);
+    vec3 light = texelFetch(u_colours, ivec2(layer, 0), 0).rgb;  // Gooch-mixed, per layer
+    vec3 dark = texelFetch(u_colours, ivec2(layer, 1), 0).rgb;
     vec3 colour = pigment_mix(dark, light, d);
 #if AQ_VIEW == 3  // abstraction only
     under = glaze(under, colour, a[k]);
