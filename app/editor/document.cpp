@@ -2,6 +2,8 @@
 // document.h for the shape of a change.
 #include "document.h"
 
+#include "canvas_view.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -125,9 +127,18 @@ std::string why_bad_param_value(const ParamInfo& param, const nlohmann::json& va
   return what + " has a type the editor does not know";
 }
 
-std::map<std::string, Position> automatic_positions(const Graph& graph) {
+std::map<std::string, Position> automatic_positions(const Graph& graph, const Registry* registry) {
   constexpr float kColumnStep = 230.0f;
-  constexpr float kRowStep = 180.0f;  // fits a node with six ports
+  float kRowStep = 180.0f;  // fits a node with six ports
+  if (registry != nullptr) {
+    for (const auto& [id, node] : graph.nodes) {
+      if (const NodeType* type = registry->find(node.type)) {
+        const size_t rows = std::max(type->inputs.size(), type->outputs.size());
+        kRowStep = std::max(kRowStep, NodeMetrics::kHeader + rows * NodeMetrics::kRow +
+                                          NodeMetrics::kFooter + 30.0f);
+      }
+    }
+  }
   // Column = longest path from a source, so the layout flows left to right.
   std::map<std::string, int> depth;
   std::set<std::string> visiting;
@@ -169,12 +180,12 @@ std::map<std::string, Position> automatic_positions(const Graph& graph) {
   return out;
 }
 
-std::vector<std::string> place_unplaced_nodes(Graph& graph) {
+std::vector<std::string> place_unplaced_nodes(Graph& graph, const Registry* registry) {
   std::map<std::string, Position> automatic;
   std::vector<std::string> placed;
   for (const auto& [id, node] : graph.nodes) {
     if (read_position(graph, id)) continue;
-    if (automatic.empty()) automatic = automatic_positions(graph);
+    if (automatic.empty()) automatic = automatic_positions(graph, registry);
     write_position(graph, id, automatic[id]);
     placed.push_back(id);
   }
@@ -242,7 +253,7 @@ Status Document::open(const std::string& path) {
   // A graph written by hand has no positions: place them once, so the canvas does not
   // rearrange itself while links are edited. Not an edit: the file is not marked changed,
   // and saving it unedited leaves them out.
-  auto_placed_ = place_unplaced_nodes(graph_);
+  auto_placed_ = place_unplaced_nodes(graph_, &registry_);
   path_ = path;
   std::error_code ignored;
   disk_time_ = fs::last_write_time(path, ignored);
@@ -344,7 +355,7 @@ Status Document::recover() {
     return make_error("the autosave '" + side + "' is not valid JSON; delete it");
   }
   ReadResult read = read_graph_text(text.str(), registry_, side);
-  place_unplaced_nodes(read.graph);
+  place_unplaced_nodes(read.graph, &registry_);
   Change change;
   change.label = "recover autosave";
   std::set<std::string> ids;

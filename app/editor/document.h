@@ -258,7 +258,10 @@ void write_position(Graph& graph, const std::string& id, const std::optional<Pos
 
 // Positions for nodes in columns by their longest path from a source (for graphs written by
 // hand), and writing them for the nodes that have none.
-std::map<std::string, Position> automatic_positions(const Graph& graph);
+// With `registry`, rows are spaced for the tallest node (a node with many ports, cel_light's
+// eight inputs, is taller than the default row step).
+std::map<std::string, Position> automatic_positions(const Graph& graph,
+                                                    const Registry* registry = nullptr);
 struct Backdrop {
   std::string label;
   Position at;  // top-left, canvas units
@@ -324,7 +327,7 @@ std::vector<std::string> expand_group_items(const Graph& graph,
                                             const std::vector<std::string>& ids);
 
 // Returns the ids it placed.
-std::vector<std::string> place_unplaced_nodes(Graph& graph);
+std::vector<std::string> place_unplaced_nodes(Graph& graph, const Registry* registry = nullptr);
 
 // A float parameter value that came from a float (an ImGui slider or field) as the shortest
 // decimal that reads back to the same float: 0.30000001192092896 → 0.3. Other values as given.

@@ -134,7 +134,8 @@ Status duplicate_selection(EditorState& state) {
     top = std::min(top, rect.min.y);
     bottom = std::max(bottom, rect.max.y);
   }
-  const Position offset{30.0f, bottom > top ? bottom - top + 30.0f : 40.0f};
+  const Position offset = clear_offset(graph, state.doc.registry(), selected_nodes(state),
+                                       {30.0f, bottom > top ? bottom - top + 30.0f : 40.0f});
   auto copies = state.doc.duplicate_nodes(selected_nodes(state), offset);
   if (!copies) {
     report(state, copies.error(), "");
@@ -193,6 +194,7 @@ Result<std::string> add_node_at_cursor(EditorState& state, const std::string& ty
 
 Result<std::string> insert_on_link(EditorState& state, const std::string& type, Position at,
                                    const std::string& to_node, const std::string& to_input) {
+  at = free_spot(state.doc.graph(), state.doc.registry(), type, at);  // never on another node
   auto inserted = state.doc.insert_node_on_link(type, at, to_node, to_input);
   if (inserted) {
     state.selection = {*inserted};

@@ -7,12 +7,16 @@
 //          ─► ImGui: menus, canvas, viewer, parameters, time bar ─► render ─► [screenshot] ─► swap
 #pragma once
 
+#include "autosave_timer.h"
 #include "canvas.h"
 #include "document.h"
 #include "editor_state.h"
 #include "file_dialog.h"
 #include "frame_stats.h"
+#include "mouse_press.h"
+#include "pane_split.h"
 #include "param_panel.h"
+#include "playback_rate.h"
 #include "script.h"
 #include "viewer.h"
 
@@ -38,6 +42,8 @@ struct EditorOptions {
   bool quit = false;       // exit after the screenshot (or the script)
   int width = 1280;
   int height = 800;
+  // Plugins that failed to load ("FILE: reason"): shown in the editor, not only on the terminal.
+  std::vector<std::string> refused_plugins;
 };
 
 class EditorApp {
@@ -61,6 +67,9 @@ class EditorApp {
   void handle_shortcuts();
   void load_canvas_fonts();
   void advance_time(double seconds);
+  // Feeds the reached playback rate the graph frame on screen (every UI frame).
+  void track_playback(double now);
+  ScriptHooks script_hooks();
   void update_feedback();
   void poll_hot_reload();
   // Runs `pending` now, or asks first when there are unsaved changes.
@@ -96,7 +105,12 @@ class EditorApp {
   std::string replace_path_;  // Save As named an existing file: asking before replacing it
   bool running_ = true;
   double play_accumulator_ = 0;
-  double last_autosave_ = 0;
+  float canvas_share_ = kDefaultCanvasShare;  // of the width; the splitter moves it
+  PressTracker press_tracker_;                // double-clicks from the presses' own times
+  double scripted_press_clock_ = 1000.0;
+  PlaybackRate playback_rate_;  // the frame rate playback reaches
+  bool was_playing_ = false;
+  AutosaveTimer autosave_timer_;  // after each completed edit, debounced
   std::string title_;
 
   bool hot_reload_ = false;

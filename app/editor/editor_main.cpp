@@ -81,6 +81,7 @@ int run_editor(int argc, char** argv) {
   for (const auto& refused : report.refused) {
     std::fprintf(stderr, "aquarelle edit: plugin refused: %s\n", refused.c_str());
   }
+  options.refused_plugins = report.refused;  // the editor shows them too
   // The app holds GL objects from plugins: it must go before the plugin libraries unload.
   int status = 0;
   {

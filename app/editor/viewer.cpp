@@ -173,6 +173,7 @@ void Viewer::take_finished() {
   evaluated_output_ = wanted.output;
   showing_draft_ = wanted.draft;
   if (!wanted.draft) last_full_ms_ = done->ms;
+  if (wanted.quality == "preview") last_preview_ms_ = done->ms;
   display_stale_ = true;
   if (range_from_image_) measure_range();
 }
@@ -205,11 +206,14 @@ void Viewer::update(const EditorState& state, bool force) {
   draft_inputs.last_full_ms = last_full_ms_;
   draft_inputs.graph_is_draft = graph.settings.quality == "draft";
   draft_inputs.gesture_budget_ms = gesture_budget_ms_;
+  draft_inputs.graph_quality = graph.settings.quality;
+  draft_inputs.last_preview_ms = last_preview_ms_;
   Wanted wanted;
   wanted.key = evaluation_key(graph, output);
   wanted.frame = state.frame;
   wanted.divisor = preview_divisor_;
-  wanted.draft = evaluate_as_draft(draft_inputs);
+  wanted.quality = proxy_quality(draft_inputs);
+  wanted.draft = !wanted.quality.empty();
   wanted.output = output;
   const bool ask = force || !requested_ || !(*requested_ == wanted);
   settled_ = !ask && !worker_->busy();
@@ -226,7 +230,7 @@ void Viewer::update(const EditorState& state, bool force) {
     Settings& settings = request.graph.settings;
     settings.width = std::max(1, settings.width / preview_divisor_);
     settings.height = std::max(1, settings.height / preview_divisor_);
-    if (wanted.draft) settings.quality = "draft";
+    if (wanted.draft) settings.quality = wanted.quality;  // the preset's render scale shrinks it
   }
   request.tag = next_tag_++;
   in_flight_[request.tag] = wanted;

@@ -113,7 +113,8 @@ class Viewer {
     uint64_t key = 0;
     int frame = -1;
     int divisor = 1;
-    bool draft = false;
+    bool draft = false;   // a proxy: "preview" or "draft" while the user drags or plays
+    std::string quality;  // the proxy's quality; "" the graph's own
     std::optional<PortRef> output;
     bool operator==(const Wanted&) const = default;
   };
@@ -139,6 +140,7 @@ class Viewer {
   double last_ms_ = 0;
   double last_full_ms_ = 0;  // the last evaluation at the graph's own quality
   bool showing_draft_ = false;
+  double last_preview_ms_ = 0;  // the last "preview" proxy's evaluation time
   double gesture_budget_ms_ = kGestureBudgetMs;
 
   gl::Program program_;
