@@ -1,13 +1,24 @@
-// The subcommands of `aquarelle`; each parses its own arguments and returns the exit code.
+// The subcommands of `aquarelle`. Each add_*_command declares its options on the command line
+// (CLI11, cli.h) and returns how to run it once parsed; running returns the exit code.
 #pragma once
+
+#include <functional>
+
+#include "cli.h"
 
 namespace aq::app {
 
 enum ExitCode { kExitOk = 0, kExitBadInput = 1, kExitEnvironment = 2, kExitInterrupted = 130 };
 
-int run_render(int argc, char** argv);
-int run_validate(int argc, char** argv);
-int run_nodes(int argc, char** argv);
-int run_bench(int argc, char** argv);
+struct Command {
+  CLI::App* cli = nullptr;
+  std::function<int()> run;
+};
+
+Command add_render_command(CLI::App& cli);
+Command add_validate_command(CLI::App& cli);
+Command add_nodes_command(CLI::App& cli);
+Command add_bench_command(CLI::App& cli);
+Command add_edit_command(CLI::App& cli);
 
 }  // namespace aq::app

@@ -1,61 +1,54 @@
-// `aquarelle`: dispatches to the subcommands. Exit codes: 0 ok, 1 bad input (graph,
-// arguments, files), 2 environment (no GL, unusable plugin path).
+// `aquarelle`: the command line (CLI11) and its subcommands. Exit codes: 0 ok, 1 bad input
+// (graph, arguments, files), 2 environment (no GL, unusable plugin path), 130 interrupted.
 #include <cstdio>
-#include <cstring>
 #include <string>
+#include <vector>
 
 #include "commands.h"
-#ifdef AQ_HAVE_EDITOR
-#include "editor/editor.h"
-#endif
 
 namespace {
 
-void print_usage(std::FILE* out) {
-  std::fprintf(out,
-               "aquarelle %s: a node-graph compositor for stylized real-time rendering\n\n"
-               "usage: aquarelle <command> [options]\n\n"
-               "commands:\n"
-               "  render    render a graph headless to image files\n"
-               "  validate  check a graph file and list every problem\n"
-               "  nodes     list the installed node types, their ports and parameters\n"
-               "  bench     measure speed against error per node and for the pipeline\n"
-               "  edit      open the graph editor\n\n"
-               "`aquarelle <command> --help` describes each command.\n"
-               "Exit codes: 0 ok, 1 bad input (graph, arguments, files), 2 environment.\n",
-               AQ_VERSION);
+constexpr const char* kUsage =
+    "usage: aquarelle <command> [options]\n\n"
+    "aquarelle " AQ_VERSION ": a node-graph compositor for stylized real-time rendering";
+constexpr const char* kFooter =
+    "`aquarelle <command> --help` describes each command.\n"
+    "Exit codes: 0 ok, 1 bad input (graph, arguments, files), 2 environment, 130 interrupted.\n";
+
+// No command, or one that does not exist: the usage on stderr, exit 1.
+int refuse_command(const CLI::App& cli, const std::vector<std::string>& left) {
+  if (!left.empty()) {
+    std::vector<std::string> names;
+    for (const CLI::App* command : cli.get_subcommands({})) names.push_back(command->get_name());
+    const std::string guess = aq::app::closest(left.front(), names);
+    std::fprintf(stderr, "aquarelle: unknown command '%s'%s\n\n", left.front().c_str(),
+                 guess.empty() ? "" : (" (did you mean '" + guess + "'?)").c_str());
+  }
+  std::fputs(cli.help().c_str(), stderr);
+  return aq::app::kExitBadInput;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    print_usage(stderr);
-    return 1;
+  CLI::App cli(kUsage, "aquarelle");
+  cli.formatter(aq::app::help_formatter());
+  cli.footer(kFooter);
+  cli.set_version_flag("--version", std::string("aquarelle ") + AQ_VERSION);
+  cli.allow_extras();  // an unknown command is reported below, with a suggestion
+  const std::vector<aq::app::Command> commands = {
+      aq::app::add_render_command(cli), aq::app::add_validate_command(cli),
+      aq::app::add_nodes_command(cli), aq::app::add_bench_command(cli),
+      aq::app::add_edit_command(cli)};
+  if (argc < 2) return refuse_command(cli, {});
+  if (auto stop = aq::app::parse_command_line(cli, argc, argv)) return *stop;
+  for (const auto& command : commands) {
+    if (!command.cli->parsed()) continue;
+    if (auto unknown = aq::app::unknown_arguments(*command.cli); !unknown.empty()) {
+      std::fprintf(stderr, "aquarelle %s: %s\n", command.cli->get_name().c_str(), unknown.c_str());
+      return aq::app::kExitBadInput;
+    }
+    return command.run();
   }
-  std::string command = argv[1];
-  if (command == "--help" || command == "-h" || command == "help") {
-    print_usage(stdout);
-    return 0;
-  }
-  if (command == "--version") {
-    std::printf("aquarelle %s\n", AQ_VERSION);
-    return 0;
-  }
-  if (command == "render") return aq::app::run_render(argc - 1, argv + 1);
-  if (command == "validate") return aq::app::run_validate(argc - 1, argv + 1);
-  if (command == "nodes") return aq::app::run_nodes(argc - 1, argv + 1);
-  if (command == "bench") return aq::app::run_bench(argc - 1, argv + 1);
-  if (command == "edit") {
-#ifdef AQ_HAVE_EDITOR
-    return run_editor(argc - 1, argv + 1);
-#else
-    std::fprintf(stderr, "aquarelle: this build has no editor (configure with "
-                         "-DAQUARELLE_BUILD_EDITOR=ON and install libglfw3-dev, libimgui-dev)\n");
-    return 2;
-#endif
-  }
-  std::fprintf(stderr, "aquarelle: unknown command '%s'\n\n", command.c_str());
-  print_usage(stderr);
-  return 1;
+  return refuse_command(cli, cli.remaining());
 }

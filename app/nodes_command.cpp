@@ -3,6 +3,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "session.h"
@@ -149,39 +152,28 @@ int print_presets() {
   return kExitOk;
 }
 
-}  // namespace
+constexpr const char* kNodesHelp =
+    "usage: aquarelle nodes [TYPE] [--json] [--presets]\n\n"
+    "Lists the installed node types (plugins on the plugin path and the host's\n"
+    "built-in ones) with their ports and parameters. --json prints them as JSON;\n"
+    "--presets prints the quality presets with their measured cost and error.";
 
-int run_nodes(int argc, char** argv) {
-  bool json = false, presets = false;
-  std::string only;
-  for (int i = 1; i < argc; ++i) {
-    std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      std::printf(
-          "usage: aquarelle nodes [TYPE] [--json] [--presets]\n\n"
-          "Lists the installed node types (plugins on the plugin path and the host's\n"
-          "built-in ones) with their ports and parameters. --json prints them as JSON;\n"
-          "--presets prints the quality presets with their measured cost and error.\n");
-      return kExitOk;
-    }
-    if (arg == "--json") {
-      json = true;
-    } else if (arg == "--presets") {
-      presets = true;
-    } else if (!arg.empty() && arg[0] == '-') {
-      std::fprintf(stderr, "aquarelle nodes: unknown option '%s'\n", arg.c_str());
-      return kExitBadInput;
-    } else {
-      only = arg;
-    }
-  }
+struct NodesArguments {
+  std::vector<std::string> types;  // the last one given is listed alone
+  bool json = false;
+  bool presets = false;
+};
+
+int run_nodes(const NodesArguments& args) {
+  const bool json = args.json;
+  const std::string only = args.types.empty() ? std::string() : args.types.back();
   auto plugins = load_plugins(json);
   if (!plugins.ok()) {
     std::fprintf(stderr, "aquarelle nodes: %s\n", plugins.message().c_str());
     return kExitEnvironment;
   }
   const Registry& registry = (*plugins)->registry;
-  if (presets) return print_presets();
+  if (args.presets) return print_presets();
   if (!only.empty() && registry.find(only) == nullptr) {
     std::string names;
     for (const auto& n : registry.names()) names += (names.empty() ? "" : ", ") + n;
@@ -202,6 +194,20 @@ int run_nodes(int argc, char** argv) {
   }
   if (json) std::printf("%s\n", all.dump(2).c_str());
   return kExitOk;
+}
+
+}  // namespace
+
+Command add_nodes_command(CLI::App& cli) {
+  auto args = std::make_shared<NodesArguments>();
+  CLI::App* command =
+      add_command(cli, "nodes", "list the installed node types, their ports and parameters",
+                  kNodesHelp, "Exit codes: 0 ok, 1 no such node type, 2 no plugins.\n");
+  command->add_option("TYPE", args->types, "list only this node type");
+  command->add_flag("--json", args->json, "print the node types as JSON");
+  command->add_flag("--presets", args->presets,
+                    "print the quality presets with their measured cost and error");
+  return {command, [args] { return run_nodes(*args); }};
 }
 
 }  // namespace aq::app

@@ -1,4 +1,4 @@
-// Shared set-up of the subcommands: plugins, overrides, argument parsing helpers.
+// Shared set-up of the subcommands: plugins, overrides, and the values of --size and --frames.
 #include "session.h"
 
 #include <cstdio>
@@ -87,12 +87,6 @@ Status parse_frames(const std::string& text, int* first, int* last) {
   *first = a;
   *last = b;
   return Ok{};
-}
-
-Result<std::string> option_value(int argc, char** argv, int* i) {
-  if (*i + 1 >= argc) return make_error(std::string(argv[*i]) + " needs a value");
-  ++*i;
-  return std::string(argv[*i]);
 }
 
 }  // namespace aq::app

@@ -32,7 +32,4 @@ Status parse_size(const std::string& text, int* width, int* height);
 // "A-B" or "A" -> first, last with first <= last.
 Status parse_frames(const std::string& text, int* first, int* last);
 
-// Value of "--opt VALUE" at argv[i]; advances i. Error when missing.
-Result<std::string> option_value(int argc, char** argv, int* i);
-
 }  // namespace aq::app

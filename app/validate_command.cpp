@@ -1,43 +1,41 @@
 // `aquarelle validate GRAPH`: exit 0 when the graph is valid, else 1 with every problem.
 #include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "session.h"
 
 namespace aq::app {
 
-int run_validate(int argc, char** argv) {
-  std::string graph_path;
+namespace {
+
+constexpr const char* kValidateHelp =
+    "usage: aquarelle validate GRAPH [-q]\n\n"
+    "Reads GRAPH and lists every problem with its place in the file: malformed JSON,\n"
+    "unsupported version, unknown node types, ports and parameters, missing inputs,\n"
+    "type mismatches, cycles, out-of-range values, a bad `output`; then the files it\n"
+    "names: missing or unreadable paths, images and meshes that are not, and (warnings)\n"
+    "missing textures and material files.";
+
+struct ValidateArguments {
+  std::vector<std::string> graphs;
   bool quiet = false;
-  for (int i = 1; i < argc; ++i) {
-    std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      std::printf(
-          "usage: aquarelle validate GRAPH [-q]\n\n"
-          "Reads GRAPH and lists every problem with its place in the file: malformed JSON,\n"
-          "unsupported version, unknown node types, ports and parameters, missing inputs,\n"
-          "type mismatches, cycles, out-of-range values, a bad `output`; then the files it\n"
-          "names: missing or unreadable paths, images and meshes that are not, and (warnings)\n"
-          "missing textures and material files.\n"
-          "Exit codes: 0 valid, 1 problems found, 2 no plugins could be loaded.\n");
-      return kExitOk;
-    }
-    if (arg == "-q" || arg == "--quiet") {
-      quiet = true;
-    } else if (!arg.empty() && arg[0] == '-') {
-      std::fprintf(stderr, "aquarelle validate: unknown option '%s'\n", arg.c_str());
-      return kExitBadInput;
-    } else if (graph_path.empty()) {
-      graph_path = arg;
-    } else {
-      std::fprintf(stderr, "aquarelle validate: one graph at a time ('%s')\n", arg.c_str());
-      return kExitBadInput;
-    }
-  }
-  if (graph_path.empty()) {
+};
+
+int run_validate(const ValidateArguments& args) {
+  if (args.graphs.empty()) {
     std::fprintf(stderr, "aquarelle validate: no graph file given (see --help)\n");
     return kExitBadInput;
   }
+  if (args.graphs.size() > 1) {
+    std::fprintf(stderr, "aquarelle validate: one graph at a time ('%s')\n",
+                 args.graphs[1].c_str());
+    return kExitBadInput;
+  }
+  const std::string& graph_path = args.graphs[0];
+  const bool quiet = args.quiet;
   auto plugins = load_plugins(true);
   if (!plugins.ok()) {
     std::fprintf(stderr, "aquarelle validate: %s\n", plugins.message().c_str());
@@ -63,6 +61,19 @@ int run_validate(int argc, char** argv) {
                 read.graph.output ? read.graph.output->str().c_str() : "-");
   }
   return kExitOk;
+}
+
+}  // namespace
+
+Command add_validate_command(CLI::App& cli) {
+  auto args = std::make_shared<ValidateArguments>();
+  CLI::App* command =
+      add_command(cli, "validate", "check a graph file and list every problem", kValidateHelp,
+                  "Exit codes: 0 valid, 1 problems found, 2 no plugins could be "
+                  "loaded.\n");
+  command->add_option("GRAPH", args->graphs, "the graph file");
+  command->add_flag("-q,--quiet", args->quiet, "say nothing when the graph is valid");
+  return {command, [args] { return run_validate(*args); }};
 }
 
 }  // namespace aq::app

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
-"""Writes the small models and textures of graphs/files.json into assets/scenes/ (each file
-well under 100 KB): OBJ/MTL/PNG and glTF (external and embedded textures, keyframes).
+"""Writes the small models and textures of graphs/files.json and graphs/deep_ocean.json into
+assets/scenes/ (each file well under 100 KB): OBJ/MTL/PNG and glTF (external and embedded
+textures, keyframes), and the deep ocean's ship with cut-out sails, jellyfish, kelp and the
+equirectangular panorama of its surroundings. All procedural: no third-party asset.
 Deterministic: same script, same bytes. Run from anywhere: scripts/make-scene-assets.py"""
 import base64
 import json
@@ -237,6 +239,134 @@ def gltf_box(name, texture_uri_or_bytes, factor, animated=False):
     write(name + ".gltf", json.dumps(doc, indent=1) + "\n")
 
 
+def sail(x, y, w=64, h=64):
+    # Worn canvas: alpha 255 where whole, 0 in the tears along the bottom and a hole, and 204
+    # (0.8, under the ship's cut-off 0.9) in a thin worn patch: discarded like the tears.
+    r = random.Random(x * 977 + y * 31)
+    stain = 18 * math.sin(x * 0.31) * math.sin(y * 0.23)
+    colour = (clamp(232 + stain + r.uniform(-6, 6)), clamp(222 + stain), clamp(190 + stain * 0.6))
+    ragged = h - 1 - y < 5 + 4 * math.sin(x * 0.9) + 3 * math.sin(x * 0.37)
+    hole = math.hypot(x - 40, y - 22) < 5
+    worn = abs(x - 18) < 3 and 10 < y < 40
+    alpha = 0 if ragged or hole else 204 if worn else 255
+    return colour + (alpha,) if alpha else (0, 0, 0, 0)
+
+
+def kelp(x, y):
+    return seaweed(x, y, 32, 128)
+
+
+def panorama(x, y, w=512, h=256):
+    # Under the sea, looking around: light from the surface above (a glow at the zenith and
+    # shafts radiating down), fading to the deep blue below the horizon.
+    lat = (0.5 - (y + 0.5) / h) * math.pi
+    lon = (x + 0.5) / w * 2 * math.pi
+    up = max(math.sin(lat), 0.0)
+    glow = math.exp(-((math.pi / 2 - lat) ** 2) / 0.12)
+    shafts = 0.5 + 0.5 * math.sin(lon * 23 + 3 * math.sin(lon * 7))
+    down = max(-math.sin(lat), 0.0)
+    r = 6 + 40 * up ** 1.5 + 150 * glow + 18 * shafts * up - 4 * down
+    g = 38 + 110 * up ** 1.5 + 190 * glow + 40 * shafts * up - 26 * down
+    b = 62 + 120 * up ** 1.2 + 170 * glow + 40 * shafts * up - 40 * down
+    return (clamp(r), clamp(g), clamp(b), 255)
+
+
+def obj_ship():
+    # A small sailing ship along +x (bow at +0.5): a hull lofted through U-shaped sections, a
+    # mast, and two square sails (planes across the hull, uvs 0..1) with the cut-out canvas.
+    lines = ["# ship (made by scripts/make-scene-assets.py)", "mtllib ship.mtl", "usemtl wood"]
+    stations = [-0.5, -0.4, -0.25, -0.1, 0.05, 0.2, 0.32, 0.42, 0.5]
+    section = [(-1.0, 1.0), (-0.85, 0.45), (0.0, 0.0), (0.85, 0.45), (1.0, 1.0)]
+    for x in stations:
+        t = (x + 0.05) / 0.55
+        width = 0.16 * max(1 - t * t, 0.04) ** 0.5 if x > -0.05 else 0.16 * (1 - 0.35 * (-x - 0.05) / 0.45)
+        depth = 0.16
+        for sx, sy in section:
+            lines.append("v %.4f %.4f %.4f" % (x, 0.04 + depth * sy, width * sx))
+    n = len(section)
+    for i in range(len(stations) - 1):
+        for j in range(n - 1):
+            a = i * n + j + 1
+            lines.append("f %d %d %d" % (a, a + n, a + n + 1))
+            lines.append("f %d %d %d" % (a, a + n + 1, a + 1))
+    deck = [i * n + 1 for i in range(len(stations))] + [i * n + n for i in reversed(range(len(stations)))]
+    lines.append("f " + " ".join(str(v) for v in deck))
+    count = len(stations) * n
+
+    def box(lo, hi):
+        nonlocal count
+        for k in range(8):
+            lines.append("v %.4f %.4f %.4f" % (hi[0] if k & 1 else lo[0], hi[1] if k & 2 else lo[1],
+                                               hi[2] if k & 4 else lo[2]))
+        for f in ((1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)):
+            lines.append("f " + " ".join(str(count + v) for v in f))
+        count += 8
+
+    box((0.03, 0.15, -0.012), (0.055, 1.0, 0.012))   # main mast
+    box((0.31, 0.15, -0.01), (0.33, 0.8, 0.01))      # fore mast
+    lines.append("usemtl canvas")
+    uv = 0
+    for x, y0, y1, half in ((0.07, 0.38, 0.95, 0.26), (0.345, 0.36, 0.76, 0.19)):
+        for yy, zz in ((y0, -half), (y0, half), (y1, half), (y1, -half)):
+            lines.append("v %.4f %.4f %.4f" % (x, yy, zz))
+        lines += ["vt 0 0", "vt 1 0", "vt 1 1", "vt 0 1"]
+        lines.append("f %d/%d %d/%d %d/%d" % (count + 1, uv + 1, count + 2, uv + 2, count + 3, uv + 3))
+        lines.append("f %d/%d %d/%d %d/%d" % (count + 1, uv + 1, count + 3, uv + 3, count + 4, uv + 4))
+        count += 4
+        uv += 4
+    write("ship.obj", "\n".join(lines) + "\n")
+    write("ship.mtl", "newmtl wood\nKd 0.36 0.22 0.12\n\nnewmtl canvas\nKd 1 1 1\nmap_Kd sail.png\n")
+    png("sail.png", 64, 64, sail)
+
+
+def obj_jellyfish():
+    # A bell (a lathe of a rounded profile) with eight wavy tentacles hanging from its rim,
+    # about 1 high; pale pink, bright enough to glow through the fog.
+    lines = ["# jellyfish (made by scripts/make-scene-assets.py)", "mtllib jellyfish.mtl", "usemtl bell"]
+    profile = [(0.0, 1.0), (0.16, 0.97), (0.29, 0.88), (0.37, 0.74), (0.39, 0.62), (0.33, 0.6),
+               (0.22, 0.64)]
+    sides = 16
+    for r, y in profile:
+        for j in range(sides):
+            t = 2 * math.pi * j / sides
+            lines.append("v %.4f %.4f %.4f" % (r * math.cos(t), y, r * math.sin(t)))
+    for i in range(len(profile) - 1):
+        for j in range(sides):
+            a = i * sides + j + 1
+            b = i * sides + (j + 1) % sides + 1
+            lines.append("f %d %d %d" % (a, b + sides, b))
+            lines.append("f %d %d %d" % (a, a + sides, b + sides))
+    count = len(profile) * sides
+    lines.append("usemtl tentacle")
+    for k in range(8):
+        t = 2 * math.pi * (k + 0.5) / 8
+        segments = 8
+        for s_ in range(segments + 1):
+            y = 0.62 - 0.75 * s_ / segments
+            wave = 0.05 * math.sin(s_ * 1.3 + k)
+            r = 0.3 - 0.12 * s_ / segments
+            cx, cz = (r + wave) * math.cos(t), (r + wave) * math.sin(t)
+            ox, oz = -0.025 * math.sin(t), 0.025 * math.cos(t)
+            lines.append("v %.4f %.4f %.4f" % (cx - ox, y, cz - oz))
+            lines.append("v %.4f %.4f %.4f" % (cx + ox, y, cz + oz))
+        for s_ in range(segments):
+            a = count + 2 * s_ + 1
+            lines.append("f %d %d %d" % (a, a + 1, a + 3))
+            lines.append("f %d %d %d" % (a, a + 3, a + 2))
+        count += 2 * (segments + 1)
+    write("jellyfish.obj", "\n".join(lines) + "\n")
+    write("jellyfish.mtl", "newmtl bell\nKd 1.0 0.62 0.92\n\nnewmtl tentacle\nKd 0.95 0.75 1.0\n")
+
+
+def obj_kelp():
+    # A tall kelp card: one wide, four high, standing on y = 0, alpha cut-out.
+    write("kelp.obj", "# kelp card (made by scripts/make-scene-assets.py)\nmtllib kelp.mtl\n"
+          "usemtl blade\nv -0.5 0 0\nv 0.5 0 0\nv 0.5 4 0\nv -0.5 4 0\n"
+          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n")
+    write("kelp.mtl", "newmtl blade\nKd 0.8 1 0.7\nmap_Kd kelp.png\n")
+    png("kelp.png", 32, 128, kelp)
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
     obj_floor()
@@ -247,6 +377,10 @@ def main():
     gltf_box("crate", "crate.png", (1.0, 1.0, 1.0))  # texture beside the file
     gltf_box("chest", png(None, 16, 16, star), (0.9, 0.8, 1.0))  # embedded texture
     gltf_box("lantern", png(None, 16, 16, checker), (0.6, 0.9, 1.0), animated=True)
+    obj_ship()
+    obj_jellyfish()
+    obj_kelp()
+    png("ocean_panorama.png", 512, 256, panorama)
 
 
 if __name__ == "__main__":

@@ -1,9 +1,10 @@
 // The sweeps of `aquarelle bench` for the layered watercolor (graphs/layered.json,
 // graphs/three_cubes.json) and pigment mixing, against the double CPU references:
 //
-//   layered ids      the `layered` node on a synthetic g-buffer of N objects (N = 1 .. 64):
-//                    cost grows with ⌈N/4⌉ ranges (packed channels), error against
-//                    reference::layered; and the abstraction sigma at 16 objects
+//   layered ids      the `layered` node on synthetic g-buffers of N objects (N = 1 .. 64; a
+//                    grid of large discs, small scattered discs, small discs over a floor):
+//                    cost against N, error against reference::layered; and the abstraction
+//                    sigma at 16 objects
 //   pigment chart    `pigment_mix` on a colour chart (pigment pairs across, mixing ratio 0 .. 1
 //                    up) in rgb, cmyk and kubelka_munk against reference::pigment_mix; the
 //                    note gives what each mode makes of the chart's pairs at ratio ½
@@ -39,36 +40,57 @@ struct GBufferImages {
   ImageF id, normal, albedo, depth;
 };
 
-// `count` objects: discs on a grid (sphere normals, depth growing with the index) over a
-// ground object, colours spread over the hue circle.
-GBufferImages synthetic_gbuffer(int w, int h, int count) {
+// Where the synthetic objects lie: `grid` fills the frame with discs as large as the cells,
+// `scattered` puts small discs (radius 2 % of the short side) at the cell centres, jittered,
+// `floor` puts the same small discs over a full-screen floor object behind them.
+enum class Layout { kGrid, kScattered, kFloor };
+
+void set_pixel(GBufferImages& g, int x, int y, float id, const float normal[3], const float rgb[3],
+               float depth) {
+  const float values[4][4] = {{id, 0, 0, 1},
+                              {normal[0], normal[1], normal[2], 1},
+                              {rgb[0], rgb[1], rgb[2], 1},
+                              {depth, 0, 0, 1}};
+  ImageF* images[4] = {&g.id, &g.normal, &g.albedo, &g.depth};
+  for (int k = 0; k < 4; ++k)
+    for (int c = 0; c < 4; ++c) images[k]->at(x, y, c) = values[k][c];
+}
+
+// `count` objects (sphere normals, depth growing with the index, colours spread over the hue
+// circle), laid out as `layout` says.
+GBufferImages synthetic_gbuffer(int w, int h, int count, Layout layout = Layout::kGrid) {
   GBufferImages g{ImageF(w, h, 4, 0.0f), ImageF(w, h, 4, 0.0f), ImageF(w, h, 4, 0.0f),
                   ImageF(w, h, 4, 0.0f)};
   const int columns = std::max(1, static_cast<int>(std::ceil(std::sqrt(count * double(w) / h))));
   const int rows = (count + columns - 1) / columns;
   const double cw = double(w) / columns, ch = double(h) / rows;
-  const double radius = 0.45 * std::min(cw, ch);
+  const bool small = layout != Layout::kGrid;
+  const double radius = small ? std::max(2.0, 0.02 * std::min(w, h)) : 0.45 * std::min(cw, ch);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
+      if (layout == Layout::kFloor) {
+        const float up[3] = {0.0f, 0.7071f, 0.7071f}, sand[3] = {0.8f, 0.7f, 0.5f};
+        set_pixel(g, x, y, static_cast<float>(count + 1), up, sand, 20.0f);
+      }
       const int cx = std::min(columns - 1, static_cast<int>(x / cw));
       const int cy = std::min(rows - 1, static_cast<int>(y / ch));
       const int index = cy * columns + cx;
-      const double dx = (x + 0.5 - (cx + 0.5) * cw) / radius;
-      const double dy = (y + 0.5 - (cy + 0.5) * ch) / radius;
+      // Scattered discs sit off their cell centre by up to a quarter cell (a fixed hash).
+      const double jx = small ? 0.25 * std::sin(12.9898 * index) * (cw - 2 * radius) : 0.0;
+      const double jy = small ? 0.25 * std::cos(78.233 * index) * (ch - 2 * radius) : 0.0;
+      const double dx = (x + 0.5 - (cx + 0.5) * cw - jx) / radius;
+      const double dy = (y + 0.5 - (cy + 0.5) * ch - jy) / radius;
       const double d2 = dx * dx + dy * dy;
       if (index >= count || d2 >= 1.0) continue;
       const double nz = std::sqrt(1.0 - d2);
       const double hue = 6.283185 * index / std::max(count, 1);
-      const float values[4][4] = {
-          {static_cast<float>(index + 1), 0, 0, 1},
-          {static_cast<float>(dx), static_cast<float>(dy), static_cast<float>(nz), 1},
-          {static_cast<float>(0.5 + 0.4 * std::cos(hue)),
-           static_cast<float>(0.5 + 0.4 * std::cos(hue - 2.094)),
-           static_cast<float>(0.5 + 0.4 * std::cos(hue + 2.094)), 1},
-          {static_cast<float>(2.0 + 0.1 * index - 0.3 * nz), 0, 0, 1}};
-      ImageF* images[4] = {&g.id, &g.normal, &g.albedo, &g.depth};
-      for (int k = 0; k < 4; ++k)
-        for (int c = 0; c < 4; ++c) images[k]->at(x, y, c) = values[k][c];
+      const float normal[3] = {static_cast<float>(dx), static_cast<float>(dy),
+                               static_cast<float>(nz)};
+      const float rgb[3] = {static_cast<float>(0.5 + 0.4 * std::cos(hue)),
+                            static_cast<float>(0.5 + 0.4 * std::cos(hue - 2.094)),
+                            static_cast<float>(0.5 + 0.4 * std::cos(hue + 2.094))};
+      set_pixel(g, x, y, static_cast<float>(index + 1), normal, rgb,
+                static_cast<float>(2.0 + 0.1 * index - 0.3 * nz));
     }
   return g;
 }
@@ -79,23 +101,25 @@ Result<Sweep> layered_ids_sweep(GlContext& context, const Registry& registry,
   Sweep sweep = cpu_sweep(
       "layered ids", "layered",
       "reference::layered in double (segmentation, lighting, abstraction, wet edges, glazing) "
-      "on a synthetic g-buffer of N sphere objects; highlights off (a step)");
+      "on a synthetic g-buffer of N sphere objects (grid: discs filling the frame; scattered: "
+      "small discs; floor: small discs over a full-screen floor); highlights off (a step)");
   sweep.note =
-      "cost grows with ceil(N/4) ranges of 11 passes (4 objects per RGBA texture), plus one "
+      "objects whose reach cannot meet share an RGBA channel, so the cost follows how many "
+      "layers pile up on one spot (ceil(channels/4) ranges of 11 passes), not N; plus one "
       "readback of id, depth and albedo per frame";
   reference::LayeredParams params;
   params.specular_threshold = 1.0;
   Status measured = Ok{};
-  auto add = [&](int count, double sigma) {
+  auto add = [&](int count, double sigma, Layout layout, const char* name) {
     if (!measured.ok()) return;
-    const GBufferImages g = synthetic_gbuffer(w, h, count);
+    const GBufferImages g = synthetic_gbuffer(w, h, count, layout);
     reference::LayeredParams p = params;
     p.abstraction_sigma = sigma;
     auto exact = timed_reference(&sweep.reference_ms, [&] {
       return reference::layered(g.id, g.normal, g.albedo, g.depth, nullptr, p);
     });
     char setting[64];
-    std::snprintf(setting, sizeof setting, "ids=%d sigma=%g", count, sigma);
+    std::snprintf(setting, sizeof setting, "%s ids=%d sigma=%g", name, count, sigma);
     std::vector<ReferenceConfig> configs;
     for (const char* precision : {"half", "float"}) {
       configs.push_back(
@@ -107,8 +131,10 @@ Result<Sweep> layered_ids_sweep(GlContext& context, const Registry& registry,
                     {{"id", g.id}, {"normal", g.normal}, {"albedo", g.albedo}, {"depth", g.depth}},
                     configs, w, h, &sweep);
   };
-  for (int count : {1, 4, 16, 64}) add(count, 3.0);
-  for (double sigma : {1.5, 6.0}) add(16, sigma);
+  for (int count : {1, 4, 16, 64}) add(count, 3.0, Layout::kGrid, "grid");
+  for (int count : {4, 16, 64}) add(count, 3.0, Layout::kScattered, "scattered");
+  for (int count : {4, 16, 64}) add(count, 3.0, Layout::kFloor, "floor");
+  for (double sigma : {1.5, 6.0}) add(16, sigma, Layout::kGrid, "grid");
   if (!measured.ok()) return measured.error();
   return sweep;
 }

@@ -1,8 +1,13 @@
-// Entry point of `aquarelle edit`: the GLFW + Dear ImGui graph editor.
+// Entry point of `aquarelle edit`: the GLFW + Dear ImGui graph editor. The command line is
+// parsed by app/edit_command.cpp:
 //
 //   aquarelle edit [GRAPH] [--size WxH] [--script ACTIONS.json] [--screenshot OUT.png] [--quit]
 //
-// argv[0] is "edit"; the rest are the editor's arguments. Returns the process exit status.
+// Returns the process exit status.
 #pragma once
 
-int run_editor(int argc, char** argv);
+namespace aq::editor {
+struct EditorOptions;
+}
+
+int run_editor(const aq::editor::EditorOptions& options);

@@ -251,11 +251,12 @@ void main() {
   }
   o_block = aq_morph_block_out(results);
 }
-#elif AQ_MORPH_BLOCKED && (AQ_MORPH_IN_BLOCKS || AQ_MORPH_OUT_BLOCKS)
+#elif AQ_MORPH_BLOCKED && (AQ_MORPH_OUT_BLOCKS || (AQ_MORPH_IN_BLOCKS && AQ_MORPH_PASS == 0))
 // Blocks to blocks: one fragment per 2 x 2 block computes its four pixels' extremes along the
 // pass's axis from the blocks that hold the pixels 2b - r .. 2b + 1 + r of both of the block's
 // lines. Pixels outside the image are left out of the window (the same as clamping the lookups,
-// as everywhere in this file).
+// as everywhere in this file). A columns pass from blocks into pixels (the last node of a
+// handed-over chain, when nothing reads blocks after it) is the plain blocked columns pass below.
 
 void main() {
   int b, extent;

@@ -7,6 +7,11 @@
 //   image, key ──► horizontal gated pass ──► colour_h, key_h (amount = max over the row taps)
 //   colour_h, key_h, image ──► vertical gated pass ──► mix(image, blurred, amount)
 //
+// By default the two passes run on cells of up to 4×4 pixels (σ / cell; never under 2 cells):
+// the nearest pixel of a cell represents it, the cell's colour is the mean of the pixels that
+// may run into it, and the full-size mix takes the four nearest cells that may run into the
+// pixel (resolution 1: every pixel, the exact operator; the bench states the cells' error).
+//
 // The two 1D passes define the operator (each gate compares a tap with the pixel it runs
 // into, the vertical pass on the horizontal one's results); reference/bleed.h computes the
 // same definition in double. Amount 0 at a pixel returns its texel unchanged (bit-exact).
@@ -28,7 +33,7 @@ constexpr aq_port_desc kInputs[] = {
                             "linear view depth (gbuffer.depth); unconnected: no depth test"),
     aq::optional_image_port("id", "object id (gbuffer.id); unconnected: one object")};
 constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "colour with bleeding")};
-enum Param : uint32_t { kSigma, kReach, kAmount, kDepthBias };
+enum Param : uint32_t { kSigma, kReach, kAmount, kDepthBias, kResolution };
 constexpr aq_param_desc kParams[] = {
     aq::float_param("sigma", 20.0, 0.0, 200.0,
                     "Gaussian sigma in output pixels (the seed's 20); 0 passes the image through"),
@@ -39,7 +44,31 @@ constexpr aq_param_desc kParams[] = {
     aq::float_param("amount", 1.0, 0.0, 1.0,
                     "multiplies the control map's bleed; 0 passes the image through"),
     aq::float_param("depth_bias", 0.05, 0.0, 100.0,
-                    "world units a tap may lie behind the pixel and still run into it")};
+                    "world units a tap may lie behind the pixel and still run into it"),
+    aq::int_param("resolution", 4, 1, 16,
+                  "largest cell (output pixels per side) the blur runs on; the cell keeps "
+                  "sigma at 2 cells or more; 1: every pixel, exact")};
+
+// The gated 1D passes: horizontal into (colour_h, key_h), vertical into `targets` (the output
+// with `final`, else a colour and key pair). Program and uniforms are set by the caller.
+bool gated_passes(aq::Context& ctx, GLuint program, const aq_image& color, const aq_image& key,
+                  const aq_image& original, const aq_image (&horizontal)[2],
+                  const aq_image* targets, uint32_t target_count, bool final) {
+  aq::bind_texture(program, "u_color", 0, color);
+  aq::bind_texture(program, "u_key", 1, key);
+  aq::bind_texture(program, "u_original", 2, original);
+  glUniform2i(glGetUniformLocation(program, "u_direction"), 1, 0);
+  aq::set_int(program, "u_final", 0);
+  if (!ctx.bind_targets(horizontal, 2)) return false;
+  ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+  aq::bind_texture(program, "u_color", 0, horizontal[0]);
+  aq::bind_texture(program, "u_key", 1, horizontal[1]);
+  glUniform2i(glGetUniformLocation(program, "u_direction"), 0, 1);
+  aq::set_int(program, "u_final", final ? 1 : 0);
+  if (!ctx.bind_targets(targets, target_count)) return false;
+  ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+  return true;
+}
 
 struct Bleed {
   int process(aq::Context& ctx) {
@@ -47,50 +76,96 @@ struct Bleed {
     const double sigma = ctx.param_float(kSigma) * ctx.render_scale();
     const double amount = ctx.param_float(kAmount);
     if (!(sigma > 0.0) || !(amount > 0.0)) return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
-    const int radius = std::clamp(static_cast<int>(std::ceil(ctx.param_float(kReach) * sigma)), 1,
-                                  std::max(in.width, in.height));
-    aq_image out, key, colour_h, key_h;
+    // The blur runs on cells of `cell`² pixels, as large as asked but keeping σ >= 2 cells.
+    const int asked =
+        std::max(1, static_cast<int>(std::lround(ctx.param_int(kResolution) * ctx.render_scale())));
+    const int cell = std::clamp(static_cast<int>(std::floor(sigma / 2.0)), 1, asked);
+    aq_image out, key;
     if (!ctx.output_like(0, in, &out) ||
-        !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &key) ||
-        !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &colour_h) ||
-        !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &key_h)) {
+        !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &key) || !make_key(ctx, key)) {
       return AQ_ERROR;
     }
-    const GLuint key_program = ctx.program(shaders::bleed_key_frag);
-    const GLuint pass_program = ctx.program(shaders::bleed_pass_frag);
-    if (key_program == 0 || pass_program == 0) return AQ_ERROR;
-
-    glUseProgram(key_program);
-    const aq_image control = ctx.input_image(kControl);
-    aq::bind_texture(key_program, "u_control", 0, control);
-    aq::bind_texture(key_program, "u_depth", 1,
-                     ctx.connected(kDepth) ? ctx.input_image(kDepth) : control);
-    aq::bind_texture(key_program, "u_id", 2, ctx.connected(kId) ? ctx.input_image(kId) : control);
-    aq::set_int(key_program, "u_has_depth", ctx.connected(kDepth) ? 1 : 0);
-    aq::set_int(key_program, "u_has_id", ctx.connected(kId) ? 1 : 0);
-    aq::set_float(key_program, "u_amount", amount);
-    if (!ctx.draw(key)) return AQ_ERROR;
-
-    glUseProgram(pass_program);
-    aq::set_int(pass_program, "u_radius", radius);
-    aq::set_float(pass_program, "u_inv_two_sigma2", 1.0 / (2.0 * sigma * sigma));
-    aq::set_float(pass_program, "u_depth_bias", ctx.param_float(kDepthBias));
-    const aq_image horizontal[2] = {colour_h, key_h};
-    aq::bind_texture(pass_program, "u_color", 0, in);
-    aq::bind_texture(pass_program, "u_key", 1, key);
-    aq::bind_texture(pass_program, "u_original", 2, in);
-    glUniform2i(glGetUniformLocation(pass_program, "u_direction"), 1, 0);
-    aq::set_int(pass_program, "u_final", 0);
-    if (!ctx.bind_targets(horizontal, 2)) return AQ_ERROR;
-    ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
-
-    aq::bind_texture(pass_program, "u_color", 0, colour_h);
-    aq::bind_texture(pass_program, "u_key", 1, key_h);
-    glUniform2i(glGetUniformLocation(pass_program, "u_direction"), 0, 1);
-    aq::set_int(pass_program, "u_final", 1);
-    const bool drawn = ctx.draw(out);
-    aq::unbind_textures(3);
+    const bool drawn =
+        cell == 1 ? exact(ctx, in, key, sigma, out) : on_cells(ctx, in, key, sigma, cell, out);
+    aq::unbind_textures(4);
     return drawn ? AQ_OK : AQ_ERROR;
+  }
+
+ private:
+  // (bleed · amount, depth, id) per pixel, so each tap reads two textures instead of four.
+  static bool make_key(aq::Context& ctx, const aq_image& key) {
+    const GLuint program = ctx.program(shaders::bleed_key_frag);
+    if (program == 0) return false;
+    glUseProgram(program);
+    const aq_image control = ctx.input_image(kControl);
+    aq::bind_texture(program, "u_control", 0, control);
+    aq::bind_texture(program, "u_depth", 1,
+                     ctx.connected(kDepth) ? ctx.input_image(kDepth) : control);
+    aq::bind_texture(program, "u_id", 2, ctx.connected(kId) ? ctx.input_image(kId) : control);
+    aq::set_int(program, "u_has_depth", ctx.connected(kDepth) ? 1 : 0);
+    aq::set_int(program, "u_has_id", ctx.connected(kId) ? 1 : 0);
+    aq::set_float(program, "u_amount", ctx.param_float(kAmount));
+    return ctx.draw(key);
+  }
+
+  static GLuint pass_program(aq::Context& ctx, double sigma, int length) {
+    const GLuint program = ctx.program(shaders::bleed_pass_frag);
+    if (program == 0) return 0;
+    const int radius = std::clamp(static_cast<int>(std::ceil(ctx.param_float(kReach) * sigma)), 1,
+                                  std::max(length, 1));
+    glUseProgram(program);
+    aq::set_int(program, "u_radius", radius);
+    aq::set_float(program, "u_inv_two_sigma2", 1.0 / (2.0 * sigma * sigma));
+    aq::set_float(program, "u_depth_bias", ctx.param_float(kDepthBias));
+    return program;
+  }
+
+  // The definition itself, every pixel a tap (reference/bleed.h).
+  static bool exact(aq::Context& ctx, const aq_image& in, const aq_image& key, double sigma,
+                    const aq_image& out) {
+    aq_image colour_h, key_h;
+    if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &colour_h) ||
+        !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &key_h)) {
+      return false;
+    }
+    const GLuint program = pass_program(ctx, sigma, std::max(in.width, in.height));
+    return program != 0 &&
+           gated_passes(ctx, program, in, key, in, {colour_h, key_h}, &out, 1, /*final=*/true);
+  }
+
+  // The same passes on cells of cell² pixels (σ / cell), then the cells brought back by the
+  // gate (bleed_down.frag, bleed_up.frag): a wide Gaussian is smooth at the cell's scale.
+  static bool on_cells(aq::Context& ctx, const aq_image& in, const aq_image& key, double sigma,
+                       int cell, const aq_image& out) {
+    const int w = (in.width + cell - 1) / cell, h = (in.height + cell - 1) / cell;
+    aq_image cells[2], horizontal[2], blurred[2];
+    for (aq_image* pair : {cells, horizontal, blurred})
+      for (int k = 0; k < 2; ++k)
+        if (!ctx.scratch(w, h, AQ_FORMAT_RGBA32F, &pair[k])) return false;
+    const GLuint down = ctx.program(shaders::bleed_down_frag);
+    const GLuint up = ctx.program(shaders::bleed_up_frag);
+    if (down == 0 || up == 0) return false;
+    const float bias = static_cast<float>(ctx.param_float(kDepthBias));
+    glUseProgram(down);
+    aq::bind_texture(down, "u_color", 0, in);
+    aq::bind_texture(down, "u_key", 1, key);
+    aq::set_int(down, "u_cell", cell);
+    aq::set_float(down, "u_depth_bias", bias);
+    if (!ctx.bind_targets(cells, 2)) return false;
+    ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+    const GLuint program = pass_program(ctx, sigma / cell, std::max(w, h));
+    if (program == 0 || !gated_passes(ctx, program, cells[0], cells[1], cells[0],
+                                      {horizontal[0], horizontal[1]}, blurred, 2, false)) {
+      return false;
+    }
+    glUseProgram(up);
+    aq::bind_texture(up, "u_original", 0, in);
+    aq::bind_texture(up, "u_key", 1, key);
+    aq::bind_texture(up, "u_cell_color", 2, blurred[0]);
+    aq::bind_texture(up, "u_cell_key", 3, blurred[1]);
+    aq::set_int(up, "u_cell", cell);
+    aq::set_float(up, "u_depth_bias", bias);
+    return ctx.draw(out);
   }
 };
 

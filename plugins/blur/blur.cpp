@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -63,7 +64,8 @@ constexpr aq_param_desc kParams[] = {
                     "log"),
     aq::float_param("distance_scale", 20.0, 0.001, 1.0e6,
                     "view depth (scene units) at which the depth term reaches 1; it grows as "
-                    "(depth / distance_scale)^3 before that",
+                    "(depth / distance_scale)^3 before that. Choose it near the depth of the "
+                    "farthest surface (a warning says when the whole frame is past it)",
                     0.0, "log"),
     aq::float_param("depth_weight", 1.0, 0.0, 1.0, "weight of the depth term in the strength"),
     aq::float_param("radial_weight", 0.35, 0.0, 1.0,
@@ -144,6 +146,8 @@ struct Blur {
     const double max_sigma = sigma * (uniform ? std::min(1.0, depth_weight) : max_strength);
     if (!(max_sigma > 0.0)) return ctx.pass_through(0, 0) ? AQ_OK : AQ_ERROR;
 
+    if (has_depth && depth_weight > 0.0) check_distance_scale(ctx);
+
     aq_image out;
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
     const bool direct =
@@ -175,6 +179,38 @@ struct Blur {
     }
     aq::unbind_textures(16);
     return ok && ctx.set_output_damage(0, damage_) ? AQ_OK : AQ_ERROR;
+  }
+
+  // Once per value of distance_scale: when every surface in the frame is farther than it, the
+  // depth term is 1 everywhere and the whole frame is blurred at full strength (a scene built
+  // at another scale than distance_scale's default): a warning naming the frame's depths so
+  // the parameter can be chosen (README, "Choosing distance_scale"). Depth 0 or not finite
+  // (a background without environment) is skipped; the g-buffer's environment background
+  // (the far plane) counts, as the blur treats it as far.
+  double checked_scale_ = -1.0;
+  void check_distance_scale(const aq::Context& ctx) {
+    const double scale = ctx.param_float(kDistanceScale);
+    if (scale == checked_scale_) return;
+    checked_scale_ = scale;
+    const aq_image depth = ctx.input_image(1);
+    std::vector<float> z(static_cast<size_t>(depth.width) * depth.height);
+    glGetTextureImage(depth.texture, 0, GL_RED, GL_FLOAT,
+                      static_cast<GLsizei>(z.size() * sizeof(float)), z.data());
+    double nearest = HUGE_VAL, farthest = 0.0;
+    for (float d : z) {
+      if (!(d > 0.0f) || !std::isfinite(d)) continue;
+      nearest = std::min(nearest, double(d));
+      farthest = std::max(farthest, double(d));
+    }
+    if (!(farthest > 0.0) || nearest < scale) return;
+    char text[512];
+    std::snprintf(text, sizeof(text),
+                  "parameter 'distance_scale' (%g) is nearer than every pixel of the frame "
+                  "(depths %.3g to %.3g scene units from the camera): the whole frame is "
+                  "blurred at full strength; distance_scale is in the scene's units: set it to "
+                  "about the depth that should be fully blurred, e.g. between %.3g and %.3g",
+                  scale, nearest, farthest, nearest, farthest);
+    ctx.warn(text);
   }
 
   // Damage tracking for the direct kernels (each output pixel reads the image and the depth

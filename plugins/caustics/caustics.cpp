@@ -38,7 +38,10 @@ enum Param {
   kAutoResolution,
   kEstimator,
   kAutoGrid,
-  kWindow
+  kWindow,
+  kBlendCount,
+  kBlendInterval,
+  kShift
 };
 enum Estimator { kCoverage, kPoint };
 constexpr aq_param_desc kParams[] = {
@@ -75,7 +78,19 @@ constexpr aq_param_desc kParams[] = {
                   "estimator coverage: texels per side of the window whose overlaps are shared "
                   "in closed form (larger triangles go texel by texel, a loop every SIMD lane "
                   "runs); 3 costs a quarter to a third less than 2 on llvmpipe, with the same "
-                  "light per tile (a few texels split differently in float, see README)")};
+                  "light per tile (a few texels split differently in float, see README)"),
+    aq::int_param("blend_count", 1, 1, 5,
+                  "caustic images at successive times mixed into one (seed 001's murky water: "
+                  "5, weights .4 .3 .2 .1 .05 normalised to sum 1, so the mean stays 1); each "
+                  "costs a whole texture"),
+    aq::float_param("blend_interval", 0.25, 0.0, 10.0,
+                    "seconds between the blended images (image k is at time t - k * interval)"),
+    aq::color_param("shift", 0.0, 0.0, 0.0,
+                    "added to the intensity per channel (seed 001's blue shift: 0, 0.05, 0.1); "
+                    "light multiplied by it turns bluer in the light and in the shade")};
+
+// The seed's weights for the blended caustic images, newest first (Coleman & Dodson).
+constexpr double kBlendWeights[5] = {0.4, 0.3, 0.2, 0.1, 0.05};
 
 // Texture pixels per tile side for about one texel per screen pixel where the tile is seen
 // largest: at the nearest point, under the water, of the meshes' boxes in view, where a tile is
@@ -140,8 +155,6 @@ struct Caustics {
         ctx.param_bool(kAutoGrid)) {
       grid = std::min(grid, std::max(4, (resolution + 1) / 2));
     }
-    const double depth = ctx.param_float(kDepth);
-    const double amplitude = ctx.param_float(kAmplitude);
     const double eta = ctx.param_float(kEta);
     if (resolution < 1 || grid < 1) {
       return ctx.fail("caustics: resolution and grid must be at least 1 (got resolution " +
@@ -155,14 +168,56 @@ struct Caustics {
     aq_image displacement, out;
     if (!ctx.scratch(grid, grid, AQ_FORMAT_RGBA32F, &displacement)) return AQ_ERROR;
     if (!ctx.output(0, resolution, resolution, ctx.working_format(), &out)) return AQ_ERROR;
-    if (!refract_grid(ctx, displacement, grid, depth, amplitude, eta)) return AQ_ERROR;
-    if (point) {
-      return point_estimate(ctx, displacement, out, grid, depth, amplitude) ? AQ_OK : AQ_ERROR;
+    const int count = static_cast<int>(ctx.param_int(kBlendCount));
+    const double* shift = ctx.param_vec3(kShift);
+    if (count <= 1 && shift[0] == 0.0 && shift[1] == 0.0 && shift[2] == 0.0) {
+      return estimate(ctx, displacement, out, grid, ctx.time()) ? AQ_OK : AQ_ERROR;
     }
-    return coverage_estimate(ctx, displacement, out, grid) ? AQ_OK : AQ_ERROR;
+    // Blended or shifted: each image into a float scratch, then one pass mixes them.
+    aq_image images[5];
+    for (int k = 0; k < count; ++k) {
+      const double time = ctx.time() - k * ctx.param_float(kBlendInterval);
+      if (!ctx.scratch(resolution, resolution, AQ_FORMAT_RGBA32F, &images[k])) return AQ_ERROR;
+      if (!estimate(ctx, displacement, images[k], grid, time)) return AQ_ERROR;
+    }
+    return blend(ctx, images, count, shift, out) ? AQ_OK : AQ_ERROR;
   }
 
  private:
+  // One caustic image at `time` into `out`: the refracted grid, then the chosen estimator.
+  bool estimate(aq::Context& ctx, const aq_image& displacement, const aq_image& out, int grid,
+                double time) {
+    const double depth = ctx.param_float(kDepth);
+    const double amplitude = ctx.param_float(kAmplitude);
+    if (!refract_grid(ctx, displacement, grid, depth, amplitude, ctx.param_float(kEta), time)) {
+      return false;
+    }
+    if (ctx.param_enum(kEstimator) == kPoint) {
+      return point_estimate(ctx, displacement, out, grid, depth, amplitude);
+    }
+    return coverage_estimate(ctx, displacement, out, grid);
+  }
+
+  // out = Σ_k w_k image_k / Σ_k w_k + shift, w the seed's weights for the first `count`.
+  static bool blend(aq::Context& ctx, const aq_image* images, int count, const double* shift,
+                    const aq_image& out) {
+    GLuint program = ctx.program(shaders::caustics_blend_frag);
+    if (program == 0) return false;
+    glUseProgram(program);
+    double total = 0.0;
+    for (int k = 0; k < count; ++k) total += kBlendWeights[k];
+    for (int k = 0; k < 5; ++k) {
+      const std::string at = "[" + std::to_string(k) + "]";
+      aq::bind_texture(program, ("u_images" + at).c_str(), k, images[k < count ? k : 0]);
+      aq::set_float(program, ("u_weights" + at).c_str(),
+                    k < count ? kBlendWeights[k] / total : 0.0);
+    }
+    aq::set_vec3(program, "u_shift", shift);
+    const bool drawn = ctx.draw(out);
+    aq::unbind_textures(5);
+    return drawn;
+  }
+
   // Stam's estimator: refracted triangles rasterised at texel centres (see README).
   bool point_estimate(aq::Context& ctx, const aq_image& displacement, const aq_image& out, int grid,
                       double depth, double amplitude) {
@@ -277,7 +332,7 @@ struct Caustics {
   aq::gl::Texture flat_counts;  // counts of flat water (only grid, resolution, flux matter)
 
   bool refract_grid(aq::Context& ctx, const aq_image& target, int grid, double depth,
-                    double amplitude, double eta) {
+                    double amplitude, double eta, double time) {
     GLuint program = ctx.program(shaders::caustics_displacement_frag);
     if (program == 0) return false;
     glUseProgram(program);
@@ -285,7 +340,7 @@ struct Caustics {
     aq::set_float(program, "u_wave_scale", static_cast<double>(ctx.param_int(kWaveScale)));
     aq::set_float(program, "u_amplitude", amplitude);
     aq::set_float(program, "u_depth", depth);
-    aq::set_float(program, "u_time_coord", ctx.param_float(kSpeed) * ctx.time());
+    aq::set_float(program, "u_time_coord", ctx.param_float(kSpeed) * time);
     aq::set_float(program, "u_eta", eta);
     const bool drawn = ctx.draw(target);
     glUseProgram(0);

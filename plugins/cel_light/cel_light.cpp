@@ -36,7 +36,9 @@ constexpr aq_port_desc kInputs[] = {
 constexpr aq_port_desc kOutputs[] = {
     // AQ_PORT_HDR8: written encoded (aquarelle/hdr8.glsl) when every reader decodes it.
     aq::image_port("image", "lit, cel-shaded colour (HDR)", AQ_PORT_HDR8),
-    aq::image_port("plain", "the same light without caustics (e.g. the source of `edge`)")};
+    aq::image_port("plain",
+                   "the same light without caustics; with `plain` = regions a flat colour per "
+                   "object id (the source of `edge`)")};
 
 enum Param {
   kLevels,
@@ -45,11 +47,15 @@ enum Param {
   kCausticTile,
   kCausticStrength,
   kBackground,
-  kEnvironment
+  kEnvironment,
+  kSpace,
+  kFloor,
+  kPlain
 };
 constexpr aq_param_desc kParams[] = {
     aq::int_param("levels", 4, 1, 64,
-                  "HSV value levels: v -> round(v (levels-1)) / (levels-1); 1 = flat colour"),
+                  "HSV value levels: v -> round(v (levels-1)) / (levels-1) in `space`; "
+                  "1 = flat colour"),
     aq::bool_param("quantize", true, "apply cel shading (off: plain diffuse light)"),
     aq::int_param("pcf_radius", 1, 0, 4, "shadow filter: (2r+1)^2 taps, 0 = one tap"),
     aq::float_param("caustic_tile", 0.0, 0.0, 1000.0,
@@ -60,12 +66,26 @@ constexpr aq_param_desc kParams[] = {
     aq::color_param("background", 0.1, 0.3, 0.4, "colour where id = 0 (open water)"),
     aq::bool_param("environment", false,
                    "where id = 0 show the scene's environment (the g-buffer albedo there, "
-                   "scene_join's gradient) instead of `background`")};
+                   "scene_join's gradient) instead of `background`"),
+    aq::enum_param("space", "display|linear", 0,
+                   "where the levels are even steps: display (the sRGB-encoded value, as the "
+                   "seed quantised display values) or linear (the light's value)"),
+    aq::bool_param("floor", true,
+                   "a lit pixel that is not black keeps at least the first level above black "
+                   "(a painter never paints a lit, coloured surface black)"),
+    aq::enum_param("plain", "light|regions", 0,
+                   "what the `plain` output holds: light (the light without caustics) or regions "
+                   "(a flat colour per object id: where washes meet, the source `edge` darkens "
+                   "outlines from without lines along cel bands; no extra pass)")};
 
 // The shader variant for this node's connections and parameters (see cel_light.frag).
 std::string variant_source(bool has_shadow, bool has_caustics, bool quantize, int pcf_radius,
-                           bool same_size, bool encode, bool surface) {
-  return "#define AQ_SURFACE " + std::to_string(surface ? 1 : 0) + "\n#define AQ_HAS_SHADOW " +
+                           bool same_size, bool encode, bool surface, bool display, bool floor,
+                           bool regions) {
+  return std::string(regions ? "#define AQ_PLAIN_REGIONS 1\n" : "") +
+         "#define AQ_QUANTIZE_DISPLAY " + std::to_string(display ? 1 : 0) +
+         "\n#define AQ_QUANTIZE_FLOOR " + std::to_string(floor ? 1 : 0) + "\n#define AQ_SURFACE " +
+         std::to_string(surface ? 1 : 0) + "\n#define AQ_HAS_SHADOW " +
          std::to_string(has_shadow ? 1 : 0) + "\n#define AQ_HAS_CAUSTICS " +
          std::to_string(has_caustics ? 1 : 0) + "\n#define AQ_QUANTIZE " +
          std::to_string(quantize ? 1 : 0) + "\n#define AQ_PCF_RADIUS " +
@@ -85,6 +105,7 @@ struct CelLight {
     bool same_size;
     bool encode;
     bool surface;
+    bool display, floor, regions;
     bool operator==(const Variant&) const = default;
   };
   Variant variant_{};
@@ -137,11 +158,14 @@ struct CelLight {
                           static_cast<int>(ctx.param_int(kPcfRadius)),
                           gbuffer_same_size,
                           targets[0].format == AQ_FORMAT_RGBA8_HDR,
-                          packed};
+                          packed,
+                          ctx.param_enum(kSpace) == 0,
+                          ctx.param_bool(kFloor),
+                          ctx.param_enum(kPlain) == 1};
     if (source.empty() || variant != variant_) {  // not re-made every frame
-      source =
-          variant_source(variant.shadow, variant.caustics, variant.quantize, variant.pcf_radius,
-                         variant.same_size, variant.encode, variant.surface);
+      source = variant_source(variant.shadow, variant.caustics, variant.quantize,
+                              variant.pcf_radius, variant.same_size, variant.encode,
+                              variant.surface, variant.display, variant.floor, variant.regions);
       variant_ = variant;
     }
     // No source path: hot reload would read the file without the variant's defines.
@@ -250,6 +274,7 @@ struct CelLight {
 
 AQ_NODE(kCelLightNode, CelLight, "cel_light", "Light",
         "Deferred diffuse light with shadow map and projected caustics, then cel shading "
-        "(HSV value quantised to N levels, hue and saturation kept).",
+        "(HSV value quantised to N levels in display space, hue and saturation kept; a lit "
+        "colour never goes black).",
         0, kInputs, kOutputs, kParams);
 AQ_PLUGIN("cel_light", "1.0", &kCelLightNode)

@@ -3,8 +3,8 @@
 // screen-space pass (bleeding, edge darkening, tremor) reads what the artist asked for per pixel:
 //
 //   scene ──► per mesh: aq::surface_art (object node's bleed, edge darkening, tremor, FBM)
-//         ──► control  r bleed · f_b   g edge darkening · f_e   b grazing 1 − |N·V|   a tremor ·
-//         f_t
+//         ──► control  r bleed · f_b   g edge darkening · f_e   b grazing 1 − |N·V|
+//                      a f_t where the object trembles (unitless: the screen tremor's pixels ×)
 //             object   object-space position (w = 1 on geometry): anchors noise to objects
 //
 // f = clamp(1 + 2 · fbm_density · fbm3(object position · fbm_scale), 0, 2), one lattice offset
@@ -26,8 +26,8 @@ constexpr aq_port_desc kInputs[] = {aq::scene_port("scene", "objects with their 
 enum Output { kControl, kObject, kOutputCount };
 constexpr aq_port_desc kOutputs[] = {
     aq::image_port("control",
-                   "r bleed, g edge darkening, b grazing (1 - |N.V|), a tremor; 0 on the "
-                   "background"),
+                   "r bleed, g edge darkening, b grazing (1 - |N.V|), a tremor mask (unitless, 1 = "
+                   "full, FBM-varied; 0 where the object has no tremor); 0 on the background"),
     aq::image_port("object", "object-space position (xyz), w = 1 on geometry (RGBA32F)")};
 enum Param { kOctaves };
 constexpr aq_param_desc kParams[] = {
@@ -49,8 +49,10 @@ class ControlMap {
     }
     aq_image depth_buffer;
     if (!ctx.scratch(width, height, AQ_FORMAT_DEPTH32F, &depth_buffer)) return AQ_ERROR;
+    const GLuint depth_program =
+        ctx.program(shaders::control_map_vert, shaders::control_map_depth_frag);
     const GLuint program = ctx.program(shaders::control_map_vert, shaders::control_map_frag);
-    if (program == 0) return AQ_ERROR;
+    if (program == 0 || depth_program == 0) return AQ_ERROR;
     meshes_.update(*scene, ctx.raw()->gl_generation);
     if (!ctx.bind_targets(targets, kOutputCount, &depth_buffer)) return AQ_ERROR;
     const float zero[4] = {0, 0, 0, 0};
@@ -58,44 +60,63 @@ class ControlMap {
     glClearBufferfv(GL_COLOR, kControl, zero);
     glClearBufferfv(GL_COLOR, kObject, zero);
     glClearBufferfv(GL_DEPTH, 0, &depth_one);
-
     const glm::mat4 view = aq::scene_math::camera_view(scene->camera);
     const glm::mat4 projection = aq::scene_math::camera_projection(
         scene->camera, static_cast<float>(width) / static_cast<float>(height));
     glEnable(GL_DEPTH_TEST);
+    // Pass 1: depth only (cut-outs applied), so pass 2's FBM runs once per visible pixel.
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    glUseProgram(program);
-    aq::set_mat4(program, "u_view", glm::value_ptr(view));
-    aq::set_mat4(program, "u_projection", glm::value_ptr(projection));
-    aq::set_vec3(program, "u_camera", scene->camera.position);
-    aq::set_int(program, "u_octaves", static_cast<int>(ctx.param_int(kOctaves)));
-    aq::set_int(program, "u_base_color", 0);
-    const GLint model_location = glGetUniformLocation(program, "u_model");
-    const GLint normal_location = glGetUniformLocation(program, "u_normal_matrix");
-    const GLint amounts_location = glGetUniformLocation(program, "u_amounts");
-    const GLint density_location = glGetUniformLocation(program, "u_fbm_density");
-    const GLint scale_location = glGetUniformLocation(program, "u_fbm_scale");
-    const GLint cutoff_location = glGetUniformLocation(program, "u_alpha_cutoff");
-    for (uint32_t i = 0; i < scene->mesh_count; ++i) {
-      const aq_mesh& mesh = scene->meshes[i];
-      const aq::ArtDirection art = aq::surface_art(*scene, i);
-      const glm::mat4 model = glm::make_mat4(mesh.model);
-      const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(model)));
-      glUniformMatrix4fv(model_location, 1, GL_FALSE, mesh.model);
-      glUniformMatrix3fv(normal_location, 1, GL_FALSE, glm::value_ptr(normal_matrix));
-      glUniform4f(amounts_location, art.bleed, art.edge_darkening, art.tremor, 0.0f);
-      glUniform1f(density_location, art.fbm_density);
-      glUniform1f(scale_location, art.fbm_scale);
-      glUniform1f(cutoff_location, meshes_.bind_surface(*scene, i, 0));
-      meshes_.draw(mesh);
-    }
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    draw_meshes(*scene, depth_program, view, projection, /*with_art=*/false, 0);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    // Pass 2: the art direction where the nearest surface is.
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    draw_meshes(*scene, program, view, projection, /*with_art=*/true,
+                static_cast<int>(ctx.param_int(kOctaves)));
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
     glDisable(GL_DEPTH_TEST);
     aq::unbind_textures(1);
     return AQ_OK;
   }
 
  private:
+  void draw_meshes(const aq_scene& scene, GLuint program, const glm::mat4& view,
+                   const glm::mat4& projection, bool with_art, int octaves) {
+    glUseProgram(program);
+    aq::set_mat4(program, "u_view", glm::value_ptr(view));
+    aq::set_mat4(program, "u_projection", glm::value_ptr(projection));
+    aq::set_int(program, "u_base_color", 0);
+    if (with_art) {
+      aq::set_vec3(program, "u_camera", scene.camera.position);
+      aq::set_int(program, "u_octaves", octaves);
+    }
+    const GLint model_location = glGetUniformLocation(program, "u_model");
+    const GLint normal_location = glGetUniformLocation(program, "u_normal_matrix");
+    const GLint amounts_location = glGetUniformLocation(program, "u_amounts");
+    const GLint density_location = glGetUniformLocation(program, "u_fbm_density");
+    const GLint scale_location = glGetUniformLocation(program, "u_fbm_scale");
+    const GLint cutoff_location = glGetUniformLocation(program, "u_alpha_cutoff");
+    for (uint32_t i = 0; i < scene.mesh_count; ++i) {
+      const aq_mesh& mesh = scene.meshes[i];
+      const glm::mat4 model = glm::make_mat4(mesh.model);
+      const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(model)));
+      glUniformMatrix4fv(model_location, 1, GL_FALSE, mesh.model);
+      glUniformMatrix3fv(normal_location, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+      if (with_art) {
+        const aq::ArtDirection art = aq::surface_art(scene, i);
+        glUniform4f(amounts_location, art.bleed, art.edge_darkening, art.tremor, 0.0f);
+        glUniform1f(density_location, art.fbm_density);
+        glUniform1f(scale_location, art.fbm_scale);
+      }
+      const float cutoff = meshes_.bind_surface(scene, i, 0);
+      if (!with_art) glUniform1f(cutoff_location, cutoff);
+      meshes_.draw(mesh);
+    }
+  }
+
   aq::SceneMeshCache meshes_;
 };
 

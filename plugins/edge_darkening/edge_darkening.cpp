@@ -4,11 +4,15 @@
 //
 //   source (or image) ──► aq::gaussian::blur σ ──► d = max_rgb |blur − source|
 //   control (optional): k = strength · (g edge amount + grazing · b grazing angle)
-//   image ──► C · min(C, 1)^(k·d) ──► image          (C^(1 + k d) for C in [0, 1])
+//   e = e_max (1 − exp(−k d / e_max))   (saturates: corners and thin geometry never turn black)
+//   image ──► C · min(C, 1)^e ──► image          (C^(1 + e) for C in [0, 1])
 //
 // The blur is the SDK's shared exact Gaussian; reference/edge_darkening.h is the reference.
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/sdk/gaussian_blur.hpp>
+
+#include <algorithm>
+#include <cmath>
 
 #include "edge_darkening_shaders.h"
 
@@ -24,17 +28,50 @@ constexpr aq_port_desc kInputs[] = {
                             "control map: g edge-darkening amount, b grazing angle; "
                             "unconnected: k = strength everywhere")};
 constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "colour with darkened edges")};
-enum Param : uint32_t { kSigma, kStrength, kGrazing };
+enum Param : uint32_t { kSigma, kStrength, kGrazing, kMaxExponent, kResolution };
 constexpr aq_param_desc kParams[] = {
     aq::float_param("sigma", 3.0, 0.0, 64.0,
                     "Gaussian sigma in output pixels (the seed's 3); 0 passes the image through"),
     aq::float_param("strength", 4.0, 0.0, 100.0,
                     "k: exponent gain per unit of blur difference; 0 passes the image through"),
     aq::float_param("grazing", 1.0, 0.0, 10.0,
-                    "how much the grazing angle (control map blue) adds to k at silhouettes")};
+                    "how much the grazing angle (control map blue) adds to k at silhouettes"),
+    aq::float_param("max_exponent", 1.0, 0.0, 100.0,
+                    "the darkening exponent saturates smoothly at this (1: at most C^2, no "
+                    "black blots); 0: unbounded (C^(1 + k d))"),
+    aq::int_param("resolution", 2, 1, 2,
+                  "2: the blur runs on 2x2-pixel cells (sigma >= 1.5 px) and is read back "
+                  "bilinearly; 1: every pixel, exact")};
 
 // The rounding of a blurred constant image stays under this (relative to max(1, |source|)).
 constexpr double kDeadZone = 1e-5;
+
+// Bilinear reading back of a grid of spacing 2 widens a Gaussian by about this variance (px²),
+// and the 2×2 average by 0.25: the cells' blur is narrower by both, so the sum is σ².
+constexpr double kCellVariance = 0.25 + 4.0 / 6.0;
+
+// blur(source) at the source's size, or on 2×2 cells when asked and σ is wide enough.
+bool blur_source(aq::Context& ctx, const aq_image& source, double sigma, aq_image* blurred) {
+  const bool cells =
+      ctx.param_int(kResolution) >= 2 && sigma >= 1.5 && source.width >= 4 && source.height >= 4;
+  if (!cells) {
+    return ctx.scratch(source.width, source.height, AQ_FORMAT_RGBA32F, blurred) &&
+           aq::gaussian::blur(ctx, source, *blurred, sigma, /*linear_taps=*/false);
+  }
+  const int w = (source.width + 1) / 2, h = (source.height + 1) / 2;
+  aq_image averaged;
+  if (!ctx.scratch(w, h, AQ_FORMAT_RGBA32F, &averaged) ||
+      !ctx.scratch(w, h, AQ_FORMAT_RGBA32F, blurred)) {
+    return false;
+  }
+  const GLuint down = ctx.program(shaders::edge_darkening_down_frag);
+  if (down == 0) return false;
+  glUseProgram(down);
+  aq::bind_texture(down, "u_source", 0, source);
+  if (!ctx.draw(averaged)) return false;
+  const double cell_sigma = std::sqrt(std::max(sigma * sigma - kCellVariance, 0.25)) / 2.0;
+  return aq::gaussian::blur(ctx, averaged, *blurred, cell_sigma, /*linear_taps=*/false);
+}
 
 struct EdgeDarkening {
   int process(aq::Context& ctx) {
@@ -45,11 +82,9 @@ struct EdgeDarkening {
     }
     const aq_image source = ctx.connected(kSource) ? ctx.input_image(kSource) : in;
     aq_image blurred, out;
-    if (!ctx.scratch(source.width, source.height, AQ_FORMAT_RGBA32F, &blurred) ||
-        !ctx.output_like(0, in, &out)) {
+    if (!ctx.output_like(0, in, &out) || !blur_source(ctx, source, sigma, &blurred)) {
       return AQ_ERROR;
     }
-    if (!aq::gaussian::blur(ctx, source, blurred, sigma, /*linear_taps=*/false)) return AQ_ERROR;
     const GLuint program = ctx.program(shaders::edge_darkening_frag);
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
@@ -62,6 +97,7 @@ struct EdgeDarkening {
     aq::set_float(program, "u_strength", ctx.param_float(kStrength));
     aq::set_float(program, "u_grazing", ctx.param_float(kGrazing));
     aq::set_float(program, "u_dead_zone", kDeadZone);
+    aq::set_float(program, "u_max_exponent", ctx.param_float(kMaxExponent));
     const bool drawn = ctx.draw(out);
     aq::unbind_textures(4);
     return drawn ? AQ_OK : AQ_ERROR;

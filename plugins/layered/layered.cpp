@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "layer_packing.h"
 #include "layer_table.h"
 #include "layered_shaders.h"
 
@@ -69,7 +70,8 @@ enum Param {
   kPaperColor,
   kPaperRelief,
   kDepthBand,
-  kDensity
+  kDensity,
+  kThinShapes
 };
 enum WetEdges { kWetToDry = 0, kWetInWet = 1, kNoWetEdges = 2 };
 
@@ -95,7 +97,7 @@ constexpr aq_param_desc kParams[] = {
     aq::string_param("palette", "",
                      "per-object colours overriding the albedo: 'ID:R,G,B[:R,G,B]; ...' (light, "
                      "then optionally dark)"),
-    aq::float_param("gooch", 0.0, 0.0, 1.0,
+    aq::float_param("gooch", 0.35, 0.0, 1.0,
                     "Gooch shading: light mixed towards `warm`, dark towards `cool` (pigments)"),
     aq::color_param("warm", 0.95, 0.75, 0.3, "Gooch warm colour"),
     aq::color_param("cool", 0.15, 0.25, 0.6, "Gooch cool colour"),
@@ -129,7 +131,10 @@ constexpr aq_param_desc kParams[] = {
     aq::float_param("depth_band", 0.3, 0.0, 1000.0,
                     "blurred depth test: depth (scene units) over which a layer behind "
                     "another fades out"),
-    aq::float_param("density", 1.0, 0.0, 4.0, "pigment thickness of every wash")};
+    aq::float_param("density", 1.0, 0.0, 4.0, "pigment thickness of every wash"),
+    aq::float_param("thin_shapes", 1.0, 0.0, 1.0,
+                    "keeps shapes thinner than the abstraction blur (a blade, a stem) that the "
+                    "threshold would erase: 1 keeps them whole, 0 lets them vanish")};
 
 constexpr int kLayersPerRange = 4;
 
@@ -163,8 +168,30 @@ void normalise(double v[3], const double fallback[3]) {
 
 struct Layered {
   // Composed shader texts (the host compiles them at once and caches by text).
-  std::string segment_text, edges_text, paper_text, composite_text;
-  std::vector<float> id_pixels, depth_pixels, albedo_pixels;
+  std::string segment_text, edges_text, paper_text, composite_text, peak_text;
+  std::vector<float> id_pixels, depth_pixels, albedo_pixels, owner_pixels, table_pixels;
+
+  // What the passes of one frame share.
+  struct Frame {
+    int w = 0, h = 0;
+    std::vector<layered::Layer> layers;
+    std::vector<int> channel;  // per layer: range channel / 4, RGBA channel % 4
+    size_t range_count = 0;
+    double light[3] = {0, 1, 0}, half[3] = {0, 1, 0};
+    double sigma = 0.0, edge_sigma = 0.0;
+    int reach_a = 0, reach_e = 0, reach_peak = 0;
+    bool thin = false;
+    bool whole = false, run_edges = false, has_paper = false;
+    int64_t wet_edges = kWetToDry;
+    GLuint segment = 0, edge = 0, paper = 0, composite = 0, peak_program = 0;
+    aq_image intensity{}, diffuse{}, depth{}, blur_intensity{}, blur_diffuse{}, blur_depth{},
+        edges{}, blur_edges{}, horizontal{}, under[2]{}, out{}, owner{}, table{}, peak{};
+  };
+
+  // The boxes each pass of a range fills around one of its layers (see range_rects).
+  struct RangeRects {
+    Rect paint, blurred, blurred_rows, segmented, edge_rect, edge_rows, peak_rows;
+  };
 
   // The texture's first `components` channels as floats; false on a GL error.
   static bool read_back(const aq_image& image, GLenum format, int components,
@@ -183,20 +210,43 @@ struct Layered {
   }
 
   int process(aq::Context& ctx) {
+    Frame f;
+    if (!check_sizes(ctx) || !build_layers(ctx, f)) return AQ_ERROR;
+    light_and_view(ctx, f);
+    plan_ranges(ctx, f);
+    if (!allocate(ctx, f) || !compile(ctx, f)) return AQ_ERROR;
+    bool ok = paint_paper(ctx, f);
+    // The ping-pong textures agree everywhere but in the box the last range painted, which is
+    // copied across before the next range paints its own box (so only the last composite
+    // covers the whole image).
+    std::vector<Rect> last_paint;
+    for (size_t r = 0; ok && r < f.range_count; ++r) ok = run_range(ctx, f, r, last_paint);
+    glDisable(GL_SCISSOR_TEST);
+    aq::unbind_textures(12);
+    return ok ? AQ_OK : AQ_ERROR;
+  }
+
+  static bool check_sizes(aq::Context& ctx) {
     const aq_image id = ctx.input_image(0);
     const char* names[] = {"id", "normal", "albedo", "depth"};
     for (uint32_t i = 1; i < 4; ++i) {
       const aq_image other = ctx.input_image(i);
       if (other.width != id.width || other.height != id.height) {
-        return ctx.fail(std::string("layered '") + ctx.node_id() + "': input '" + names[i] +
-                        "' is " + std::to_string(other.width) + "x" + std::to_string(other.height) +
-                        " but 'id' is " + std::to_string(id.width) + "x" +
-                        std::to_string(id.height) +
-                        ": connect the id, normal, albedo and depth of one gbuffer");
+        ctx.fail(std::string("layered '") + ctx.node_id() + "': input '" + names[i] + "' is " +
+                 std::to_string(other.width) + "x" + std::to_string(other.height) +
+                 " but 'id' is " + std::to_string(id.width) + "x" + std::to_string(id.height) +
+                 ": connect the id, normal, albedo and depth of one gbuffer");
+        return false;
       }
     }
+    return true;
+  }
 
-    // ---- The per-object table ----
+  // The per-object table: ids present far to near, their colours and boxes (one readback).
+  bool build_layers(aq::Context& ctx, Frame& f) {
+    const aq_image id = ctx.input_image(0);
+    f.w = id.width;
+    f.h = id.height;
     std::vector<layered::PaletteEntry> palette;
     std::vector<float> wet_ids;
     for (const auto& [param, error] :
@@ -204,235 +254,333 @@ struct Layered {
           std::pair{"wet_in_wet_ids",
                     layered::parse_id_list(ctx.param_string(kWetInWetIds), &wet_ids)}}) {
       if (!error.empty()) {
-        return ctx.fail(std::string("layered '") + ctx.node_id() + "': parameter '" + param +
-                        "': " + error);
+        ctx.fail(std::string("layered '") + ctx.node_id() + "': parameter '" + param +
+                 "': " + error);
+        return false;
       }
     }
     if (!read_back(id, GL_RED, 1, id_pixels) ||
         !read_back(ctx.input_image(3), GL_RED, 1, depth_pixels) ||
         !read_back(ctx.input_image(2), GL_RGBA, 4, albedo_pixels)) {
-      return ctx.fail(std::string("layered '") + ctx.node_id() +
-                      "': reading the id, depth and albedo inputs back failed: connect float "
-                      "images (the gbuffer's id, depth and albedo outputs)");
+      ctx.fail(std::string("layered '") + ctx.node_id() +
+               "': reading the id, depth and albedo inputs back failed: connect float "
+               "images (the gbuffer's id, depth and albedo outputs)");
+      return false;
     }
-    std::vector<layered::Layer> layers = layered::collect_layers(
-        id_pixels.data(), depth_pixels.data(), albedo_pixels.data(), id_pixels.size(), id.width);
+    f.layers = layered::collect_layers(id_pixels.data(), depth_pixels.data(), albedo_pixels.data(),
+                                       id_pixels.size(), id.width);
     layered::ColourSettings colours;
     colours.light_density = ctx.param_float(kLightDensity);
     colours.dark_density = ctx.param_float(kDarkDensity);
-    const int64_t wet_edges = ctx.param_enum(kWetEdges);
-    colours.wet_in_wet_default = wet_edges == kWetInWet;
-    layered::assign_colours(layers, colours, palette, wet_ids);
+    f.wet_edges = ctx.param_enum(kWetEdges);
+    colours.wet_in_wet_default = f.wet_edges == kWetInWet;
+    layered::assign_colours(f.layers, colours, palette, wet_ids);
+    const int64_t view_mode = ctx.param_enum(kView);
+    f.run_edges =
+        (f.wet_edges != kNoWetEdges || !wet_ids.empty()) && (view_mode == 0 || view_mode == 4);
+    return true;
+  }
 
-    // ---- Light and view ----
-    double light[3], view[3];
+  static void light_and_view(aq::Context& ctx, Frame& f) {
+    double view[3];
     const aq_scene* scene = ctx.input_scene(5);
     const double* light_param = ctx.param_vec3(kLightDirection);
     const double* view_param = ctx.param_vec3(kViewDirection);
     for (int k = 0; k < 3; ++k) {
-      light[k] = scene ? -static_cast<double>(scene->light.direction[k]) : -light_param[k];
+      f.light[k] = scene ? -static_cast<double>(scene->light.direction[k]) : -light_param[k];
       view[k] = scene ? static_cast<double>(scene->camera.position[k]) - scene->camera.target[k]
                       : view_param[k];
     }
     const double up[3] = {0.0, 1.0, 0.0}, towards_viewer[3] = {0.0, 0.0, 1.0};
-    if (!finite3(light)) std::copy(up, up + 3, light);
+    if (!finite3(f.light)) std::copy(up, up + 3, f.light);
     if (!finite3(view)) std::copy(towards_viewer, towards_viewer + 3, view);
-    normalise(light, up);
+    normalise(f.light, up);
     normalise(view, towards_viewer);
-    double half[3] = {light[0] + view[0], light[1] + view[1], light[2] + view[2]};
-    normalise(half, light);
+    for (int k = 0; k < 3; ++k) f.half[k] = f.light[k] + view[k];
+    normalise(f.half, f.light);
+  }
 
-    // ---- Textures: 11, whatever the number of objects ----
-    const int w = id.width, h = id.height;
+  // Reaches of the kernels and the channel of every layer (layer_packing.h): objects far
+  // enough apart share a channel, so the range count follows the overlap, not the objects.
+  static void plan_ranges(aq::Context& ctx, Frame& f) {
+    const double scale = ctx.render_scale();
+    f.sigma = ctx.param_float(kAbstractionSigma) * scale;
+    f.edge_sigma = ctx.param_float(kEdgeWidth) * scale;
+    f.reach_a = static_cast<int>(std::ceil(aq::gaussian::kTruncationSigmas * f.sigma)) + 1;
+    f.reach_e =
+        f.run_edges
+            ? static_cast<int>(std::ceil(aq::gaussian::kTruncationSigmas * f.edge_sigma)) + 1
+            : 0;
+    f.thin = ctx.param_float(kThinShapes) > 0.0 && f.sigma > 0.0;
+    f.reach_peak = f.thin ? static_cast<int>(std::ceil(f.sigma)) + 1 : 0;
+    f.whole = 2 * std::max({f.reach_a, f.reach_e, f.reach_peak}) >= std::min(f.w, f.h) - 1;
+    f.channel = layered::assign_channels(
+        f.layers, f.whole ? -1 : layered::channel_gap(f.reach_a, f.reach_e) + 2 * f.reach_peak);
+    int channels = 0;
+    for (int c : f.channel) channels = std::max(channels, c + 1);
+    f.range_count = static_cast<size_t>((channels + kLayersPerRange - 1) / kLayersPerRange);
+  }
+
+  // 14 textures whatever the number of objects, and the per-layer table (id, wet; light; dark).
+  bool allocate(aq::Context& ctx, Frame& f) {
+    if (!ctx.output_like(0, ctx.input_image(0), &f.out)) return false;
+    if (f.range_count == 0) return true;  // an empty frame is just the paper
     const uint32_t f32 = AQ_FORMAT_RGBA32F;
-    aq_image intensity, diffuse, depth, blur_intensity, blur_diffuse, blur_depth, edges, blur_edges,
-        horizontal, under[2], out;
-    const size_t range_count = (layers.size() + kLayersPerRange - 1) / kLayersPerRange;
-    if (range_count > 0) {  // an empty frame is just the paper
-      for (aq_image* t : {&intensity, &diffuse, &depth, &blur_intensity, &blur_diffuse, &blur_depth,
-                          &edges, &blur_edges, &horizontal, &under[0], &under[1]}) {
-        if (!ctx.scratch(w, h, f32, t)) return AQ_ERROR;
+    for (aq_image* t :
+         {&f.intensity, &f.diffuse, &f.depth, &f.blur_intensity, &f.blur_diffuse, &f.blur_depth,
+          &f.edges, &f.blur_edges, &f.horizontal, &f.under[0], &f.under[1], &f.owner, &f.peak}) {
+      if (!ctx.scratch(f.w, f.h, f32, t)) return false;
+    }
+    const int n = static_cast<int>(f.layers.size());
+    if (!ctx.scratch(n, 3, f32, &f.table)) return false;
+    table_pixels.assign(static_cast<size_t>(n) * 3 * 4, 0.0f);
+    for (int i = 0; i < n; ++i) {
+      const layered::Layer& layer = f.layers[i];
+      float* row0 = &table_pixels[4 * i];
+      float* row1 = &table_pixels[4 * (n + i)];
+      float* row2 = &table_pixels[4 * (2 * n + i)];
+      row0[0] = layer.id;
+      row0[1] = layer.wet_in_wet ? 1.0f : 0.0f;
+      for (int c = 0; c < 3; ++c) {
+        row1[c] = static_cast<float>(layer.light[c]);
+        row2[c] = static_cast<float>(layer.dark[c]);
       }
     }
-    if (!ctx.output_like(0, id, &out)) return AQ_ERROR;
+    glTextureSubImage2D(f.table.texture, 0, 0, 0, n, 3, GL_RGBA, GL_FLOAT, table_pixels.data());
+    return true;
+  }
 
-    const bool has_paper = ctx.connected(4);
-    const int64_t view_mode = ctx.param_enum(kView);
-    const bool run_edges =
-        (wet_edges != kNoWetEdges || !wet_ids.empty()) && (view_mode == 0 || view_mode == 4);
-    const double scale = ctx.render_scale();
-    const std::string defines = define("AQ_HAS_PAPER", has_paper ? 1 : 0) +
+  bool compile(aq::Context& ctx, Frame& f) {
+    f.has_paper = ctx.connected(4);
+    const std::string defines = define("AQ_HAS_PAPER", f.has_paper ? 1 : 0) +
                                 define("AQ_MIX_MODE", ctx.param_enum(kMixing)) +
-                                define("AQ_VIEW", view_mode);
+                                define("AQ_VIEW", ctx.param_enum(kView));
     segment_text = compose(defines, shaders::layered_segment_frag, "");
     edges_text =
         compose(defines, shaders::layered_edges_frag, "#include \"aquarelle/edge_kernels.glsl\"\n");
     paper_text = compose(defines, shaders::layered_paper_frag, "");
     composite_text =
         compose(defines, shaders::layered_composite_frag, "#include \"aquarelle/pigment.glsl\"\n");
-    const GLuint segment = ctx.program({"layered_segment.frag", segment_text.c_str(), nullptr});
-    const GLuint edge = ctx.program({"layered_edges.frag", edges_text.c_str(), nullptr});
-    const GLuint paper = ctx.program({"layered_paper.frag", paper_text.c_str(), nullptr});
-    const GLuint composite =
-        ctx.program({"layered_composite.frag", composite_text.c_str(), nullptr});
-    if (segment == 0 || edge == 0 || paper == 0 || composite == 0) return AQ_ERROR;
-
-    bool ok = true;
-    // The paper.
-    glUseProgram(paper);
-    if (has_paper) aq::bind_texture(paper, "u_paper", 0, ctx.input_image(4));
-    aq::set_vec3(paper, "u_paper_color", ctx.param_vec3(kPaperColor));
-    aq::set_float(paper, "u_paper_relief", ctx.param_float(kPaperRelief));
-    aq::set_vec2(paper, "u_size", w, h);
-    if (range_count == 0) {
-      ok = ctx.draw(out);
-    } else {
-      ok = ctx.bind_targets(under, 2);
-      if (ok) ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
-    }
-    // The ping-pong textures agree everywhere but in the box the last range painted, which is
-    // copied across before the next range paints its own box (so only the last composite
-    // covers the whole image).
-    Rect last_paint{0, 0, -1, -1};
-
-    const double sigma = ctx.param_float(kAbstractionSigma) * scale;
-    const double edge_sigma = ctx.param_float(kEdgeWidth) * scale;
-    for (size_t r = 0; ok && r < range_count; ++r) {
-      const size_t first = r * kLayersPerRange;
-      const int count = static_cast<int>(std::min<size_t>(kLayersPerRange, layers.size() - first));
-      float ids[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
-      float light_colors[12] = {}, dark_colors[12] = {}, wet[4] = {};
-      for (int k = 0; k < count; ++k) {
-        const layered::Layer& layer = layers[first + k];
-        ids[k] = layer.id;
-        for (int c = 0; c < 3; ++c) {
-          light_colors[3 * k + c] = static_cast<float>(layer.light[c]);
-          dark_colors[3 * k + c] = static_cast<float>(layer.dark[c]);
-        }
-        wet[k] = layer.wet_in_wet ? 1.0f : 0.0f;
-      }
-      // Where this range can paint: its objects' box grown by the abstraction's reach (R), and
-      // the larger boxes each earlier pass must fill for the next one to read only what it
-      // wrote this range (see README). Kernels wider than the image read its edge texels from
-      // everywhere: then every pass covers the image.
-      Rect box{w, h, -1, -1};
-      for (int k = 0; k < count; ++k) {
-        const layered::Layer& layer = layers[first + k];
-        box = {std::min(box.x0, layer.x0), std::min(box.y0, layer.y0), std::max(box.x1, layer.x1),
-               std::max(box.y1, layer.y1)};
-      }
-      const int reach_a = static_cast<int>(std::ceil(aq::gaussian::kTruncationSigmas * sigma)) + 1;
-      const int reach_e =
-          run_edges ? static_cast<int>(std::ceil(aq::gaussian::kTruncationSigmas * edge_sigma)) + 1
-                    : 0;
-      const bool whole = 2 * std::max(reach_a, reach_e) >= std::min(w, h) - 1;
-      const Rect full{0, 0, w - 1, h - 1};
-      const Rect paint = whole ? full : box.grown(reach_a, w, h);
-      const Rect blurred = whole ? full : paint.grown(2 * reach_e + 1, w, h);
-      const Rect blurred_rows = whole ? full : blurred.grown(reach_a, w, h);
-      const Rect segmented = whole ? full : blurred_rows.grown(reach_a, w, h);
-      const Rect edge_rect = whole ? full : paint.grown(2 * reach_e, w, h);
-      const Rect edge_rows = whole ? full : paint.grown(reach_e, w, h);
-      glEnable(GL_SCISSOR_TEST);
-
-      // Segmentation and lighting, four objects at once.
-      segmented.scissor();
-      glUseProgram(segment);
-      aq::bind_texture(segment, "u_id", 0, id);
-      aq::bind_texture(segment, "u_normal", 1, ctx.input_image(1));
-      aq::bind_texture(segment, "u_depth", 2, ctx.input_image(3));
-      glUniform4fv(glGetUniformLocation(segment, "u_ids"), 1, ids);
-      aq::set_vec3(segment, "u_light", light);
-      aq::set_vec3(segment, "u_half", half);
-      aq::set_float(segment, "u_shininess", ctx.param_float(kShininess));
-      aq::set_float(segment, "u_specular_threshold", ctx.param_float(kSpecularThreshold));
-      const aq_image targets[3] = {intensity, diffuse, depth};
-      if (!ctx.bind_targets(targets, 3)) return fail_cleanly();
-      ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
-      aq::unbind_textures(3);
-
-      // Abstraction: the shared Gaussian.
-      for (auto [in, blurred_out] :
-           {std::pair{intensity, blur_intensity}, std::pair{diffuse, blur_diffuse},
-            std::pair{depth, blur_depth}}) {
-        blurred_rows.scissor();
-        ok = ok && aq::gaussian::blur_pass(ctx, in, horizontal, sigma, 0);
-        blurred.scissor();
-        ok = ok && aq::gaussian::blur_pass(ctx, horizontal, blurred_out, sigma, 1);
-      }
-      if (!ok) break;
-
-      // Wet edges: 3x3 Laplacian and threshold, widened by the Gaussian.
-      if (run_edges) {
-        glUseProgram(edge);
-        aq::bind_texture(edge, "u_blurred", 0, blur_intensity);
-        set_common(ctx, edge);
-        aq::set_float(edge, "u_edge_threshold", ctx.param_float(kEdgeThreshold));
-        edge_rect.scissor();
-        ok = ctx.draw(edges);
-        edge_rows.scissor();
-        ok = ok && aq::gaussian::blur_pass(ctx, edges, horizontal, edge_sigma, 0);
-        paint.scissor();
-        ok = ok && aq::gaussian::blur_pass(ctx, horizontal, blur_edges, edge_sigma, 1);
-        if (!ok) break;
-      }
-
-      // Glaze the range over what lies under it, inside `paint` (the last range: everywhere,
-      // into the output).
-      const bool last = r + 1 == range_count;
-      const aq_image& below = under[r % 2];
-      const aq_image& target = last ? out : under[(r + 1) % 2];
-      if (last) {
-        glDisable(GL_SCISSOR_TEST);
-      } else {
-        if (last_paint.x1 >= last_paint.x0) {
-          glCopyImageSubData(below.texture, GL_TEXTURE_2D, 0, last_paint.x0, last_paint.y0, 0,
-                             target.texture, GL_TEXTURE_2D, 0, last_paint.x0, last_paint.y0, 0,
-                             last_paint.x1 - last_paint.x0 + 1, last_paint.y1 - last_paint.y0 + 1,
-                             1);
-        }
-        paint.scissor();
-        last_paint = paint;
-      }
-      glUseProgram(composite);
-      aq::bind_texture(composite, "u_under", 0, below);
-      aq::bind_texture(composite, "u_intensity", 1, intensity);
-      aq::bind_texture(composite, "u_diffuse", 2, diffuse);
-      aq::bind_texture(composite, "u_blur_intensity", 3, blur_intensity);
-      aq::bind_texture(composite, "u_blur_diffuse", 4, blur_diffuse);
-      aq::bind_texture(composite, "u_blur_depth", 5, blur_depth);
-      aq::bind_texture(composite, "u_blur_edges", 6, run_edges ? blur_edges : blur_intensity);
-      aq::bind_texture(composite, "u_depth", 7, ctx.input_image(3));
-      if (has_paper) aq::bind_texture(composite, "u_paper", 8, ctx.input_image(4));
-      set_common(ctx, composite);
-      aq::set_vec2(composite, "u_size", w, h);
-      aq::set_int(composite, "u_layer_count", count);
-      glUniform4i(glGetUniformLocation(composite, "u_region"), paint.x0, paint.y0, paint.x1,
-                  paint.y1);
-      glUniform3fv(glGetUniformLocation(composite, "u_light_color"), 4, light_colors);
-      glUniform3fv(glGetUniformLocation(composite, "u_dark_color"), 4, dark_colors);
-      glUniform4fv(glGetUniformLocation(composite, "u_wet_in_wet"), 1, wet);
-      // A one-pixel edge band blurred by σ peaks near 2/(√(2π)σ): the gain brings it to ~1.
-      const double gain = run_edges ? std::max(1.0, 1.2533 * edge_sigma) : 0.0;
-      aq::set_float(composite, "u_edge_gain", gain);
-      aq::set_float(composite, "u_edge_darkness", ctx.param_float(kEdgeDarkness));
-      aq::set_float(composite, "u_wet_spread", ctx.param_float(kWetSpread));
-      aq::set_float(composite, "u_edge_darkening", ctx.param_float(kEdgeDarkening));
-      aq::set_float(composite, "u_depth_band", ctx.param_float(kDepthBand));
-      aq::set_float(composite, "u_granulation", has_paper ? ctx.param_float(kGranulation) : 0.0);
-      aq::set_float(composite, "u_density", ctx.param_float(kDensity));
-      set_gooch(ctx, composite);
-      ok = ctx.draw(target);
-    }
-    glDisable(GL_SCISSOR_TEST);
-    aq::unbind_textures(9);
-    return ok ? AQ_OK : AQ_ERROR;
+    f.segment = ctx.program({"layered_segment.frag", segment_text.c_str(), nullptr});
+    f.edge = ctx.program({"layered_edges.frag", edges_text.c_str(), nullptr});
+    f.paper = ctx.program({"layered_paper.frag", paper_text.c_str(), nullptr});
+    f.composite = ctx.program({"layered_composite.frag", composite_text.c_str(), nullptr});
+    peak_text = compose(defines, shaders::layered_peak_frag, "");
+    f.peak_program = ctx.program({"layered_peak.frag", peak_text.c_str(), nullptr});
+    return f.segment != 0 && f.edge != 0 && f.paper != 0 && f.composite != 0 && f.peak_program != 0;
   }
 
-  static int fail_cleanly() {
-    glDisable(GL_SCISSOR_TEST);
-    aq::unbind_textures(9);
-    return AQ_ERROR;
+  static bool paint_paper(aq::Context& ctx, const Frame& f) {
+    glUseProgram(f.paper);
+    if (f.has_paper) aq::bind_texture(f.paper, "u_paper", 0, ctx.input_image(4));
+    aq::set_vec3(f.paper, "u_paper_color", ctx.param_vec3(kPaperColor));
+    aq::set_float(f.paper, "u_paper_relief", ctx.param_float(kPaperRelief));
+    aq::set_vec2(f.paper, "u_size", f.w, f.h);
+    if (f.range_count == 0) return ctx.draw(f.out);
+    if (!ctx.bind_targets(f.under, 2)) return false;
+    ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+    return true;
+  }
+
+  // Where a layer paints: its box grown by the abstraction's reach (everywhere when the
+  // kernels are wider than the image).
+  static Rect paint_box(const Frame& f, const layered::Layer& layer) {
+    if (f.whole) return {0, 0, f.w - 1, f.h - 1};
+    return Rect{layer.x0, layer.y0, layer.x1, layer.y1}.grown(f.reach_a, f.w, f.h);
+  }
+
+  // The owner image of range r: per channel, 1 + the index of the layer painting there (0:
+  // none), over each of the range's `segmented` rects (the largest areas its passes read).
+  void upload_owner(const Frame& f, size_t r, const std::vector<RangeRects>& rects) {
+    owner_pixels.resize(static_cast<size_t>(f.w) * f.h * 4);
+    for (const RangeRects& rr : rects) {
+      const Rect& rect = rr.segmented;
+      for (int y = rect.y0; y <= rect.y1; ++y) {
+        float* row = &owner_pixels[4 * (static_cast<size_t>(y) * f.w + rect.x0)];
+        std::fill(row, row + 4 * (rect.x1 - rect.x0 + 1), 0.0f);
+      }
+    }
+    for (size_t i = 0; i < f.layers.size(); ++i) {
+      if (static_cast<size_t>(f.channel[i]) / kLayersPerRange != r) continue;
+      const int k = f.channel[i] % kLayersPerRange;
+      const Rect box = paint_box(f, f.layers[i]);
+      for (int y = box.y0; y <= box.y1; ++y) {
+        for (int x = box.x0; x <= box.x1; ++x) {
+          owner_pixels[4 * (static_cast<size_t>(y) * f.w + x) + k] = static_cast<float>(i + 1);
+        }
+      }
+    }
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, f.w);
+    for (const RangeRects& rr : rects) {
+      const Rect& rect = rr.segmented;
+      glTextureSubImage2D(f.owner.texture, 0, rect.x0, rect.y0, rect.x1 - rect.x0 + 1,
+                          rect.y1 - rect.y0 + 1, GL_RGBA, GL_FLOAT,
+                          &owner_pixels[4 * (static_cast<size_t>(rect.y0) * f.w + rect.x0)]);
+    }
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  }
+
+  // (RangeRects:) the boxes each pass fills around one layer so the next pass reads only what it
+  // wrote this range (README: "Only where the range can paint"). A range draws each pass once per
+  // layer box: the work follows the pixels the layers cover, not the box around them all. A pixel
+  // in two boxes is drawn twice with the same result (every pass reads other textures than it
+  // writes).
+  static std::vector<RangeRects> range_rects(const Frame& f, size_t r) {
+    const Rect full{0, 0, f.w - 1, f.h - 1};
+    if (f.whole) return {{full, full, full, full, full, full, full}};
+    std::vector<RangeRects> out;
+    for (size_t i = 0; i < f.layers.size(); ++i) {
+      if (static_cast<size_t>(f.channel[i]) / kLayersPerRange != r) continue;
+      RangeRects rr;
+      rr.paint = paint_box(f, f.layers[i]);
+      rr.blurred = rr.paint.grown(std::max(2 * f.reach_e + 1, f.reach_peak), f.w, f.h);
+      rr.blurred_rows = rr.blurred.grown(f.reach_a, f.w, f.h);
+      rr.segmented = rr.blurred_rows.grown(f.reach_a, f.w, f.h);
+      rr.edge_rect = rr.paint.grown(2 * f.reach_e, f.w, f.h);
+      rr.edge_rows = rr.paint.grown(f.reach_e, f.w, f.h);
+      rr.peak_rows = rr.paint.grown(f.reach_peak, f.w, f.h);
+      out.push_back(rr);
+    }
+    return out;
+  }
+
+  // Runs `draw` once per layer box of the range, scissored to that box's `which` rect.
+  template <class Draw>
+  static bool each(const std::vector<RangeRects>& rects, Rect RangeRects::*which, Draw draw) {
+    for (const RangeRects& rr : rects) {
+      (rr.*which).scissor();
+      if (!draw()) return false;
+    }
+    return true;
+  }
+
+  bool run_range(aq::Context& ctx, const Frame& f, size_t r, std::vector<Rect>& last_paint) {
+    const std::vector<RangeRects> rects = range_rects(f, r);
+    upload_owner(f, r, rects);
+    glEnable(GL_SCISSOR_TEST);
+    // Segmentation and lighting, four channels (any number of objects) at once.
+    glUseProgram(f.segment);
+    aq::bind_texture(f.segment, "u_id", 0, ctx.input_image(0));
+    aq::bind_texture(f.segment, "u_normal", 1, ctx.input_image(1));
+    aq::bind_texture(f.segment, "u_depth", 2, ctx.input_image(3));
+    aq::bind_texture(f.segment, "u_owner", 3, f.owner);
+    aq::bind_texture(f.segment, "u_table", 4, f.table);
+    aq::set_vec3(f.segment, "u_light", f.light);
+    aq::set_vec3(f.segment, "u_half", f.half);
+    aq::set_float(f.segment, "u_shininess", ctx.param_float(kShininess));
+    aq::set_float(f.segment, "u_specular_threshold", ctx.param_float(kSpecularThreshold));
+    const aq_image targets[3] = {f.intensity, f.diffuse, f.depth};
+    if (!ctx.bind_targets(targets, 3)) return false;
+    each(rects, &RangeRects::segmented, [&] {
+      ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+      return true;
+    });
+    aq::unbind_textures(5);
+
+    // Abstraction: the shared Gaussian.
+    for (auto [in, blurred_out] :
+         {std::pair{f.intensity, f.blur_intensity}, std::pair{f.diffuse, f.blur_diffuse},
+          std::pair{f.depth, f.blur_depth}}) {
+      if (!each(rects, &RangeRects::blurred_rows,
+                [&] { return aq::gaussian::blur_pass(ctx, in, f.horizontal, f.sigma, 0); }) ||
+          !each(rects, &RangeRects::blurred, [&] {
+            return aq::gaussian::blur_pass(ctx, f.horizontal, blurred_out, f.sigma, 1);
+          })) {
+        return false;
+      }
+    }
+
+    // Wet edges: 3x3 Laplacian and threshold, widened by the Gaussian.
+    if (f.run_edges) {
+      glUseProgram(f.edge);
+      aq::bind_texture(f.edge, "u_blurred", 0, f.blur_intensity);
+      set_common(ctx, f.edge);
+      aq::set_float(f.edge, "u_edge_threshold", ctx.param_float(kEdgeThreshold));
+      if (!each(rects, &RangeRects::edge_rect, [&] { return ctx.draw(f.edges); }) ||
+          !each(rects, &RangeRects::edge_rows,
+                [&] {
+                  return aq::gaussian::blur_pass(ctx, f.edges, f.horizontal, f.edge_sigma, 0);
+                }) ||
+          !each(rects, &RangeRects::paint, [&] {
+            return aq::gaussian::blur_pass(ctx, f.horizontal, f.blur_edges, f.edge_sigma, 1);
+          })) {
+        return false;
+      }
+    }
+    if (f.thin && !peaks(ctx, f, rects)) return false;
+    return composite_range(ctx, f, r, rects, last_paint);
+  }
+
+  // Thin shapes: each layer's peak blurred intensity over a (2r+1)^2 window, r = ceil(σa) + 1.
+  static bool peaks(aq::Context& ctx, const Frame& f, const std::vector<RangeRects>& rects) {
+    glUseProgram(f.peak_program);
+    aq::set_int(f.peak_program, "u_radius", f.reach_peak);
+    const int axes[2][2] = {{1, 0}, {0, 1}};
+    const aq_image sources[2] = {f.blur_intensity, f.horizontal};
+    const aq_image targets[2] = {f.horizontal, f.peak};
+    Rect RangeRects::*const which[2] = {&RangeRects::peak_rows, &RangeRects::paint};
+    for (int pass = 0; pass < 2; ++pass) {
+      aq::bind_texture(f.peak_program, "u_source", 0, sources[pass]);
+      glUniform2i(glGetUniformLocation(f.peak_program, "u_axis"), axes[pass][0], axes[pass][1]);
+      if (!each(rects, which[pass], [&] { return ctx.draw(targets[pass]); })) return false;
+    }
+    return true;
+  }
+
+  // Glaze the range over what lies under it, inside its layers' paint boxes (the last range:
+  // everywhere, into the output).
+  static bool composite_range(aq::Context& ctx, const Frame& f, size_t r,
+                              const std::vector<RangeRects>& rects, std::vector<Rect>& last_paint) {
+    const bool last = r + 1 == f.range_count;
+    const aq_image& below = f.under[r % 2];
+    const aq_image& target = last ? f.out : f.under[(r + 1) % 2];
+    if (last) {
+      glDisable(GL_SCISSOR_TEST);
+    } else {
+      // The ping-pong textures differ only where the previous range painted.
+      for (const Rect& b : last_paint) {
+        glCopyImageSubData(below.texture, GL_TEXTURE_2D, 0, b.x0, b.y0, 0, target.texture,
+                           GL_TEXTURE_2D, 0, b.x0, b.y0, 0, b.x1 - b.x0 + 1, b.y1 - b.y0 + 1, 1);
+      }
+      last_paint.clear();
+      for (const RangeRects& rr : rects) last_paint.push_back(rr.paint);
+    }
+    const GLuint p = f.composite;
+    glUseProgram(p);
+    aq::bind_texture(p, "u_under", 0, below);
+    aq::bind_texture(p, "u_intensity", 1, f.intensity);
+    aq::bind_texture(p, "u_diffuse", 2, f.diffuse);
+    aq::bind_texture(p, "u_blur_intensity", 3, f.blur_intensity);
+    aq::bind_texture(p, "u_blur_diffuse", 4, f.blur_diffuse);
+    aq::bind_texture(p, "u_blur_depth", 5, f.blur_depth);
+    aq::bind_texture(p, "u_blur_edges", 6, f.run_edges ? f.blur_edges : f.blur_intensity);
+    aq::bind_texture(p, "u_depth", 7, ctx.input_image(3));
+    if (f.has_paper) aq::bind_texture(p, "u_paper", 8, ctx.input_image(4));
+    aq::bind_texture(p, "u_owner", 9, f.owner);
+    aq::bind_texture(p, "u_table", 10, f.table);
+    aq::bind_texture(p, "u_peak", 11, f.thin ? f.peak : f.blur_intensity);
+    aq::set_float(p, "u_thin", f.thin ? ctx.param_float(kThinShapes) : 0.0);
+    // A line one pixel wide blurred by σ peaks at 1/(√(2π)σ): its peak times √(2π)σ is its
+    // width in pixels.
+    aq::set_float(p, "u_line_width_scale", 2.5066283 * f.sigma);
+    set_common(ctx, p);
+    aq::set_vec2(p, "u_size", f.w, f.h);
+    // A one-pixel edge band blurred by σ peaks near 2/(√(2π)σ): the gain brings it to ~1.
+    const double gain = f.run_edges ? std::max(1.0, 1.2533 * f.edge_sigma) : 0.0;
+    aq::set_float(p, "u_edge_gain", gain);
+    aq::set_float(p, "u_edge_darkness", ctx.param_float(kEdgeDarkness));
+    aq::set_float(p, "u_wet_spread", ctx.param_float(kWetSpread));
+    aq::set_float(p, "u_edge_darkening", ctx.param_float(kEdgeDarkening));
+    aq::set_float(p, "u_depth_band", ctx.param_float(kDepthBand));
+    aq::set_float(p, "u_granulation", f.has_paper ? ctx.param_float(kGranulation) : 0.0);
+    aq::set_float(p, "u_density", ctx.param_float(kDensity));
+    set_gooch(ctx, p);
+    if (last) return ctx.draw(target);
+    if (!ctx.bind_targets(&target, 1)) return false;
+    return each(rects, &RangeRects::paint, [&] {
+      ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+      return true;
+    });
   }
 
   // Uniforms of layered_common.glsl.

@@ -22,10 +22,11 @@ constexpr double kPi = 3.14159265358979323846;
 // The density weights of `pigment` and `pigment_apply` (turbulence, grain, paper), and the
 // procedural textures' seed of `pigment` and `pigment_canvas`.
 inline constexpr aq_param_desc kWeightParams[3] = {
-    aq::float_param("turbulence_weight", 0.3, 0.0, 4.0,
+    aq::float_param("turbulence_weight", 1.6, 0.0, 4.0,
                     "d = 1 + weight · n for the low-frequency turbulence; 0 disables it"),
-    aq::float_param("grain_weight", 0.2, 0.0, 4.0, "weight of the pigment dispersion"),
-    aq::float_param("paper_weight", 0.2, 0.0, 4.0, "weight of the paper grain")};
+    aq::float_param("grain_weight", 1.0, 0.0, 4.0, "weight of the pigment dispersion"),
+    aq::float_param("paper_weight", 1.6, 0.0, 4.0,
+                    "weight of the paper grain (n = 0.5 − height: darker in the valleys)")};
 inline constexpr aq_param_desc kSeedParam =
     aq::int_param("seed", 0, 0, 1 << 20, "independent procedural textures per seed");
 
@@ -36,7 +37,8 @@ inline constexpr aq_port_desc kDensityPorts[3] = {
                  "high-frequency pigment dispersion in red (0.5 = none); "
                  "unconnected: Gaussian noise"},
     aq_port_desc{"paper", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
-                 "paper grain height in red (0.5 = none); unconnected: Worley cells"}};
+                 "paper height in red (0.5 = none; pigment settles where it is low); "
+                 "unconnected: Worley cells"}};
 
 // The dynamic canvas follows the camera: turning by an angle moves the canvas with the scene
 // content at the image centre (1 / (2 tan(fov/2)) image heights per radian), and moving towards

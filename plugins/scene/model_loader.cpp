@@ -141,7 +141,10 @@ bool is_obj(const std::string& path) {
 }
 
 void read_materials(const aiScene* scene, const std::string& path, Model* model) {
-  const fs::path folder = fs::path(path).parent_path();
+  // A bare file name ("coral.obj", a graph run from its own folder) has no parent path: its
+  // folder is the current one, as for "./coral.obj".
+  fs::path folder = fs::path(path).parent_path();
+  if (folder.empty()) folder = ".";
   for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
     const aiMaterial* in = scene->mMaterials[m];
     ModelMaterial material;

@@ -18,6 +18,7 @@
 #include "model.h"
 #include "object_shapes.h"
 #include "revision.h"
+#include "terrain.h"
 #include "textures.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -59,12 +60,20 @@ enum Param {
   kTremorFrequency,
   kFbmDensity,
   kFbmScale,
-  kSpin
+  kSpin,
+  kSwimForward,
+  kTerrainSwell,
+  kTerrainSwellFrequency,
+  kTerrainBumps,
+  kTerrainBumpsFrequency,
+  kTerrainCliff
 };
 enum Animation { kAnimationNone, kAnimationFile, kAnimationSwim, kAnimationSpin };
+enum Forward { kForwardPlusX, kForwardMinusX, kForwardPlusZ, kForwardMinusZ };
 
 constexpr aq_param_desc kParams[] = {
-    aq::enum_param("source", "file|cube|sphere|plane|card|pot|rock|coral|shell|starfish|fish", 0,
+    aq::enum_param("source",
+                   "file|cube|sphere|plane|card|pot|rock|coral|shell|starfish|fish|terrain", 0,
                    "`file` loads `path`; the others are procedural shapes"),
     aq::path_param("path", "model file (OBJ+MTL, glTF/GLB, FBX, PLY... anything Assimp reads)"),
     aq::path_param("texture",
@@ -85,10 +94,11 @@ constexpr aq_param_desc kParams[] = {
                     "texture alpha below this is a hole (cut-out cards); 0 keeps every pixel"),
     aq::int_param("smoothing", 0, 0, 64,
                   "normal smoothing iterations at load time (7: the seed's soft look)"),
-    aq::enum_param("animation", "none|file|swim|spin", 1,
-                   "`file` plays the file's keyframes (looped), `swim` swims a loop around "
-                   "`position` with a body wave travelling to the tail (+x is forward), `spin` "
-                   "turns the object about `position` by `spin` (windmill sails)"),
+    aq::enum_param(
+        "animation", "none|file|swim|spin", 1,
+        "`file` plays the file's keyframes (looped), `swim` swims a loop around "
+        "`position` with a body wave travelling to the tail (`swim_forward`: +x), `spin` "
+        "turns the object about `position` by `spin` (windmill sails)"),
     aq::float_param("swim_radius", 2.0, 0.0, 100.0, "radius of the swim loop (world units)"),
     aq::float_param("swim_speed", 0.35, -5.0, 5.0, "swim loop speed, radians per second"),
     aq::float_param("swim_wave", 0.056, 0.0, 0.5,
@@ -113,7 +123,23 @@ constexpr aq_param_desc kParams[] = {
                     "art direction: FBM lattice cells per object-space unit"),
     aq::vec3_param("spin", 0, 0, 90, -36000, 36000,
                    "animation `spin`: degrees per second about world x, y and z through "
-                   "`position`")};
+                   "`position`"),
+    aq::enum_param("swim_forward", "+x|-x|+z|-z", kForwardPlusX,
+                   "animation `swim`: the model's own axis that points forward (its nose): "
+                   "the loop turns it along the direction of travel and the body wave runs "
+                   "from it to the tail, sideways across it"),
+    aq::float_param("terrain_swell", 0.08, -10.0, 10.0,
+                    "source `terrain`: amplitude of the large swells (object units; the unit "
+                    "square is the floor)"),
+    aq::float_param("terrain_swell_frequency", 3.0, 0.0, 1000.0,
+                    "source `terrain`: swell noise cells per object unit"),
+    aq::float_param("terrain_bumps", 0.012, -10.0, 10.0,
+                    "source `terrain`: amplitude of the small bumps (object units)"),
+    aq::float_param("terrain_bumps_frequency", 24.0, 0.0, 1000.0,
+                    "source `terrain`: bump noise cells per object unit"),
+    aq::float_param("terrain_cliff", 0.0, -10.0, 10.0,
+                    "source `terrain`: height of a rock cliff rising along the back (-z) edge "
+                    "(0: none)")};
 
 constexpr int kSourceFile = 0;
 constexpr double kTwoPi = 6.283185307179586;
@@ -155,23 +181,58 @@ glm::mat4 spin_frame(const aq::Context& ctx, const glm::vec3& centre, double tim
   return glm::translate(m, -centre);
 }
 
-// The travelling body wave of a swimming fish on any mesh whose +x is forward: sideways (z)
-// offsets growing quadratically from the nose to the tail, a wave moving tailwards.
-void body_wave(scene::MeshData& mesh, double time, double amplitude) {
+// The model's forward axis (swim_forward) as a component of its positions (0: x, 2: z) and a
+// sign; the side the body wave bends to is the other horizontal component.
+struct ForwardAxis {
+  int component = 0;
+  float sign = 1.0f;
+};
+ForwardAxis forward_axis(int64_t forward) {
+  return {forward == kForwardPlusZ || forward == kForwardMinusZ ? 2 : 0,
+          forward == kForwardMinusX || forward == kForwardMinusZ ? -1.0f : 1.0f};
+}
+
+// Turns the model's forward axis onto +x (about y), so the swim loop, which heads +x along
+// the direction of travel, heads the model's nose there.
+glm::mat4 forward_to_x(int64_t forward) {
+  const float degrees = forward == kForwardMinusX   ? 180.0f
+                        : forward == kForwardPlusZ  ? 90.0f
+                        : forward == kForwardMinusZ ? -90.0f
+                                                    : 0.0f;
+  return glm::rotate(glm::mat4(1.0f), glm::radians(degrees), glm::vec3(0, 1, 0));
+}
+
+// The travelling body wave of a swimming fish on any mesh: sideways offsets growing
+// quadratically from the nose (the far end of the forward axis) to the tail, a wave moving
+// tailwards.
+void body_wave(scene::MeshData& mesh, double time, double amplitude, ForwardAxis axis) {
   const uint32_t n = mesh.vertex_count();
   if (n == 0 || amplitude <= 0.0) return;
+  const int along = axis.component, side = 2 - axis.component;
   float lo = 1e30f, hi = -1e30f;
   for (uint32_t v = 0; v < n; ++v) {
-    lo = std::min(lo, mesh.positions[3 * v]);
-    hi = std::max(hi, mesh.positions[3 * v]);
+    lo = std::min(lo, axis.sign * mesh.positions[3 * v + along]);
+    hi = std::max(hi, axis.sign * mesh.positions[3 * v + along]);
   }
   const float length = std::max(hi - lo, 1e-6f);
   for (uint32_t v = 0; v < n; ++v) {
-    const float x = mesh.positions[3 * v];
+    const float x = axis.sign * mesh.positions[3 * v + along];
     const float s = (hi - x) / length;  // 0 at the nose, 1 at the tail
     const float phase = static_cast<float>(kTwoPi * 1.4 * (x - hi) / length - 8.0 * time);
-    mesh.positions[3 * v + 2] += static_cast<float>(amplitude) * length * s * s * std::sin(phase);
+    mesh.positions[3 * v + side] +=
+        static_cast<float>(amplitude) * length * s * s * std::sin(phase);
   }
+}
+
+// The host stores base colour texels as half floats (RGBA16F), so an alpha of exactly the
+// cut-off (e.g. 204/255 = 0.8) arrives as 0.7998 and would test below a float 0.8: the cut-off
+// is rounded the same way (to nearest, ties to even). Rounding is monotonic, so every alpha at
+// or above the cut-off stays at or above it.
+float as_stored_texel(double value) {
+  if (!(value > 0.0)) return 0.0f;
+  const int exponent = std::max(std::ilogb(value), -14);  // below 2^-14: half's subnormals
+  const double spacing = std::ldexp(1.0, exponent - 10);  // 10 fraction bits
+  return static_cast<float>(std::nearbyint(value / spacing) * spacing);
 }
 
 void box_of(const scene::MeshData& mesh, const glm::mat4& to_world, glm::vec3* lo, glm::vec3* hi) {
@@ -204,10 +265,15 @@ class ObjectNode {
     int64_t smoothing = 0, seed = 0;
     bool color_override = false;
     double color[3] = {0, 0, 0};
+    scene::TerrainShape terrain;
     bool operator==(const LoadKey& o) const {
+      const auto same_terrain = [](const scene::TerrainShape& a, const scene::TerrainShape& b) {
+        return a.swell == b.swell && a.swell_frequency == b.swell_frequency && a.bumps == b.bumps &&
+               a.bumps_frequency == b.bumps_frequency && a.cliff == b.cliff;
+      };
       return source == o.source && path == o.path && texture == o.texture &&
              smoothing == o.smoothing && seed == o.seed && color_override == o.color_override &&
-             std::memcmp(color, o.color, sizeof(color)) == 0;
+             std::memcmp(color, o.color, sizeof(color)) == 0 && same_terrain(terrain, o.terrain);
     }
   };
 
@@ -225,6 +291,11 @@ class ObjectNode {
     key.seed = ctx.param_int(kSeed);
     key.color_override = ctx.param_bool(kColorOverride);
     std::memcpy(key.color, ctx.param_vec3(kColor), sizeof(key.color));
+    key.terrain.swell = ctx.param_float(kTerrainSwell);
+    key.terrain.swell_frequency = ctx.param_float(kTerrainSwellFrequency);
+    key.terrain.bumps = ctx.param_float(kTerrainBumps);
+    key.terrain.bumps_frequency = ctx.param_float(kTerrainBumpsFrequency);
+    key.terrain.cliff = ctx.param_float(kTerrainCliff);
     if (loaded_ && key == key_) return true;
     model_ = scene::Model{};
     if (key.source == kSourceFile) {
@@ -245,7 +316,15 @@ class ObjectNode {
       }
       scene::ModelMesh mesh;
       shape_ = scene::kObjectShapes[key.source - 1];
-      scene::make_object_shape(shape_, 0.0, static_cast<uint64_t>(key.seed), mesh.data);
+      if (shape_ == "terrain") {
+        if (std::string problem = scene::terrain_problem(key.terrain); !problem.empty()) {
+          ctx.fail(name(ctx) + ": " + problem);
+          return false;
+        }
+        scene::make_terrain(key.terrain, static_cast<uint64_t>(key.seed), mesh.data);
+      } else {
+        scene::make_object_shape(shape_, 0.0, static_cast<uint64_t>(key.seed), mesh.data);
+      }
       model_.path = shape_;
       model_.meshes.push_back(std::move(mesh));
       model_.nodes.push_back(scene::ModelNode{"shape", -1, glm::mat4(1.0f), {0}, -1});
@@ -315,7 +394,8 @@ class ObjectNode {
     const int64_t animation = ctx.param_enum(kAnimation);
     const double time = ctx.time();
     const bool deforming = wave_animated(ctx);
-    const glm::mat4 place = placement(ctx) * (ctx.param_bool(kFit) ? fit_ : glm::mat4(1.0f));
+    const glm::mat4 fit = ctx.param_bool(kFit) ? fit_ : glm::mat4(1.0f);
+    const glm::mat4 place = placement(ctx) * fit;
     const glm::mat4 swim =
         animation == kAnimationSwim
             ? swim_frame(time, ctx.param_float(kSwimRadius), ctx.param_float(kSwimSpeed),
@@ -334,10 +414,12 @@ class ObjectNode {
       }
       parts_valid_ = !deforming;
     }
-    // The swim loop goes around `position`, the object turned and scaled in its own frame.
+    // The swim loop goes around `position`, the object turned and scaled in its own frame, its
+    // forward axis first turned onto +x (after `fit`, which centres it: the turn keeps that).
     glm::mat4 world = animation == kAnimationSwim
                           ? glm::translate(glm::mat4(1.0f), glm::vec3(place[3])) * swim *
-                                glm::translate(glm::mat4(1.0f), -glm::vec3(place[3])) * place
+                                glm::translate(glm::mat4(1.0f), -glm::vec3(place[3])) *
+                                placement(ctx) * forward_to_x(ctx.param_enum(kSwimForward)) * fit
                           : place;
     if (animation == kAnimationSpin) world = spin_frame(ctx, glm::vec3(place[3]), time) * place;
     for (size_t i = 0; i < parts_.size(); ++i) {
@@ -355,14 +437,14 @@ class ObjectNode {
       smooth(mesh, static_cast<int>(key_.smoothing));
       return;
     }
-    body_wave(mesh, time, ctx.param_float(kSwimWave));
+    body_wave(mesh, time, ctx.param_float(kSwimWave), forward_axis(ctx.param_enum(kSwimForward)));
   }
 
   void publish(aq::Context& ctx) {
     meshes_.clear();
     surfaces_.clear();
     glm::vec3 lo(1e30f), hi(-1e30f);
-    const float cutoff = static_cast<float>(ctx.param_float(kAlphaCutoff));
+    const float cutoff = as_stored_texel(ctx.param_float(kAlphaCutoff));
     for (const Part& part : parts_) {
       aq_mesh mesh{};
       mesh.positions = part.data.positions.data();

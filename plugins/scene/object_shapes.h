@@ -9,8 +9,10 @@
 namespace scene {
 
 // Names of the shapes, in the order of the object node's `source` enum after "file".
-inline constexpr const char* kObjectShapes[] = {"cube", "sphere", "plane", "card",     "pot",
-                                                "rock", "coral",  "shell", "starfish", "fish"};
+// "terrain" is built by make_terrain (terrain.h) from the object's terrain parameters.
+inline constexpr const char* kObjectShapes[] = {"cube",     "sphere", "plane",  "card",
+                                                "pot",      "rock",   "coral",  "shell",
+                                                "starfish", "fish",   "terrain"};
 
 // Builds shape `name` (object space, y up, resting on y = 0 except the cube and sphere, which
 // are centred at the origin, unit size) at `time` (only the fish moves: its body wave).

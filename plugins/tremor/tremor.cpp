@@ -16,7 +16,9 @@ namespace {
 enum Input : uint32_t { kImage, kControl };
 constexpr aq_port_desc kInputs[] = {
     aq::image_port("image", "the image to wobble"),
-    aq::optional_image_port("control", "control map: alpha is the tremor amount; unconnected: 1")};
+    aq::optional_image_port(
+        "control",
+        "control map: alpha is the unitless tremor mask (1 = full amplitude); unconnected: 1")};
 constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "the wobbled image")};
 enum Param : uint32_t { kAmplitude, kWavelength, kSpeed };
 constexpr aq_param_desc kParams[] = {

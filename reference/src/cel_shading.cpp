@@ -51,15 +51,25 @@ Rgb hsv_to_rgb(const Hsv& hsv) {
   }
 }
 
-double quantize_value(double v, int levels) {
-  if (levels <= 1) return v > 0 ? 1.0 : 0.0;
-  double steps = levels - 1;
-  return std::floor(v * steps + 0.5) / steps;
+double srgb_encode(double v) {
+  return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
 }
 
-Rgb cel_shade(const Rgb& rgb, int levels) {
+double srgb_decode(double e) {
+  return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
+}
+
+double quantize_value(double v, int levels, bool display, bool floor) {
+  if (levels <= 1) return v > 0 ? 1.0 : 0.0;
+  double steps = levels - 1;
+  double k = std::floor((display ? srgb_encode(v) : v) * steps + 0.5);
+  if (floor && v > 0) k = std::max(k, 1.0);
+  return display ? srgb_decode(k / steps) : k / steps;
+}
+
+Rgb cel_shade(const Rgb& rgb, int levels, bool display, bool floor) {
   Hsv hsv = rgb_to_hsv(rgb);
-  hsv.v = quantize_value(hsv.v, levels);
+  hsv.v = quantize_value(hsv.v, levels, display, floor);
   return hsv_to_rgb(hsv);
 }
 
@@ -83,7 +93,7 @@ ImageF cel_light(const ImageF& normal, const ImageF& albedo, const ImageF& id,
           double a = std::max(static_cast<double>(albedo.at(x, y, k)), 0.0);
           color[k] = a * (params.ambient[k] + params.light_color[k] * ndl);
         }
-        if (params.quantize) color = cel_shade(color, params.levels);
+        if (params.quantize) color = cel_shade(color, params.levels, params.display, params.floor);
       }
       for (int k = 0; k < 3; ++k) out.at(x, y, k) = static_cast<float>(color[k]);
     }

@@ -28,10 +28,19 @@ ImageF blur_difference_darkening(const ImageF& image, const ImageF* source, cons
       if (control != nullptr) {
         const int cx = std::min(x * control->width / image.width, control->width - 1);
         const int cy = std::min(y * control->height / image.height, control->height - 1);
-        k *= std::max(control->at(cx, cy, 1) + p.grazing * control->at(cx, cy, 2), 0.0);
+        // The grazing angle through the node's 3x3 tent (1, 2, 1) ⊗ (1, 2, 1) / 16, clamped.
+        double grazing = 0.0;
+        for (int j = -1; j <= 1; ++j)
+          for (int i = -1; i <= 1; ++i) {
+            const int gx = std::clamp(cx + i, 0, control->width - 1);
+            const int gy = std::clamp(cy + j, 0, control->height - 1);
+            grazing += (i == 0 ? 2.0 : 1.0) * (j == 0 ? 2.0 : 1.0) / 16.0 * control->at(gx, gy, 2);
+          }
+        k *= std::max(control->at(cx, cy, 1) + p.grazing * grazing, 0.0);
         if (!std::isfinite(k)) k = 0.0;
       }
-      const double e = k * d;
+      double e = k * d;
+      if (p.max_exponent > 0.0) e = p.max_exponent * (1.0 - std::exp(-e / p.max_exponent));
       if (!(e > 0.0)) continue;
       for (int c = 0; c < 3; ++c) {
         const double v = image.at(x, y, c);

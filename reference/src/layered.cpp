@@ -38,6 +38,24 @@ Plane blur(const Plane& in, int w, int h, double sigma) {
   return out;
 }
 
+// The maximum over a (2r+1)^2 window, clamped to the image.
+Plane running_max(const Plane& in, int w, int h, int r) {
+  Plane tmp(in.size()), out(in.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double m = in[y * w + x];
+      for (int i = -r; i <= r; ++i) m = std::max(m, in[y * w + std::clamp(x + i, 0, w - 1)]);
+      tmp[y * w + x] = m;
+    }
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double m = tmp[y * w + x];
+      for (int i = -r; i <= r; ++i) m = std::max(m, tmp[std::clamp(y + i, 0, h - 1) * w + x]);
+      out[y * w + x] = m;
+    }
+  return out;
+}
+
 double smoothstep(double e0, double e1, double x) {
   const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
   return t * t * (3.0 - 2.0 * t);
@@ -176,6 +194,10 @@ ImageF layered(const ImageF& id, const ImageF& normal, const ImageF& albedo, con
     const Plane b = blur(intensity, w, h, p.abstraction_sigma);
     const Plane bd = blur(lit, w, h, p.abstraction_sigma);
     const Plane bz = blur(layer_depth, w, h, p.abstraction_sigma);
+    const bool thin = p.thin_shapes > 0.0 && p.abstraction_sigma > 0.0;
+    const Plane peak =
+        thin ? running_max(b, w, h, static_cast<int>(std::ceil(p.abstraction_sigma)) + 1) : b;
+    const double line_width_scale = std::sqrt(2.0 * 3.14159265358979) * p.abstraction_sigma;
 
     // Wet edges.
     Plane edges(n, 0.0);
@@ -200,7 +222,12 @@ ImageF layered(const ImageF& id, const ImageF& normal, const ImageF& albedo, con
     // Glaze.
     for (size_t i = 0; i < n; ++i) {
       if (!(b[i] > 1e-6)) continue;
-      const double a = smoothstep(t[i] - s, t[i] + s, b[i]);
+      double a = smoothstep(t[i] - s, t[i] + s, b[i]);
+      if (thin) {
+        const double ridge = smoothstep(0.75, 0.9, b[i] / std::max(peak[i], 1e-6));
+        const double wide_enough = smoothstep(0.5, 1.0, peak[i] * line_width_scale);
+        a = std::max(a, p.thin_shapes * intensity[i] * ridge * wide_enough);
+      }
       const double d = std::clamp(bd[i] / b[i], 0.0, 1.0);
       const Rgb colour = mix(dark_colour, light_colour, d, p.mixing);
       const double e = std::clamp(gain * edges[i], 0.0, 1.0);

@@ -36,16 +36,19 @@ double procedural2(int source, noise::Vec2 p, int seed) {
   return 0.5 - std::min(noise::worley2(p, {0.0, 0.0}), 1.0);
 }
 
+// The paper's texture is a height: its density is the depth 0.5 - height (pigment settles in
+// the valleys), the other textures' their value - 0.5.
 double canvas_layer(int source, const ImageF* texture, noise::Vec2 q, double layer, double aspect,
                     const PigmentParams& params) {
+  const double sign = source == 2 ? -1.0 : 1.0;
   if (texture != nullptr) {
     const double u = frac(q.x / aspect + 0.5 + layer * 0.6180339887);
     const double v = frac(q.y + 0.5 + layer * 0.3819660113);
-    return sample_bilinear(*texture, u, v, 0) - 0.5;
+    return sign * (sample_bilinear(*texture, u, v, 0) - 0.5);
   }
   const noise::Vec2 offset = field_offset(source, layer, params.seed);
   const double f = params.frequencies[source];
-  return procedural2(source, {q.x * f + offset.x, q.y * f + offset.y}, params.seed);
+  return sign * procedural2(source, {q.x * f + offset.x, q.y * f + offset.y}, params.seed);
 }
 
 double canvas_density(int source, const ImageF* texture, noise::Vec2 screen, double aspect,
@@ -88,8 +91,11 @@ double object_density(int source, const double world[3], const PigmentParams& pa
 
 }  // namespace
 
+// Above 1 (HDR highlights) only the part up to 1 is modified and the excess kept: the formula
+// itself would go negative for c > 1 and d < 1 - 1/(c - 1).
 double apply_density(double c, double d) {
-  return c * (1.0 - (1.0 - c) * (d - 1.0));
+  const double low = std::min(c, 1.0);
+  return low * (1.0 - (1.0 - low) * (d - 1.0)) + (c - low);
 }
 
 ImageF pigment(const ImageF& image, const std::array<const ImageF*, 3>& textures,

@@ -1,10 +1,11 @@
-// The two seed 002 graphs (graphs/art_directed.json, graphs/windmill.json) render headless at a
-// small size: finite, not flat, animated (frames differ), and each of their art-direction nodes
+// The seed 002 graphs (graphs/art_directed.json, windmill.json, waterfall.json) render headless at
+// a small size: finite, not flat, animated (frames differ), and each of their art-direction nodes
 // does something (the control map's channels are set where the objects ask).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "support/harness.h"
 
@@ -44,7 +45,11 @@ TEST_P(ArtDirectedGraph, RendersAnimatedAndFinite) {
   ASSERT_TRUE(later.ok()) << later.message();
   EXPECT_TRUE(aq::test::all_finite(*first));
   EXPECT_GT(spread(*first), 0.2);
-  EXPECT_GT(aq::test::mean_abs_diff(*first, *later), 1e-4);
+  // Visibly animated (issue 35: art_directed's frames 1 and 12 once differed by 0.001 on
+  // average, a haze drifting; the spray plume, the swimming fish and the tremor now move).
+  const double moved = aq::test::mean_abs_diff(*first, *later);
+  std::printf("[%s] frames 1 and 12: mean abs difference %.4f\n", GetParam(), moved);
+  EXPECT_GT(moved, 2e-3);  // measured: art_directed 0.0027, windmill 0.006, waterfall 0.012
 }
 
 TEST_P(ArtDirectedGraph, ControlMapCarriesTheObjectsArtDirection) {
@@ -64,6 +69,6 @@ TEST_P(ArtDirectedGraph, ControlMapCarriesTheObjectsArtDirection) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Seed002, ArtDirectedGraph,
-                         ::testing::Values("art_directed.json", "windmill.json"));
+                         ::testing::Values("art_directed.json", "windmill.json", "waterfall.json"));
 
 }  // namespace

@@ -147,5 +147,42 @@ TEST(AxisFusion, ARequestedIntermediateIsWhole) {
   }
 }
 
+// Issue 38 item 5: a chain fed by the light's 8-bit HDR image (so it runs in blocks and hands
+// its passes on) and ending the graph: the last erode takes a pending rows pass and writes
+// pixels. Its columns pass reads blocks and writes pixels (the plain blocked columns pass, not
+// the blocks-to-blocks one, which declares no o_color): it compiles, renders, and gives the
+// bits of the passes run in their own nodes.
+TEST(AxisFusion, AChainThatEndsTheGraphAfterTheLightRenders) {
+  const std::string graph = R"({
+    "aquarelle": 1,
+    "nodes": {
+      "scene": {"type": "scene", "params": {"preset": "plane_box"}},
+      "gbuf": {"type": "gbuffer", "inputs": {"scene": "scene.scene"}},
+      "light": {"type": "cel_light", "inputs": {"scene": "scene.scene",
+                "position": "gbuf.position", "surface": "gbuf.surface"}},
+      "open_erode": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "light.image"}},
+      "dilate": {"type": "dilate", "params": {"size": 5}, "inputs": {"image": "open_erode.image"}},
+      "close_erode": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "dilate.image"}}
+    },
+    "output": "close_erode.image"
+  })";
+  const Plan plan = plan_of(graph, "half");
+  EXPECT_TRUE(hands_on(plan, "open_erode"));
+  EXPECT_TRUE(hands_on(plan, "dilate"));
+  for (const auto& [width, height] : {std::pair{64, 48}, {37, 21}}) {
+    RenderOptions options;
+    options.width = width;
+    options.height = height;
+    options.precision = "half";
+    setenv("AQUARELLE_DEFER_AXIS", "0", 1);
+    auto whole = render_graph(graph, options);
+    unsetenv("AQUARELLE_DEFER_AXIS");
+    auto handed = render_graph(graph, options);
+    ASSERT_TRUE(whole.ok()) << whole.message();
+    ASSERT_TRUE(handed.ok()) << handed.message();
+    EXPECT_EQ(max_abs_diff(*handed, *whole), 0.0) << width << "x" << height;
+  }
+}
+
 }  // namespace
 }  // namespace aq::test

@@ -25,6 +25,9 @@ struct LightSetup {
   std::array<double, 3> ambient{0.22, 0.27, 0.32};
   int levels = 4;
   bool quantize = true;
+  std::string space = "display";
+  bool floor = true;
+  std::string plain = "light";
   double caustic_tile = 4.0;  // cel_light's own; 0 takes the scene's
   double scene_caustic_tile = 4.0;
   double caustic_strength = 1.0;
@@ -53,6 +56,9 @@ std::string graph(const LightSetup& s, bool shadow, bool caustics) {
                             {"params",
                              {{"levels", s.levels},
                               {"quantize", s.quantize},
+                              {"space", s.space},
+                              {"floor", s.floor},
+                              {"plain", s.plain},
                               {"caustic_tile", s.caustic_tile},
                               {"caustic_strength", s.caustic_strength},
                               {"pcf_radius", s.pcf_radius}}}}}};
@@ -123,6 +129,8 @@ CelLightParams reference_params(const LightSetup& s) {
   }
   p.levels = s.levels;
   p.quantize = s.quantize;
+  p.display = s.space == "display";
+  p.floor = s.floor;
   return p;
 }
 
@@ -145,7 +153,8 @@ Error compare(const ImageF& got, const GBufferImages& g, const LightSetup& s,
   for (int y = 0; y < kH; ++y) {
     for (int x = 0; x < kW; ++x) {
       double v = std::max({raw.at(x, y, 0), raw.at(x, y, 1), raw.at(x, y, 2)});
-      double t = v * (s.levels - 1);
+      double shown = p.display ? aq::reference::srgb_encode(v) : v;
+      double t = shown * (s.levels - 1);
       bool near_boundary = s.quantize && s.levels > 1 && std::abs(t - std::floor(t) - 0.5) < margin;
       if (near_boundary) {
         ++e.skipped;
@@ -194,6 +203,16 @@ TEST(CelLight, LevelsSweepAndPlainDiffuse) {
     s.levels = levels;
     Error e = compare(run(s, as_inputs(g)), g, s);
     EXPECT_LE(e.max_abs, 2e-5) << levels << " levels";
+  }
+  // Every combination of space and floor follows the reference too.
+  for (const char* space : {"display", "linear"}) {
+    for (bool floor : {true, false}) {
+      LightSetup s;
+      s.space = space;
+      s.floor = floor;
+      Error e = compare(run(s, as_inputs(g)), g, s);
+      EXPECT_LE(e.max_abs, 2e-5) << space << (floor ? " with" : " without") << " floor";
+    }
   }
   LightSetup plain;
   plain.quantize = false;
@@ -244,24 +263,35 @@ TEST(CelLight, GreyStaysGreyAndBlackStaysBlack) {
 }
 
 TEST(CelLight, ValuesAboveOneStayHdr) {
-  // v = 2.9: nearest level of 4 is 3 (= 9/3); hue and saturation kept.
+  // Linear space: v = 2.9: nearest level of 4 is 3 (= 9/3); hue and saturation kept.
   LightSetup s = overhead();
+  s.space = "linear";
   ImageF got = run(s, as_inputs(flat_gbuffer(2.9f, 1.45f, 0.58f)));
   ASSERT_FALSE(got.empty());
   EXPECT_NEAR(got.at(10, 10, 0), 3.0, 1e-5);
   EXPECT_NEAR(got.at(10, 10, 1), 1.5, 1e-5);
   EXPECT_NEAR(got.at(10, 10, 2), 0.6, 1e-5);
+  // Display space: the sRGB steps continue above 1 (srgb(2.9) = 1.589, nearest level 5/3).
+  s.space = "display";
+  ImageF display = run(s, as_inputs(flat_gbuffer(2.9f, 1.45f, 0.58f)));
+  ASSERT_FALSE(display.empty());
+  const double v = aq::reference::srgb_decode(5.0 / 3.0);
+  EXPECT_NEAR(display.at(10, 10, 0), v, 1e-5 * v);
+  EXPECT_NEAR(display.at(10, 10, 1), v / 2, 1e-5 * v);
+  EXPECT_NEAR(display.at(10, 10, 2), v / 5, 1e-5 * v);
 }
 
 TEST(CelLight, ExactlyOnALevelBoundaryIsStableAndRoundsUp) {
   LightSetup s = overhead();
+  s.space = "linear";  // boundaries exactly representable in linear values
+  s.floor = false;
   s.levels = 2;  // boundary at v = 0.5, exactly representable: rounds half up to 1
   ImageF got = run(s, as_inputs(flat_gbuffer(0.5f, 0.25f, 0.0f)));
   ASSERT_FALSE(got.empty());
   EXPECT_EQ(got.at(5, 5, 0), 1.0f);
   EXPECT_EQ(got.at(5, 5, 1), 0.5f);
   EXPECT_EQ(got.at(5, 5, 2), 0.0f);
-  const auto expected = aq::reference::cel_shade({0.5, 0.25, 0.0}, 2);
+  const auto expected = aq::reference::cel_shade({0.5, 0.25, 0.0}, 2, false, false);
   EXPECT_NEAR(expected[0], 1.0, 1e-12);
   EXPECT_NEAR(expected[1], 0.5, 1e-12);
 
@@ -289,6 +319,98 @@ TEST(CelLight, OneLevelIsFlatColour) {
       float v = std::max({got.at(x, y, 0), got.at(x, y, 1), got.at(x, y, 2)});
       ASSERT_TRUE(std::abs(v - 1.0f) < 1e-5 || v == 0.0f) << v;
     }
+}
+
+// Issue 37, hard case: a dark green albedo (0.02, 0.08, 0.02) at N.L = 0.5 under a white light
+// and no ambient: lit = (0.01, 0.04, 0.01). Quantised in linear light, v = 0.04 rounded to 0
+// (black); at the defaults (display space, floor) it keeps a green of the first level or more.
+TEST(CelLight, ADarkGreenHalfLitIsNotBlack) {
+  LightSetup s = overhead();
+  GBufferImages g = flat_gbuffer(0.02f, 0.08f, 0.02f);
+  const float c = static_cast<float>(std::sqrt(0.75));
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      g.normal.at(x, y, 0) = c;  // N.L = cos 60 degrees
+      g.normal.at(x, y, 1) = 0.5f;
+    }
+  ImageF got = run(s, as_inputs(g));
+  ASSERT_FALSE(got.empty());
+  const auto expected = aq::reference::cel_shade({0.01, 0.04, 0.01}, 4);
+  EXPECT_GT(expected[1], 0.04) << "the first display level is above the light's value";
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      ASSERT_GT(got.at(x, y, 1), 0.0f) << x << "," << y;
+      ASSERT_NEAR(got.at(x, y, 1), expected[1], 1e-5) << x << "," << y;
+      ASSERT_NEAR(got.at(x, y, 1), 4.0f * got.at(x, y, 0), 1e-5) << "hue kept";
+    }
+  // Without the floor, display space alone still keeps it (srgb(0.04) = 0.22 rounds to 1/3).
+  s.floor = false;
+  EXPECT_GT(run(s, as_inputs(g)).at(5, 5, 1), 0.0f);
+  // Linear space without the floor is the old crush.
+  s.space = "linear";
+  EXPECT_EQ(run(s, as_inputs(g)).at(5, 5, 1), 0.0f);
+}
+
+// Issue 37, hard case: a textured checker of dark and light squares (a crate's checks), lit
+// from every side by random normals (a quarter facing away), with a faint ambient: no pixel
+// whose albedo is not black renders black, hue is kept, and the reference agrees.
+TEST(CelLight, ACheckerOfDarkAndLightSquaresNeverGoesBlack) {
+  GBufferImages g = random_gbuffer(31);
+  const float dark[3] = {0.03f, 0.012f, 0.006f}, light[3] = {0.75f, 0.6f, 0.4f};
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const bool is_dark = ((x / 8) + (y / 8)) % 2 == 0;
+      for (int k = 0; k < 3; ++k) g.albedo.at(x, y, k) = is_dark ? dark[k] : light[k];
+      g.id.at(x, y, 0) = 1.0f;
+    }
+  LightSetup s;
+  s.ambient = {0.05, 0.06, 0.07};
+  ImageF got = run(s, as_inputs(g));
+  ASSERT_FALSE(got.empty());
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const float v = std::max({got.at(x, y, 0), got.at(x, y, 1), got.at(x, y, 2)});
+      ASSERT_GT(v, 0.0f) << "black at " << x << "," << y;
+      ASSERT_GE(got.at(x, y, 0), got.at(x, y, 1)) << "hue kept at " << x << "," << y;
+    }
+  Error e = compare(got, g, s);
+  EXPECT_LE(e.max_abs, 2e-5);
+}
+
+// `plain` = regions: the second output holds a flat colour per object id (0 on the background),
+// the source `edge` darkens outlines from (issue 37): constant inside an object whatever its
+// light, far apart between neighbouring ids.
+TEST(CelLight, RegionsAreAFlatColourPerObject) {
+  GBufferImages g = random_gbuffer(32);
+  for (int y = 3; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) g.id.at(x, y, 0) = static_cast<float>(1 + x / 16);
+  LightSetup s;
+  s.plain = "regions";
+  aq::test::RenderOptions options;
+  options.width = kW;
+  options.height = kH;
+  options.output = "light.plain";
+  auto regions = aq::test::render_graph(graph(s, false, false), options, as_inputs(g));
+  ASSERT_TRUE(regions.ok()) << regions.message();
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const float id = g.id.at(x, y, 0);
+        const double expected =
+            id * std::array<double, 3>{0.6180339887, 0.7548776662, 0.5698402910}[c];
+        ASSERT_NEAR(regions->at(x, y, c), expected - std::floor(expected), 1e-5) << x << "," << y;
+      }
+  for (int id = 0; id < 4; ++id) {  // background and ids 1..4 side by side
+    double largest = 0;
+    for (int c = 0; c < 3; ++c)
+      largest = std::max(largest, std::abs(static_cast<double>(regions->at(16 * id + 8, 10, c)) -
+                                           regions->at(16 * (id + 1) + 8, 10, c)));
+    if (id + 1 < 4) EXPECT_GT(largest, 0.1) << "ids " << id + 1 << " and " << id + 2;
+  }
+  // The light itself is unchanged by what `plain` holds.
+  LightSetup light = s;
+  light.plain = "light";
+  EXPECT_EQ(aq::test::max_abs_diff(run(s, as_inputs(g)), run(light, as_inputs(g))), 0.0);
 }
 
 TEST(CelLight, BackgroundGetsTheBackgroundColour) {

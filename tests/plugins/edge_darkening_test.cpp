@@ -14,15 +14,21 @@ namespace {
 using aq::ImageF;
 using aq::reference::EdgeDarkeningParams;
 
+// resolution 1: the blur on every pixel, what reference::blur_difference_darkening computes.
 aq::Result<ImageF> run(const ImageF& image, const ImageF* source, const ImageF* control,
-                       const EdgeDarkeningParams& p, const char* precision = "float") {
+                       const EdgeDarkeningParams& p, const char* precision = "float",
+                       int resolution = 1) {
   std::map<std::string, ImageF> inputs{{"image", image}};
   if (source) inputs["source"] = *source;
   if (control) inputs["control"] = *control;
   aq::test::RenderOptions options;
   options.precision = precision;
   return aq::test::run_node("edge_darkening", inputs,
-                            {{"sigma", p.sigma}, {"strength", p.strength}, {"grazing", p.grazing}},
+                            {{"sigma", p.sigma},
+                             {"strength", p.strength},
+                             {"grazing", p.grazing},
+                             {"max_exponent", p.max_exponent},
+                             {"resolution", resolution}},
                             options);
 }
 
@@ -98,6 +104,69 @@ TEST(EdgeDarkening, OnePixelAndNaN) {
     for (int x = 0; x < 32; ++x)
       for (int c = 0; c < 4; ++c) non_finite += std::isfinite(nan->at(x, y, c)) ? 0 : 1;
   EXPECT_EQ(non_finite, 1);
+}
+
+// Thin geometry (issue 35): a windmill sail two pixels wide, on a darker hill, its one-pixel
+// side faces seen edge-on (grazing 1 in the control map), edge amount 1.5 (the FBM's high end).
+// Unbounded, the exponent reached k·d ≈ 3 along the sail and at its corners: aliased dark lines
+// and blots (0.9 → 0.7). The saturating exponent keeps every pixel at or above C², and the
+// grazing read through a tent no longer paints a one-pixel line darker than the sail beside it.
+TEST(EdgeDarkening, ThinGeometryGetsNoBlotsOrAliasedLines) {
+  const int w = 64, h = 64;
+  ImageF image = aq::test::constant_image(w, h, 0.55f, 0.6f, 0.45f);
+  ImageF control = aq::test::constant_image(w, h, 0.0f, 1.0f, 0.0f, 0.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int across = x - y;  // a diagonal bar: |across| <= 1 is the sail
+      if (std::abs(across) <= 1 && x > 8 && x < 56) {
+        for (int c = 0; c < 3; ++c) image.at(x, y, c) = 0.9f;
+        control.at(x, y, 1) = 1.5f;
+        control.at(x, y, 2) = across == 1 ? 1.0f : 0.1f;  // one side face, edge-on
+      }
+    }
+  const EdgeDarkeningParams p;  // defaults: sigma 3, strength 4, grazing 1, max_exponent 1
+  auto got = run(image, nullptr, &control, p);
+  ASSERT_TRUE(got.ok()) << got.message();
+  int below_square = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double v = image.at(x, y, c);
+        below_square += got->at(x, y, c) < v * v - 1e-4 ? 1 : 0;
+      }
+  EXPECT_EQ(below_square, 0) << "pixels darkened past C^2 (blots)";
+  // Along the middle of the sail, the edge-on side (across = 1) is not much darker than the
+  // sail's centre line (across = 0): no one-pixel dark line.
+  double line = 0.0, centre = 0.0;
+  for (int x = 20; x < 44; ++x) {
+    line += got->at(x, x - 1, 0);
+    centre += got->at(x, x, 0);
+  }
+  EXPECT_GT(line / 24.0, centre / 24.0 - 0.08) << "a dark aliased line along the sail";
+  const ImageF expected = aq::reference::blur_difference_darkening(image, nullptr, &control, p);
+  EXPECT_LE(aq::test::max_abs_diff(*got, expected), 4e-4);
+}
+
+// The default blurs on 2x2 cells (σ narrowed by what the averaging and the bilinear read-back
+// add): close to the exact blur on a painted-like image, and a constant image is still exact.
+TEST(EdgeDarkening, BlurOnCellsStaysCloseToTheExactOne) {
+  const ImageF image = step_image(96, 64);
+  ImageF source = image;
+  for (int y = 20; y < 40; ++y)
+    for (int x = 10; x < 30; ++x) source.at(x, y, 1) = 0.2f;  // a block of another colour
+  const EdgeDarkeningParams p;
+  auto exact = run(image, &source, nullptr, p, "float", 1);
+  auto cells = run(image, &source, nullptr, p, "float", 2);
+  ASSERT_TRUE(exact.ok() && cells.ok()) << exact.message() << cells.message();
+  const double max = aq::test::max_abs_diff(*cells, *exact);
+  const double mean = aq::test::mean_abs_diff(*cells, *exact);
+  std::printf("[edge_darkening] 2x2 cells against every pixel: max %.3g, mean %.3g\n", max, mean);
+  EXPECT_LE(mean, 2e-3);
+  EXPECT_LE(max, 0.03);
+  const ImageF flat = aq::test::constant_image(40, 30, 0.25f, 0.5f, 0.875f, 0.5f);
+  auto same = run(flat, nullptr, nullptr, p, "half", 2);
+  ASSERT_TRUE(same.ok());
+  EXPECT_EQ(aq::test::max_abs_diff(*same, flat), 0.0);
 }
 
 }  // namespace

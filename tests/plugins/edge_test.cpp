@@ -180,3 +180,50 @@ TEST(Edge, OnePixelImageHasNoEdges) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 37: watercolor darkens edges where washes meet (objects, colour regions), not along the
+// light's own cel bands. In graphs/underwater.json at 160x90, inside every object (pixels whose
+// 3x3 neighbourhood holds one non-zero id: a continuous cel-shaded surface, bands and caustics
+// included) the edge node darkens nothing: its output equals its input there. Its source is the
+// light's `plain` output holding the object regions (cel_light `plain` = regions, a flat colour
+// per id); with the light without caustics there instead, as before, the floor's cel bands
+// were drawn as contour lines (1396 of the 5940 inside pixels darkened, measured).
+TEST(Edge, TheFlagshipDrawsNoLineInsideAContinuousSurface) {
+  aq::test::RenderOptions options;
+  options.width = 160;
+  options.height = 90;
+  options.frame = 12;
+  const std::string graph = aq::test::source_path("graphs/underwater.json");
+  options.output = "edge.image";
+  auto edged = aq::test::render_graph_file(graph, options);
+  options.output = "wobble.image";
+  auto wobbled = aq::test::render_graph_file(graph, options);
+  options.output = "gbuf.id";
+  auto id = aq::test::render_graph_file(graph, options);
+  ASSERT_TRUE(edged.ok()) << edged.message();
+  ASSERT_TRUE(wobbled.ok()) << wobbled.message();
+  ASSERT_TRUE(id.ok()) << id.message();
+  int inside = 0, darkened_inside = 0, darkened_at_borders = 0;
+  for (int y = 1; y + 1 < options.height; ++y) {
+    for (int x = 1; x + 1 < options.width; ++x) {
+      bool one_object = id->at(x, y, 0) >= 0.5f;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          one_object = one_object && id->at(x + dx, y + dy, 0) == id->at(x, y, 0);
+      const bool darkened = edged->at(x, y, 1) < 0.99f * wobbled->at(x, y, 1) - 1e-6f;
+      if (one_object) {
+        ++inside;
+        darkened_inside += darkened;
+      } else {
+        darkened_at_borders += darkened;
+      }
+    }
+  }
+  EXPECT_GT(inside, options.width * options.height / 3) << "the objects cover the frame";
+  EXPECT_EQ(darkened_inside, 0) << "of " << inside << " pixels inside objects";
+  EXPECT_GT(darkened_at_borders, 100) << "the objects' outlines are darkened";
+}
+
+}  // namespace

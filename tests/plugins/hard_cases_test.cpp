@@ -30,9 +30,10 @@ bool keeps_constants(const std::string& node) {
 int reach(const std::string& node) {
   if (node == "blur") return 20;  // 4 sigma of sigma 4
   if (node == "wobble") return 12;
-  // Measured: a bad texel stops the darkening (d = 0) up to 14 px away, the shared Gaussian's
-  // footprint at sigma 3 (4 sigma = 12 plus its last taps).
-  if (node == "edge_darkening") return 14;
+  // A bad texel stops the darkening (d = 0) within the blur's footprint: by default the blur
+  // runs on 2x2 cells (the cell average, 6 cells of 4 sigma at sigma 1.42 cells, the bilinear
+  // read-back): measured up to 18 px (on every pixel it was 14: 4 sigma = 12 plus its last taps).
+  if (node == "edge_darkening") return 18;
   return 3;
 }
 

@@ -88,7 +88,8 @@ nlohmann::json to_json(const LayeredParams& p) {
           {"paper_color", {p.paper_color[0], p.paper_color[1], p.paper_color[2]}},
           {"paper_relief", p.paper_relief},
           {"depth_band", p.depth_band},
-          {"density", p.density}};
+          {"density", p.density},
+          {"thin_shapes", p.thin_shapes}};
 }
 
 ImageF run(const GBuffer& g, const LayeredParams& p, const ImageF* paper = nullptr,
@@ -407,3 +408,71 @@ TEST(Layered, BadPaletteNamesTheParameterAndTheFix) {
 }
 
 }  // namespace
+
+TEST(Layered, ThinBladeKeepsItsContinuity) {
+  // A 2-pixel-wide vertical blade, much thinner than the abstraction blur (σ 3 px): its
+  // blurred mask peaks near 0.27, under the threshold, so a plain abstraction erases it.
+  GBuffer g(48, 64);
+  for (int y = 6; y < 58; ++y)
+    for (int x = 23; x < 25; ++x) g.set(x, y, 1, 3.0f, 0.1f, 0.5f, 0.15f);
+  LayeredParams p = comparable();
+  const ImageF out = run(g, p);
+  ASSERT_TRUE(aq::test::all_finite(out));
+  EXPECT_LT(aq::test::max_abs_diff(out, reference(g, p), 3), 5e-3);
+  // Every row of the blade is painted: no white gaps along it.
+  for (int y = 8; y < 56; ++y) {
+    EXPECT_LT(out.at(23, y, 0), 0.7f) << "row " << y << ": the blade is painted";
+  }
+  // And off to the side the paper stays clean (the blade does not fatten).
+  EXPECT_NEAR(out.at(30, 32, 0), p.paper_color[0], 2e-2);
+  p.thin_shapes = 0.0;  // the plain abstraction: the blade vanishes
+  const ImageF gone = run(g, p);
+  EXPECT_GT(gone.at(23, 32, 0), 0.9f);
+}
+
+TEST(Layered, ThinShapesLeaveWideShapesAndDotsAlone) {
+  // A wide square's corners stay rounded by the abstraction and a single pixel still blurs
+  // away: only ridges that are their own peak and about a pixel wide are kept.
+  GBuffer g(64, 64);
+  for (int y = 16; y < 48; ++y)
+    for (int x = 16; x < 48; ++x) g.set(x, y, 1, 3.0f, 0.2f, 0.4f, 0.8f);
+  g.set(56, 8, 2, 2.0f, 0.9f, 0.1f, 0.1f);
+  LayeredParams p = comparable();
+  p.edge_noise = 0.0;
+  const ImageF with = run(g, p);
+  p.thin_shapes = 0.0;
+  const ImageF without = run(g, p);
+  EXPECT_NEAR(with.at(16, 16, 0), without.at(16, 16, 0), 1e-3) << "the corner stays rounded";
+  EXPECT_NEAR(with.at(56, 8, 0), 0.98, 1e-3) << "a one-pixel object still blurs away";
+}
+
+TEST(Layered, GoochIsWarmAndCoolAtItsDefault) {
+  // A grey sphere with the node's defaults: the lit side leans warm, the shaded side cool.
+  GBuffer g(64, 64);
+  g.sphere(32, 32, 28, 1, 5.0f, 0.6f, 0.6f, 0.6f);
+  aq::test::RenderOptions options;
+  options.width = 64;
+  options.height = 64;
+  options.precision = "float";
+  auto out = aq::test::run_node(
+      "layered", {{"id", g.id}, {"normal", g.normal}, {"albedo", g.albedo}, {"depth", g.depth}},
+      nlohmann::json{{"specular_threshold", 1.0}}, options);
+  ASSERT_TRUE(out.ok()) << out.message();
+  // The most and least lit pixels well inside the sphere, by the default light direction.
+  const double l[3] = {-0.5, 0.7, 0.5};
+  double best = -2.0, worst = 2.0;
+  int lit = 0, shaded = 0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const double dx = x + 0.5 - 32.0, dy = y + 0.5 - 32.0;
+      if (dx * dx + dy * dy > 20.0 * 20.0) continue;
+      const int i = y * 64 + x;
+      const double nl =
+          g.normal.at(x, y, 0) * l[0] + g.normal.at(x, y, 1) * l[1] + g.normal.at(x, y, 2) * l[2];
+      if (nl > best) best = nl, lit = i;
+      if (nl < worst) worst = nl, shaded = i;
+    }
+  auto warmth = [&](int i) { return out->at(i % 64, i / 64, 0) - out->at(i % 64, i / 64, 2); };
+  EXPECT_GT(warmth(lit), 0.1) << "the lit side is warm (red above blue)";
+  EXPECT_LT(warmth(shaded), -0.03) << "the shaded side is cool (blue above red)";
+}

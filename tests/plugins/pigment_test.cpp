@@ -155,6 +155,40 @@ TEST(Pigment, ConnectedTexturesMatchReference) {
   EXPECT_LE(aq::test::max_abs_diff(*out, expected), 1e-5);
 }
 
+// Issue 37: paper grain is darker in the paper's valleys. A flat wash (C = 0.5) over a paper
+// height image whose left half is a valley (0.2) and right half a peak (0.8): pigment settles
+// in the valley (d > 1, darker than the wash) and leaves the peak lighter, as Bousseau et al.
+// describe the paper's grain; with the paper weight at its default.
+TEST(Pigment, PaperGrainIsDarkerInTheValleys) {
+  const ImageF wash = aq::test::constant_image(64, 32, 0.5f, 0.5f, 0.5f, 1.0f);
+  ImageF paper(64, 32, 4, 1.0f);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x)
+      for (int c = 0; c < 3; ++c) paper.at(x, y, c) = x < 32 ? 0.2f : 0.8f;
+  auto out = aq::test::run_node("pigment", {{"image", wash}, {"paper", paper}},
+                                {{"turbulence_weight", 0.0}, {"grain_weight", 0.0}},
+                                options_for(wash, "float"));
+  ASSERT_TRUE(out.ok()) << out.message();
+  const float valley = out->at(8, 16, 1), peak = out->at(56, 16, 1);
+  EXPECT_LT(valley, 0.5f - 0.05f) << "the valley holds more pigment";
+  EXPECT_GT(peak, 0.5f + 0.05f) << "the peak holds less";
+}
+
+// HDR highlights (a caustic of 3) under a light density: the formula alone gives
+// 3 (1 - (1 - 3)(d - 1)) = -3 at d = 0; only the part up to 1 is modified, the excess is kept.
+TEST(Pigment, HdrHighlightsStayPositive) {
+  const ImageF bright = aq::test::constant_image(16, 16, 3.0f, 1.5f, 0.5f, 1.0f);
+  const ImageF peak = aq::test::constant_image(16, 16, 1.0f, 1.0f, 1.0f, 1.0f);  // d = 0
+  auto out =
+      aq::test::run_node("pigment", {{"image", bright}, {"paper", peak}},
+                         {{"turbulence_weight", 0.0}, {"grain_weight", 0.0}, {"paper_weight", 4.0}},
+                         options_for(bright, "float"));
+  ASSERT_TRUE(out.ok()) << out.message();
+  EXPECT_FLOAT_EQ(out->at(5, 5, 0), 3.0f) << "1 stays 1, the excess is kept";
+  EXPECT_FLOAT_EQ(out->at(5, 5, 1), 1.5f);
+  EXPECT_NEAR(out->at(5, 5, 2), 0.75f, 1e-6) << "0.5 (1 + 0.5) at d = 0, lighter";
+}
+
 // A flat object at world z = 0.5 over the left 3/4 of the image (background on the right).
 ImageF plane_positions(int width, int height, int shift_x) {
   ImageF position(width, height, 4, 0.0f);

@@ -199,3 +199,43 @@ TEST(HandTremor, OnePixelAndNaNInTheMesh) {
 }
 
 }  // namespace
+
+// The screen-space tremor fed by a control map, as the art-directed graphs wire it: an object
+// asking for the windmill's tremor (0.03 world units) must wobble its outline by the node's
+// amplitude in pixels. The control map's tremor channel once held the world length itself, so
+// the default 2 px became 0.06 px and the outline did not move (issue 35, item 1).
+std::string screen_tremor_graph(double amplitude) {
+  nlohmann::json nodes;
+  nodes["ball"] = {{"type", "object"},
+                   {"params",
+                    {{"source", "sphere"},
+                     {"tremor", 0.03},
+                     {"color_override", true},
+                     {"color", {0.8, 0.3, 0.2}}}}};
+  nodes["join"] = {
+      {"type", "scene_join"},
+      {"inputs", {{"objects", nlohmann::json::array({"ball.object"})}}},
+      {"params", {{"camera_position", {0.0, 0.4, 3.0}}, {"camera_target", {0, 0, 0}}}}};
+  nodes["gbuf"] = {{"type", "gbuffer"}, {"inputs", {{"scene", "join.scene"}}}};
+  nodes["cm"] = {{"type", "control_map"}, {"inputs", {{"scene", "join.scene"}}}};
+  nodes["wobble"] = {{"type", "tremor"},
+                     {"inputs", {{"image", "gbuf.albedo"}, {"control", "cm.control"}}},
+                     {"params", {{"amplitude", amplitude}, {"wavelength", 12.0}}}};
+  return nlohmann::json({{"aquarelle", 1}, {"nodes", nodes}, {"output", "wobble.image"}}).dump();
+}
+
+TEST(Tremor, DefaultAmplitudeVisiblyWobblesAnArtDirectedOutline) {
+  auto still = render(screen_tremor_graph(0.0), 9);
+  auto wobbly = render(screen_tremor_graph(2.0), 9);  // the node's default amplitude
+  ASSERT_TRUE(still.ok() && wobbly.ok()) << still.message() << wobbly.message();
+  int moved = 0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      double d = 0.0;
+      for (int c = 0; c < 3; ++c)
+        d = std::max(d, std::abs(double(wobbly->at(x, y, c)) - still->at(x, y, c)));
+      moved += d > 0.2 ? 1 : 0;  // a pixel that changed from sphere to background or back
+    }
+  // The outline is ~130 pixels long at 64x64; a 2 px wobble flips a good share of them.
+  EXPECT_GT(moved, 15) << "the outline barely moved: is the tremor channel in pixels' units?";
+}

@@ -1,8 +1,13 @@
 // Deferred light and cel shading (Paré-Vogt & Chaid §2.3 "Light" pass and §3.1):
 //   lit  = albedo * (ambient + light * max(N.L, 0) * visibility * caustic)
 //   v    = max(r, g, b)                         (HSV value)
-//   v'   = floor(v * (levels - 1) + 0.5) / (levels - 1)    (levels >= 2; levels = 1: v' = 1)
+//   e    = srgb(v)  (display space, the default)  or  v  (space = linear)
+//   k    = floor(e * (levels - 1) + 0.5),  k >= 1 when v > 0 (floor, the default)
+//   v'   = srgb^-1(k / (levels - 1))  (or k / (levels - 1))    (levels = 1: v' = 1)
 //   out  = lit * v' / v                         (hue and saturation kept exactly)
+// Quantised in display space as the seed did (it quantised display values) and with a floor, a
+// lit surface whose albedo is not black never renders black (issue 37: in linear light every
+// value below ~45 % display grey rounded to 0).
 // Scaling rgb by v'/v is the HSV round trip with a new value, without the hue arithmetic, so
 // grey, black and values above 1 need no special case. Output stays linear HDR.
 //
@@ -12,6 +17,9 @@
 // cel_light.cpp prepends the variant (llvmpipe runs both sides of a branch on a uniform):
 //   AQ_SURFACE   1: normal, albedo and id from the packed `surface` (one read instead of three)
 //   AQ_HAS_SHADOW, AQ_HAS_CAUSTICS, AQ_QUANTIZE  0 or 1
+//   AQ_QUANTIZE_DISPLAY 1: levels are steps of the sRGB-encoded value (0: of the linear value)
+//   AQ_QUANTIZE_FLOOR   1: a pixel with v > 0 keeps at least the first level above black
+//   AQ_PLAIN_REGIONS    1: o_plain holds the object regions (a colour per id) instead of the light
 //   AQ_PCF_RADIUS                                0..4
 //   AQ_SAME_SIZE   1 when every g-buffer input has the output's size (read at gl_FragCoord)
 //   AQ_ENCODE_HDR8 1 when `image` is stored as AQ_FORMAT_RGBA8_HDR (aquarelle/hdr8.glsl)
@@ -95,12 +103,44 @@ vec3 caustic(vec3 p) {
 }
 #endif
 
+#ifndef AQ_QUANTIZE_DISPLAY
+#define AQ_QUANTIZE_DISPLAY 1
+#define AQ_QUANTIZE_FLOOR 1
+#endif
+
+#if AQ_QUANTIZE_DISPLAY
+// The sRGB transfer curve (IEC 61966-2-1, the display of ocio/config.ocio), continued above 1
+// by the same power law so HDR values keep their steps.
+float srgb_encode(float v) {
+  return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+}
+float srgb_decode(float e) {
+  return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
+}
+#endif
+
+float quantize_value(float v) {
+  if (u_levels <= 1) return v > 0.0 ? 1.0 : 0.0;
+  float steps = float(u_levels - 1);
+#if AQ_QUANTIZE_DISPLAY
+  float k = floor(srgb_encode(v) * steps + 0.5);
+#else
+  float k = floor(v * steps + 0.5);
+#endif
+#if AQ_QUANTIZE_FLOOR
+  k = v > 0.0 ? max(k, 1.0) : k;
+#endif
+#if AQ_QUANTIZE_DISPLAY
+  return srgb_decode(k / steps);
+#else
+  return k / steps;
+#endif
+}
+
 vec3 cel(vec3 lit) {
 #if AQ_QUANTIZE
   float v = max(lit.r, max(lit.g, lit.b));
-  float quantized = u_levels <= 1 ? (v > 0.0 ? 1.0 : 0.0)
-                                  : floor(v * float(u_levels - 1) + 0.5) / float(u_levels - 1);
-  lit = v > 0.0 ? lit * (quantized / v) : vec3(0.0);
+  lit = v > 0.0 ? lit * (quantize_value(v) / v) : vec3(0.0);
 #endif
   // NaN or Inf in an input stays local: the pixel goes black instead of spreading.
   if (any(isnan(lit)) || any(isinf(lit))) lit = vec3(0.0);
@@ -131,13 +171,18 @@ aq_surface fetch_surface() {
 // llvmpipe a branch on per-pixel data runs both sides for the whole block anyway, so an early
 // return for the background only added its own reads (measured: the pass 30 -> 26 ms at 720p).
 void main() {
+#ifndef AQ_PLAIN_REGIONS
+#define AQ_PLAIN_REGIONS 0
+#endif
 #if AQ_SURFACE
   aq_surface surface = fetch_surface();
+  float surface_id = surface.id;
   bool background = !(surface.id >= 0.5);  // id 0 (or NaN)
   vec3 albedo = max(surface.albedo, vec3(0.0));
   vec3 n = surface.normal;
 #else
-  bool background = !(fetch(u_id).r >= 0.5);
+  float surface_id = fetch(u_id).r;
+  bool background = !(surface_id >= 0.5);
   vec3 albedo = max(fetch(u_albedo).rgb, vec3(0.0));
   vec3 n = fetch(u_normal).xyz;
 #endif
@@ -162,7 +207,15 @@ void main() {
   vec4 plain = vec4(cel(albedo * (u_ambient + direct)), 1.0);
   vec4 behind = vec4(u_environment ? albedo : u_background, 1.0);
   o_color = background ? behind : lit;
+#if AQ_PLAIN_REGIONS
+  // Where washes meet: one flat colour per object id (0 on the background), far apart for
+  // neighbouring ids, so an edge detector on it finds the objects' outlines and nothing inside
+  // them (no cel bands, no caustics).
+  float id = background ? 0.0 : surface_id;
+  o_plain = vec4(fract(id * vec3(0.6180339887, 0.7548776662, 0.5698402910)), 1.0);
+#else
   o_plain = background ? behind : plain;
+#endif
 #if AQ_ENCODE_HDR8
   o_color = aq_hdr8_encode(o_color);
 #endif

@@ -1,7 +1,14 @@
 // The art-direction channels of one object (plugins/control_map/README.md):
-//   control = (bleed·f_b, edge·f_e, 1 − |N·V|, tremor·f_t),  f = clamp(1 + 2·density·fbm3, 0, 2)
+//   control = (bleed·f_b, edge·f_e, 1 − |N·V|, [tremor > 0]·f_t),  f = clamp(1 + 2·density·fbm3, 0, 2)
 // with one object-space FBM per channel (offset lattices), so the variation sticks to the object.
+// The tremor channel is unitless (1 = the full screen-space tremor): the object's `tremor` is a
+// length in world units for the geometry tremor, which the screen-space `tremor` node, measuring
+// its amplitude in pixels, must not multiply (that turned 2 px into 0.06 px).
 #include "aquarelle/noise.glsl"
+
+// The depth pre-pass (control_map_depth.frag) laid the nearest surface and applied the cut-outs;
+// this pass runs with depth test EQUAL before the shader, so hidden fragments never pay the FBM.
+layout(early_fragment_tests) in;
 
 in vec3 v_object;
 in vec3 v_world;
@@ -16,8 +23,6 @@ uniform vec4 u_amounts;  // bleed, edge darkening, tremor, (unused)
 uniform float u_fbm_density;
 uniform float u_fbm_scale;
 uniform int u_octaves;
-uniform sampler2D u_base_color;
-uniform float u_alpha_cutoff;
 
 float variation(vec3 offset) {
   if (u_fbm_density <= 0.0) return 1.0;  // exactly the object's amount
@@ -26,13 +31,12 @@ float variation(vec3 offset) {
 }
 
 void main() {
-  if (texture(u_base_color, v_uv).a < u_alpha_cutoff) discard;  // the gbuffer's cut-outs
   vec3 n = dot(v_normal, v_normal) > 1e-12 ? normalize(v_normal) : vec3(0.0, 1.0, 0.0);
   vec3 to_eye = u_camera - v_world;
   vec3 v = dot(to_eye, to_eye) > 1e-20 ? normalize(to_eye) : n;
   float grazing = clamp(1.0 - abs(dot(n, v)), 0.0, 1.0);
   o_control = vec4(clamp(u_amounts.x * variation(vec3(0.0)), 0.0, 1.0),
                    max(u_amounts.y * variation(vec3(101.3, 0.0, 0.0)), 0.0), grazing,
-                   max(u_amounts.z * variation(vec3(0.0, 203.7, 0.0)), 0.0));
+                   u_amounts.z > 0.0 ? variation(vec3(0.0, 203.7, 0.0)) : 0.0);
   o_object = vec4(v_object, 1.0);
 }

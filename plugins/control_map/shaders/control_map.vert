@@ -15,6 +15,9 @@ out vec3 v_world;
 out vec3 v_normal;
 out vec2 v_uv;
 
+// The depth pre-pass and the colour pass must land on the same depths (EQUAL test).
+invariant gl_Position;
+
 void main() {
   vec4 world = u_model * vec4(a_position, 1.0);
   v_object = a_position;

@@ -23,11 +23,11 @@ uniform sampler2D u_depth;
 uniform sampler2D u_paper;
 #endif
 uniform vec2 u_size;
-uniform int u_layer_count;
-uniform ivec4 u_region;  // x0, y0, x1, y1 (inclusive): the range paints only there
-uniform vec3 u_light_color[4];
-uniform vec3 u_dark_color[4];
-uniform vec4 u_wet_in_wet;
+uniform sampler2D u_peak;  // peak of the blurred intensity over a window of radius ~σa
+uniform float u_thin;      // thin_shapes: how much of a thin shape the abstraction keeps
+uniform float u_line_width_scale;  // √(2π) σa: a thin line's blurred peak times it = its width
+uniform sampler2D u_owner;  // per channel: 1 + the layer painting here, 0 for none
+uniform sampler2D u_table;  // per layer: row 0 (id, wet-in-wet), row 1 light, row 2 dark
 uniform float u_edge_gain;
 uniform float u_edge_darkness;
 uniform float u_wet_spread;
@@ -62,7 +62,8 @@ vec3 glaze(vec3 under, vec3 colour, float thickness) {
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec3 under = texelFetch(u_under, p, 0).rgb;
-  if (any(lessThan(p, u_region.xy)) || any(greaterThan(p, u_region.zw))) {
+  vec4 owner = texelFetch(u_owner, p, 0);
+  if (all(lessThan(owner, vec4(0.5)))) {  // no layer of the range paints here
     o_color = vec4(under, 1.0);
     return;
   }
@@ -74,6 +75,15 @@ void main() {
   vec4 raw_diffuse = texelFetch(u_diffuse, p, 0);
   float t = layered_threshold(gl_FragCoord.xy);
   vec4 a = layered_abstract(b, t);
+  if (u_thin > 0.0) {
+    // Thin shapes (README): a pixel of the object that is the peak of its blurred mask (the
+    // ridge of a blade, not the rounded-off corner of a wide shape) and at least about half a
+    // pixel wide keeps its coverage.
+    vec4 peak = texelFetch(u_peak, p, 0);
+    vec4 ridge = smoothstep(vec4(0.75), vec4(0.9), b / max(peak, vec4(1.0e-6)));
+    vec4 wide_enough = smoothstep(vec4(0.5), vec4(1.0), peak * u_line_width_scale);
+    a = max(a, u_thin * raw * ridge * wide_enough);
+  }
   vec4 w = layered_ease_out(u_edge_gain * be);
   float front = texelFetch(u_depth, p, 0).r;
   bool has_front = front > 0.0 && front < 3.0e38;
@@ -84,17 +94,22 @@ void main() {
   float h = 0.5;
 #endif
   float granulation = mix(1.0, 2.0 * (1.0 - h), u_granulation);
-  for (int k = 0; k < u_layer_count; ++k) {
+  for (int k = 0; k < 4; ++k) {
+    if (!(owner[k] > 0.5)) continue;
+    int layer = int(owner[k]) - 1;
+    vec3 light_color = texelFetch(u_table, ivec2(layer, 1), 0).rgb;
+    vec3 dark_color = texelFetch(u_table, ivec2(layer, 2), 0).rgb;
+    bool wet_in_wet = texelFetch(u_table, ivec2(layer, 0), 0).g > 0.5;
 #if AQ_VIEW == 1  // segments: flat light colour on the raw masks
-    under = glaze(under, u_light_color[k], raw[k]);
+    under = glaze(under, light_color, raw[k]);
 #elif AQ_VIEW == 2  // lighting: the raw lit layers, highlights left white
     float rd = raw[k] > 0.0 ? raw_diffuse[k] / raw[k] : 0.0;
-    under = glaze(under, pigment_mix(u_dark_color[k], u_light_color[k], rd), raw[k]);
+    under = glaze(under, pigment_mix(dark_color, light_color, rd), raw[k]);
 #else
     if (!(b[k] > 1.0e-6)) continue;
     float d = clamp(bd[k] / b[k], 0.0, 1.0);
-    vec3 light = pigment_mix(u_light_color[k], u_warm, u_gooch);
-    vec3 dark = pigment_mix(u_dark_color[k], u_cool, u_gooch);
+    vec3 light = pigment_mix(light_color, u_warm, u_gooch);
+    vec3 dark = pigment_mix(dark_color, u_cool, u_gooch);
     vec3 colour = pigment_mix(dark, light, d);
 #if AQ_VIEW == 3  // abstraction only
     under = glaze(under, colour, a[k]);
@@ -103,7 +118,7 @@ void main() {
 #else
     float cover = a[k];
     float extra = 0.0;
-    if (u_wet_in_wet[k] > 0.5) {
+    if (wet_in_wet) {
       cover = max(a[k], u_wet_spread * w[k]);
     } else {
       extra = u_edge_darkness * w[k] * a[k];

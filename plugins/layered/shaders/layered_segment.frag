@@ -1,5 +1,6 @@
-// Segmentation and layer lighting of four objects at once (one RGBA channel each):
-//   mask_k    = [id == ids_k]
+// Segmentation and layer lighting of four channels at once; a channel holds any number of
+// objects far enough apart (layer_packing.h), the owner image says which one paints here:
+//   mask_k    = [id == id of owner_k]
 //   intensity = mask_k · (1 − step(specular_threshold, (n·h)^shininess))   highlights -> paper
 //   diffuse   = intensity · clamp(n·l, 0, 1)        (premultiplied: the blur then averages it)
 //   depth     = intensity · z                       (premultiplied likewise)
@@ -10,7 +11,8 @@ layout(location = 2) out vec4 o_depth;
 uniform sampler2D u_id;
 uniform sampler2D u_normal;
 uniform sampler2D u_depth;
-uniform vec4 u_ids;  // the four ids of this range; -1 for an unused slot
+uniform sampler2D u_owner;  // per channel: 1 + the layer painting here, 0 for none
+uniform sampler2D u_table;  // row 0: (id, wet-in-wet) per layer
 uniform vec3 u_light;  // unit vector towards the light
 uniform vec3 u_half;   // unit Blinn-Phong half vector
 uniform float u_shininess;
@@ -19,7 +21,12 @@ uniform float u_specular_threshold;
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   float id = texelFetch(u_id, p, 0).r;
-  vec4 mask = vec4(equal(vec4(id), u_ids));  // NaN equals nothing
+  vec4 owner = texelFetch(u_owner, p, 0);
+  vec4 ids = vec4(-1.0);
+  for (int k = 0; k < 4; ++k) {
+    if (owner[k] > 0.5) ids[k] = texelFetch(u_table, ivec2(int(owner[k]) - 1, 0), 0).r;
+  }
+  vec4 mask = vec4(equal(vec4(id), ids));  // NaN equals nothing
   vec3 n = texelFetch(u_normal, p, 0).xyz;
   float len = length(n);
   n = len > 1.0e-6 && len < 1.0e30 ? n / len : vec3(0.0);

@@ -86,14 +86,20 @@ float procedural2(int source, vec2 p) {
 }
 
 // One canvas layer: q is in canvas units (image heights, centred), `layer` its absolute index.
+// The paper's texture is a height (the `paper` node's, or the procedural raised cells): its
+// density is the depth, 0.5 - height, because pigment settles in the paper's valleys (darker)
+// and leaves its peaks lighter.
 float canvas_layer(int source, vec2 q, float layer) {
+  float n;
   if (kSourceMode[source] == 1) {
     // Input textures cover the image once at zoom 0 and repeat beyond (they should tile); other
     // layers are shifted by an irrational fraction of the tile so they do not line up.
     vec2 uv = fract(q / vec2(u_aspect, 1.0) + 0.5 + layer * vec2(0.6180339887, 0.3819660113));
-    return texture(u_textures[source], uv).r - 0.5;
+    n = texture(u_textures[source], uv).r - 0.5;
+  } else {
+    n = procedural2(source, q * u_frequencies[source] + field_offset(source, layer));
   }
-  return procedural2(source, q * u_frequencies[source] + field_offset(source, layer));
+  return source == PAPER ? -n : n;
 }
 
 #if AQ_PIGMENT_PASS == 2

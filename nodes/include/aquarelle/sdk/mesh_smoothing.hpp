@@ -167,17 +167,10 @@ inline std::vector<float> vertex_face_normals(const std::vector<float>& position
   return out;
 }
 
-// Smooths `normals` (xyz per vertex; computed from the faces when empty or the wrong size) in
-// place. `positions` and `indices` are not modified.
-inline void smooth_normals(const std::vector<float>& positions,
-                           const std::vector<uint32_t>& indices, std::vector<float>& normals,
-                           const SmoothingOptions& options = {}) {
-  using namespace detail;
-  const size_t n = positions.size() / 3;
-  std::vector<float> face = vertex_face_normals(positions, indices, normals);
-  if (normals.size() != positions.size()) normals = face;
-  if (options.iterations <= 0 || n == 0) return;
+namespace detail {
 
+// The length of the bounding box's diagonal of the first n positions.
+inline double bounding_diagonal(const std::vector<float>& positions, size_t n) {
   Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (size_t i = 0; i < n; ++i) {
     for (int k = 0; k < 3; ++k) {
@@ -185,12 +178,13 @@ inline void smooth_normals(const std::vector<float>& positions,
       hi[k] = std::max(hi[k], static_cast<double>(positions[3 * i + k]));
     }
   }
-  const double diagonal = length(sub(hi, lo));
-  uint32_t groups = 0;
-  std::vector<uint32_t> group =
-      weld_positions(positions, options.weld_tolerance * std::max(diagonal, 1e-30), &groups);
+  return length(sub(hi, lo));
+}
 
-  // Adjacency between groups, as sorted unique neighbour lists (CSR).
+// Adjacency between welded groups, as sorted unique neighbour lists.
+inline std::vector<std::vector<uint32_t>> group_neighbours(const std::vector<uint32_t>& indices,
+                                                           const std::vector<uint32_t>& group,
+                                                           size_t n, uint32_t groups) {
   std::vector<std::vector<uint32_t>> neighbours(groups);
   for (size_t t = 0; t + 2 < indices.size(); t += 3) {
     uint32_t a = indices[t], b = indices[t + 1], c = indices[t + 2];
@@ -207,10 +201,14 @@ inline void smooth_normals(const std::vector<float>& positions,
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
   }
+  return neighbours;
+}
 
-  // Each vertex's normal counts with the angle of its corner in its triangle(s), so the
-  // starting normal of a position does not depend on how its faces were triangulated (a cube
-  // face split into two triangles counts 90 degrees at each corner, like a single quad would).
+// Each vertex's normal counts with the angle of its corner in its triangle(s), so the
+// starting normal of a position does not depend on how its faces were triangulated (a cube
+// face split into two triangles counts 90 degrees at each corner, like a single quad would).
+inline std::vector<double> corner_angles(const std::vector<float>& positions,
+                                         const std::vector<uint32_t>& indices, size_t n) {
   std::vector<double> corner_angle(n, 0.0);
   for (size_t t = 0; t + 2 < indices.size(); t += 3) {
     uint32_t v[3] = {indices[t], indices[t + 1], indices[t + 2]};
@@ -224,11 +222,35 @@ inline void smooth_normals(const std::vector<float>& positions,
       }
     }
   }
+  return corner_angle;
+}
 
-  // A group normal is valid only when the unit normals summed into it did not cancel.
-  std::vector<Vec3> current(groups, Vec3{0, 0, 0});
+// One normal per welded group; a group normal is valid only when the unit normals summed into
+// it did not cancel (their sum is longer than cancel_threshold times their total weight).
+struct GroupNormals {
+  std::vector<Vec3> normal;
+  std::vector<char> valid;
+  double cancel_threshold = 0;
+
+  void normalise(uint32_t g, double total_weight) {
+    Vec3& v = normal[g];
+    double len = length(v);
+    valid[g] = (len > cancel_threshold * total_weight && std::isfinite(len)) ? 1 : 0;
+    v = valid[g] ? Vec3{v[0] / len, v[1] / len, v[2] / len} : Vec3{0, 0, 0};
+  }
+};
+
+// The vertices' normals (`face` where one is zero or not finite) summed per group, each
+// weighted by its corner angle.
+inline GroupNormals initial_group_normals(const std::vector<float>& normals,
+                                          const std::vector<float>& face,
+                                          const std::vector<double>& corner_angle,
+                                          const std::vector<uint32_t>& group, uint32_t groups,
+                                          double cancel_threshold) {
+  GroupNormals out{std::vector<Vec3>(groups, Vec3{0, 0, 0}), std::vector<char>(groups, 0),
+                   cancel_threshold};
   std::vector<double> weight(groups, 0.0);
-  for (size_t i = 0; i < n; ++i) {
+  for (size_t i = 0; i < corner_angle.size(); ++i) {
     Vec3 v = load(normals, i);
     double len = length(v);
     if (!(len > 1e-30) || !std::isfinite(len)) {
@@ -236,63 +258,85 @@ inline void smooth_normals(const std::vector<float>& positions,
       len = 1.0;
     }
     double w = corner_angle[i] > 0 ? corner_angle[i] : 1e-6;
-    current[group[i]] = add(current[group[i]], {w * v[0] / len, w * v[1] / len, w * v[2] / len});
+    out.normal[group[i]] =
+        add(out.normal[group[i]], {w * v[0] / len, w * v[1] / len, w * v[2] / len});
     weight[group[i]] += w;
   }
-  std::vector<char> valid(groups, 0);
-  auto normalise_or_invalidate = [&](Vec3& v, double total_weight, char& ok) {
-    double len = length(v);
-    ok = (len > options.cancel_threshold * total_weight && std::isfinite(len)) ? 1 : 0;
-    v = ok ? Vec3{v[0] / len, v[1] / len, v[2] / len} : Vec3{0, 0, 0};
-  };
-  for (uint32_t g = 0; g < groups; ++g) normalise_or_invalidate(current[g], weight[g], valid[g]);
+  for (uint32_t g = 0; g < groups; ++g) out.normalise(g, weight[g]);
+  return out;
+}
 
-  // Neighbours count with max(0, cos(angle between normals)): across a thin wall (a pot's
-  // rim, a fin) the other side's normals face away and are left out instead of dragging the
-  // normals through the wall.
-  std::vector<Vec3> next(groups);
+// One smoothing iteration: each group's normal becomes the normalised sum of its own and its
+// neighbours'. Neighbours count with max(0, cos(angle between normals)): across a thin wall (a
+// pot's rim, a fin) the other side's normals face away and are left out instead of dragging the
+// normals through the wall.
+inline void smooth_step(GroupNormals& current, GroupNormals& next,
+                        const std::vector<std::vector<uint32_t>>& neighbours) {
+  const auto groups = static_cast<uint32_t>(neighbours.size());
   std::vector<double> next_weight(groups);
-  for (int iteration = 0; iteration < options.iterations; ++iteration) {
-    for (uint32_t g = 0; g < groups; ++g) {
-      Vec3 s = current[g];
-      double total = valid[g] ? 1.0 : 0.0;
-      for (uint32_t h : neighbours[g]) {
-        if (!valid[h]) continue;
-        double w = valid[g] ? std::max(0.0, dot(current[g], current[h])) : 1.0;
-        s = add(s, {w * current[h][0], w * current[h][1], w * current[h][2]});
-        total += w;
-      }
-      next[g] = s;
-      next_weight[g] = total;
+  for (uint32_t g = 0; g < groups; ++g) {
+    Vec3 s = current.normal[g];
+    double total = current.valid[g] ? 1.0 : 0.0;
+    for (uint32_t h : neighbours[g]) {
+      if (!current.valid[h]) continue;
+      double w = current.valid[g] ? std::max(0.0, dot(current.normal[g], current.normal[h])) : 1.0;
+      s = add(s, {w * current.normal[h][0], w * current.normal[h][1], w * current.normal[h][2]});
+      total += w;
     }
-    for (uint32_t g = 0; g < groups; ++g) {
-      if (next_weight[g] > 0.0) {
-        normalise_or_invalidate(next[g], next_weight[g], valid[g]);
-      } else {
-        valid[g] = 0;
-      }
-    }
-    current.swap(next);
+    next.normal[g] = s;
+    next_weight[g] = total;
   }
-
-  // A smoothed normal that (nearly) faces away from the vertex's own face would light it from
-  // behind: it is tilted just enough towards the face normal (dot = kMinFacing), which is
-  // continuous in the smoothed normal, so no hard seam appears where the rule starts to apply.
-  constexpr double kMinFacing = 0.1;
-  for (size_t i = 0; i < n; ++i) {
-    Vec3 own = load(face, i);
-    Vec3 out = own;
-    if (valid[group[i]]) {
-      const Vec3& s = current[group[i]];
-      double facing = dot(s, own);
-      out = s;
-      if (facing < kMinFacing) {
-        double k = kMinFacing - facing;
-        Vec3 tilted{s[0] + k * own[0], s[1] + k * own[1], s[2] + k * own[2]};
-        double len = length(tilted);
-        out = len > 1e-12 ? Vec3{tilted[0] / len, tilted[1] / len, tilted[2] / len} : own;
-      }
+  for (uint32_t g = 0; g < groups; ++g) {
+    next.valid[g] = current.valid[g];
+    if (next_weight[g] > 0.0) {
+      next.normalise(g, next_weight[g]);
+    } else {
+      next.valid[g] = 0;
     }
+  }
+  std::swap(current, next);
+}
+
+// A smoothed normal that (nearly) faces away from the vertex's own face would light it from
+// behind: it is tilted just enough towards the face normal (dot = kMinFacing), which is
+// continuous in the smoothed normal, so no hard seam appears where the rule starts to apply.
+inline Vec3 facing_normal(const Vec3& smoothed, const Vec3& own) {
+  constexpr double kMinFacing = 0.1;
+  const double facing = dot(smoothed, own);
+  if (facing >= kMinFacing) return smoothed;
+  const double k = kMinFacing - facing;
+  Vec3 tilted{smoothed[0] + k * own[0], smoothed[1] + k * own[1], smoothed[2] + k * own[2]};
+  double len = length(tilted);
+  return len > 1e-12 ? Vec3{tilted[0] / len, tilted[1] / len, tilted[2] / len} : own;
+}
+
+}  // namespace detail
+
+// Smooths `normals` (xyz per vertex; computed from the faces when empty or the wrong size) in
+// place. `positions` and `indices` are not modified.
+inline void smooth_normals(const std::vector<float>& positions,
+                           const std::vector<uint32_t>& indices, std::vector<float>& normals,
+                           const SmoothingOptions& options = {}) {
+  using namespace detail;
+  const size_t n = positions.size() / 3;
+  std::vector<float> face = vertex_face_normals(positions, indices, normals);
+  if (normals.size() != positions.size()) normals = face;
+  if (options.iterations <= 0 || n == 0) return;
+
+  const double diagonal = bounding_diagonal(positions, n);
+  uint32_t groups = 0;
+  std::vector<uint32_t> group =
+      weld_positions(positions, options.weld_tolerance * std::max(diagonal, 1e-30), &groups);
+  const auto neighbours = group_neighbours(indices, group, n, groups);
+  GroupNormals current = initial_group_normals(normals, face, corner_angles(positions, indices, n),
+                                               group, groups, options.cancel_threshold);
+  GroupNormals next = current;
+  for (int iteration = 0; iteration < options.iterations; ++iteration)
+    smooth_step(current, next, neighbours);
+
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 own = load(face, i);
+    const Vec3 out = current.valid[group[i]] ? facing_normal(current.normal[group[i]], own) : own;
     for (int k = 0; k < 3; ++k) normals[3 * i + k] = static_cast<float>(out[k]);
   }
 }

@@ -1,7 +1,8 @@
 // CPU reference of the `clouds` node in double precision (plugins/clouds/README.md): per pixel,
 // the camera ray through the pixel centre (pinhole from the camera's position, target, up and
 // vertical field of view), stopped at the depth image's surface or max_distance, midpoint
-// steps of ρ = density · shape · falloff, out = C e^(−τ) + light (1 − e^(−τ)).
+// steps of ρ = density · shape · falloff over the part of the ray where the falloff can be
+// non-zero, out = C e^(−τ) + light (1 − e^(−τ)). One ray per pixel: the node at resolution 1.
 #pragma once
 
 #include <aquarelle/core/image.h>
@@ -25,6 +26,7 @@ struct CloudsParams {
   std::array<double, 3> light_color{1.0, 0.92, 0.8};
   int steps = 32;
   double max_distance = 40.0;
+  double warp = 0.0;  // world units of animated FBM added to the distance falloff's distance
 };
 
 ImageF clouds(const ImageF& image, const aq_camera& camera, const ImageF* depth, double time,

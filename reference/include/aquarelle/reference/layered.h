@@ -24,7 +24,7 @@ struct LayeredParams {
   double light_density = 0.6;
   double dark_density = 1.8;
   std::map<float, Rgb> palette_light;  // id -> light colour (dark: light^(dark/light density))
-  double gooch = 0.0;
+  double gooch = 0.35;
   Rgb warm{0.95, 0.75, 0.3};
   Rgb cool{0.15, 0.25, 0.6};
   double abstraction_sigma = 3.0;
@@ -44,6 +44,9 @@ struct LayeredParams {
   double paper_relief = 0.25;
   double depth_band = 0.3;
   double density = 1.0;
+  // Thin shapes: a pixel of the object that is the peak of its blurred mask over a
+  // (2r+1)^2 window (r = ceil(sigma) + 1) and at least ~half a pixel wide keeps its coverage.
+  double thin_shapes = 1.0;
 };
 
 struct LayeredObject {

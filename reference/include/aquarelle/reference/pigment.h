@@ -12,7 +12,7 @@ namespace aq::reference {
 
 struct PigmentParams {
   bool object_anchoring = false;
-  std::array<double, 3> weights{0.3, 0.2, 0.2};          // turbulence, grain, paper
+  std::array<double, 3> weights{1.6, 1.0, 1.6};          // turbulence, grain, paper
   std::array<double, 3> frequencies{3.0, 360.0, 100.0};  // cells per image height / world unit
   double world_scale = 1.0;
   int seed = 0;

@@ -1,0 +1,41 @@
+// The downsampled bleed brought back to full size and mixed (plugins/bleed/README.md): the four
+// nearest cells whose representative may run into this pixel (same id, or not behind it by more
+// than the bias), bilinear weights renormalised over them, give the blurred colour B and the
+// amount A; out = A > 0 ? mix(C, B, A) : C (the texel unchanged). No cell may run in: C.
+in vec2 v_uv;
+out vec4 o_color;
+
+uniform sampler2D u_original;
+uniform sampler2D u_key;          // full-size (bleed, depth, id, 0)
+uniform sampler2D u_cell_color;   // blurred cells
+uniform sampler2D u_cell_key;     // (amount, depth, id, 0) of the cells
+uniform int u_cell;
+uniform float u_depth_bias;
+
+void main() {
+  ivec2 x = ivec2(gl_FragCoord.xy);
+  vec4 original = texelFetch(u_original, x, 0);
+  vec4 key = texelFetch(u_key, x, 0);
+  ivec2 cells = textureSize(u_cell_key, 0);
+  vec2 f = (vec2(x) + 0.5) / float(u_cell) - 0.5;
+  ivec2 base = ivec2(floor(f));
+  vec2 frac = f - vec2(base);
+  vec4 sum = vec4(0.0);
+  float weights = 0.0, amount = 0.0;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      ivec2 k = clamp(base + ivec2(i, j), ivec2(0), cells - 1);
+      vec4 cell_key = texelFetch(u_cell_key, k, 0);
+      if (!(cell_key.z == key.z || cell_key.y <= key.y + u_depth_bias)) continue;
+      float w = (i == 0 ? 1.0 - frac.x : frac.x) * (j == 0 ? 1.0 - frac.y : frac.y);
+      if (!(w > 0.0)) continue;
+      sum += w * texelFetch(u_cell_color, k, 0);
+      amount += w * cell_key.x;
+      weights += w;
+    }
+  if (!(weights > 0.0) || !(amount > 0.0)) {
+    o_color = original;
+    return;
+  }
+  o_color = mix(original, sum / weights, amount / weights);
+}
