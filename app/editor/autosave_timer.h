@@ -10,7 +10,7 @@ namespace aq::editor {
 
 class AutosaveTimer {
  public:
-  static constexpr double kDebounceSeconds = 0.75;
+  static constexpr double kDebounceSeconds = 0.5;  // leaves slack for slow frames under 1 s
   static constexpr double kPeriodSeconds = 30.0;
 
   explicit AutosaveTimer(double debounce = kDebounceSeconds, double period = kPeriodSeconds)

@@ -515,7 +515,28 @@ Result<std::string> Document::add_node(const std::string& type, Position at,
   return id;
 }
 
-Status Document::remove_nodes(const std::vector<std::string>& ids) {
+std::optional<PortRef> Document::source_around(PortRef read,
+                                               const std::set<std::string>& doomed) const {
+  for (size_t step = 0; step <= doomed.size(); ++step) {
+    auto node = graph_.nodes.find(read.node);
+    if (node == graph_.nodes.end()) return std::nullopt;
+    const NodeType* type = registry_.find(node->second.type);
+    if (type == nullptr || type->inputs.empty()) return std::nullopt;
+    auto out = std::find_if(type->outputs.begin(), type->outputs.end(),
+                            [&](const PortInfo& port) { return port.name == read.port; });
+    const PortInfo& first = type->inputs.front();
+    auto link = node->second.inputs.find(first.name);
+    if (out == type->outputs.end() || first.type != out->type ||
+        link == node->second.inputs.end()) {
+      return std::nullopt;
+    }
+    if (!doomed.count(link->second.node)) return link->second;
+    read = link->second;  // a chain of deleted nodes: around all of them
+  }
+  return std::nullopt;
+}
+
+Status Document::remove_nodes(const std::vector<std::string>& ids, bool reconnect) {
   std::set<std::string> doomed;
   for (const auto& id : ids) {
     if (!graph_.nodes.count(id)) return make_error("cannot delete node '" + id + "': no such node");
@@ -532,8 +553,22 @@ Status Document::remove_nodes(const std::vector<std::string>& ids) {
   for (const auto& [id, node] : graph_.nodes) {
     if (doomed.count(id)) continue;
     Node kept = node;
-    std::erase_if(kept.inputs, [&](const auto& link) { return doomed.count(link.second.node); });
-    if (kept.inputs.size() != node.inputs.size()) {
+    bool changed = false;
+    for (auto it = kept.inputs.begin(); it != kept.inputs.end();) {
+      if (!doomed.count(it->second.node)) {
+        ++it;
+        continue;
+      }
+      changed = true;
+      const auto around = reconnect ? source_around(it->second, doomed) : std::nullopt;
+      if (around) {
+        it->second = *around;
+        ++it;
+      } else {
+        it = kept.inputs.erase(it);
+      }
+    }
+    if (changed) {
       change.before[id] = state_of(id);
       change.after[id] = NodeState{kept, read_position(graph_, id)};
     }
@@ -554,7 +589,10 @@ Status Document::remove_nodes(const std::vector<std::string>& ids) {
         nlohmann::json{{"groups", edited.editor.value("groups", nlohmann::json())}};
   }
   change.output_before = change.output_after = graph_.output;
-  if (graph_.output && doomed.count(graph_.output->node)) change.output_after.reset();
+  if (graph_.output && doomed.count(graph_.output->node)) {
+    change.output_after =
+        reconnect ? source_around(*graph_.output, doomed) : std::optional<PortRef>();
+  }
   change.settings_before = change.settings_after = graph_.settings;
   commit(std::move(change));
   return Ok{};

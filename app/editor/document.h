@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -115,7 +116,10 @@ class Document {
   Result<std::string> add_node(const std::string& type, Position at,
                                const std::string& wanted_id = "");
   // Removes the nodes and every link into them; the output is cleared if it named one.
-  Status remove_nodes(const std::vector<std::string>& ids);
+  // `reconnect` (Del in the canvas, as Nuke and Blender do): a reader of a deleted node is
+  // linked to what fed the deleted node's first input, when that carries the port type it read
+  // (the graph's output too); one undo step.
+  Status remove_nodes(const std::vector<std::string>& ids, bool reconnect = false);
   // Copies the nodes with new ids, their parameters, the links among them and the links into
   // them from outside; the copies sit at `offset` from the originals. Returns the new ids.
   Result<std::vector<std::string>> duplicate_nodes(const std::vector<std::string>& ids,
@@ -206,6 +210,8 @@ class Document {
   Status rename_group(const std::string& name, const std::string& new_name);
 
  private:
+  // What feeds a reader of `read` once the nodes in `doomed` are gone (see remove_nodes).
+  std::optional<PortRef> source_around(PortRef read, const std::set<std::string>& doomed) const;
   NodeState state_of(const std::string& id) const;
   void apply_side(const std::map<std::string, NodeState>& side, const std::optional<PortRef>& out,
                   const Settings& settings);

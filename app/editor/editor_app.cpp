@@ -75,6 +75,16 @@ void on_mouse_button(GLFWwindow* window, int button, int action, int) {
   press_queue().push_back({glfwGetTime(), static_cast<float>(x), static_cast<float>(y)});
 }
 
+// Files dropped on the window, taken by the next frame.
+std::vector<std::string>& drop_queue() {
+  static std::vector<std::string> queue;
+  return queue;
+}
+
+void on_drop(GLFWwindow*, int count, const char** paths) {
+  for (int i = 0; i < count; ++i) drop_queue().emplace_back(paths[i]);
+}
+
 // "ctrl+shift+s" → the chord; nullopt for a name it does not know.
 std::optional<KeyChord> parse_chord(const std::string& text) {
   KeyChord chord;
@@ -144,7 +154,12 @@ std::vector<fs::path> shader_source_folders() {
 }
 
 EditorApp::EditorApp(const Registry& registry, EditorOptions options)
-    : registry_(registry), options_(std::move(options)), document_(registry), state_(document_) {}
+    : registry_(registry),
+      options_(std::move(options)),
+      document_(registry),
+      state_(document_),
+      // Scripts and tests never touch the user's list.
+      recent_(options_.script.empty() && !options_.quit ? default_recent_store() : "") {}
 
 EditorApp::~EditorApp() {
   viewer_.reset();  // joins the evaluation thread; GL objects go while the contexts exist
@@ -193,6 +208,7 @@ Status EditorApp::create_window() {
   load_canvas_fonts();
   glfwSetKeyCallback(window_, &on_key);  // ImGui's backend chains to these
   glfwSetMouseButtonCallback(window_, &on_mouse_button);
+  glfwSetDropCallback(window_, &on_drop);
   ImGui_ImplGlfw_InitForOpenGL(window_, true);
   ImGui_ImplOpenGL3_Init("#version 450 core");
   // The evaluation thread's context: an invisible window's, sharing textures with this one.
@@ -293,14 +309,16 @@ ScriptHooks EditorApp::script_hooks() {
   return hooks;
 }
 
-int EditorApp::run() {
+// The graph named on the command line (a new file when it does not exist yet), and what the
+// user must know at start (failed plugins); false when the graph cannot be read.
+bool EditorApp::open_initial_graph() {
   if (!options_.graph.empty()) {
     std::error_code error;
     if (fs::exists(options_.graph, error)) {
       Status opened = actions::open(state_, options_.graph);
       if (!opened) {
         std::fprintf(stderr, "aquarelle edit: %s\n", opened.message().c_str());
-        return 1;
+        return false;
       }
       for (const auto& problem : document_.problems()) {
         std::fprintf(stderr, "aquarelle edit: %s\n", format_problem(problem).c_str());
@@ -317,6 +335,11 @@ int EditorApp::run() {
                                " (menu Plugins lists them)"),
                     "");
   }
+  return true;
+}
+
+int EditorApp::run() {
+  if (!open_initial_graph()) return 1;
   ask_recovery_ = options_.script.empty() && document_.has_recovery();
 
   if (Status made = create_window(); !made) {
@@ -486,6 +509,18 @@ void EditorApp::frame() {
     mouse_frames_.erase(mouse_frames_.begin());
   }
   canvas_.set_press(press);
+  if (!drop_queue().empty()) {  // dropped image files become read nodes at the canvas centre
+    const Vec2 centre{canvas_.origin().x + canvas_.size().x * 0.5f,
+                      canvas_.origin().y + canvas_.size().y * 0.5f};
+    const Vec2 at = state_.canvas.to_canvas(canvas_.origin(), centre);
+    (void)actions::drop_files(state_, drop_queue(), {at.x, at.y});
+    drop_queue().clear();
+  }
+  if (const std::string& path = document_.path();
+      !path.empty() && path != recent_recorded_ && fs::exists(path)) {
+    recent_.add(path);  // opened or saved under this name
+    recent_recorded_ = path;
+  }
   ImGui::NewFrame();
   chords_ = std::move(key_queue());
   key_queue().clear();
@@ -612,6 +647,12 @@ void EditorApp::draw_menu_bar() {
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("New", "Ctrl+N")) request(Pending::kNew);
     if (ImGui::MenuItem("Open...", "Ctrl+O")) request(Pending::kOpen);
+    if (ImGui::BeginMenu("Open Recent", !recent_.paths().empty())) {
+      for (const std::string& path : recent_.paths()) {
+        if (ImGui::MenuItem(path.c_str())) open_recent(path);
+      }
+      ImGui::EndMenu();
+    }
     if (ImGui::MenuItem("Save", "Ctrl+S")) save_or_save_as();
     if (ImGui::MenuItem("Save As...", "Ctrl+Shift+S")) {
       file_dialog_.open("Save graph as", document_.path());
@@ -750,6 +791,11 @@ void EditorApp::request(Pending pending) {
   perform(pending);
 }
 
+void EditorApp::open_recent(const std::string& path) {
+  recent_target_ = path;
+  request(Pending::kOpenRecent);
+}
+
 void EditorApp::perform(Pending pending) {
   switch (pending) {
     case Pending::kQuit:
@@ -761,6 +807,9 @@ void EditorApp::perform(Pending pending) {
       break;
     case Pending::kOpen:
       file_dialog_.open("Open graph", document_.path());
+      break;
+    case Pending::kOpenRecent:
+      if (actions::open(state_, recent_target_)) canvas_.request_fit();
       break;
     case Pending::kNone:
       break;

@@ -17,6 +17,7 @@
 #include "pane_split.h"
 #include "param_panel.h"
 #include "playback_rate.h"
+#include "recent_files.h"
 #include "script.h"
 #include "viewer.h"
 
@@ -57,9 +58,10 @@ class EditorApp {
   int run();
 
  private:
-  enum class Pending { kNone, kQuit, kNew, kOpen };
+  enum class Pending { kNone, kQuit, kNew, kOpen, kOpenRecent };
 
   Status create_window();
+  bool open_initial_graph();
   void frame();
   void draw_menu_bar();
   void draw_time_bar();
@@ -75,6 +77,8 @@ class EditorApp {
   // Runs `pending` now, or asks first when there are unsaved changes.
   void request(Pending pending);
   void perform(Pending pending);
+  // File > Open Recent: opens `path` once unsaved changes are settled.
+  void open_recent(const std::string& path);
   void save_or_save_as();
   void update_title();
   Status write_screenshot(const std::string& path);
@@ -108,6 +112,10 @@ class EditorApp {
   float canvas_share_ = kDefaultCanvasShare;  // of the width; the splitter moves it
   PressTracker press_tracker_;                // double-clicks from the presses' own times
   double scripted_press_clock_ = 1000.0;
+  RecentFiles recent_;
+  std::string recent_recorded_;
+  std::string recent_target_;   // what Open Recent opens (Pending::kOpenRecent)  // the document
+                                // path last added to recent_
   PlaybackRate playback_rate_;  // the frame rate playback reaches
   bool was_playing_ = false;
   AutosaveTimer autosave_timer_;  // after each completed edit, debounced

@@ -411,9 +411,9 @@ TEST_F(PlacementTest, ANewNodeAtTheCursorNeverCoversOne) {
 // ---- node_advice_test
 // Issue 39: one advice for a node's missing input, the same in the parameter panel and in the
 // node's tooltip (the panel said to edit the JSON, the tooltip to drag a link). No GL.
-#include "editor/node_advice.h"
 #include "editor/document.h"
 #include "editor/fake_node_types.h"
+#include "editor/node_advice.h"
 
 #include <gtest/gtest.h>
 
@@ -518,6 +518,127 @@ TEST(ShippedLayouts, NoNodeCoversAnother) {
     }
   }
   EXPECT_GE(graphs, 10);
+}
+
+}  // namespace
+}  // namespace aq::editor
+
+// ---- Del reconnects the chain around the deleted nodes
+namespace aq::editor {
+namespace {
+
+TEST(DeleteReconnecting, ReadersAndTheOutputGoAroundTheDeletedNodesInOneStep) {
+  Document doc(test::fake_registry());
+  EditorState state(doc);
+  ASSERT_TRUE(doc.add_node("source", {0, 0}, "src").ok());
+  ASSERT_TRUE(doc.add_node("filter", {250, 0}, "a").ok());
+  ASSERT_TRUE(doc.add_node("filter", {500, 0}, "b").ok());
+  ASSERT_TRUE(doc.add_node("filter", {750, 0}, "c").ok());
+  ASSERT_TRUE(doc.link({"src", "image"}, "a", "image"));
+  ASSERT_TRUE(doc.link({"a", "image"}, "b", "image"));
+  ASSERT_TRUE(doc.link({"b", "image"}, "c", "image"));
+  ASSERT_TRUE(doc.link({"a", "image"}, "c", "mask"));
+  ASSERT_TRUE(doc.set_output(PortRef{"c", "image"}));
+  actions::select(state, {"a", "b"});
+  ASSERT_TRUE(actions::delete_selection(state));  // Del
+  const Graph& graph = doc.graph();
+  EXPECT_EQ(graph.nodes.at("c").inputs.at("image"), (PortRef{"src", "image"}));
+  EXPECT_EQ(graph.nodes.at("c").inputs.at("mask"), (PortRef{"src", "image"}));
+  ASSERT_TRUE(doc.undo());  // one step
+  EXPECT_EQ(doc.graph().nodes.at("c").inputs.at("image"), (PortRef{"b", "image"}));
+  EXPECT_TRUE(doc.graph().nodes.count("a"));
+  actions::select(state, {"c"});
+  ASSERT_TRUE(actions::delete_selection(state));
+  ASSERT_TRUE(doc.graph().output.has_value());
+  EXPECT_EQ(*doc.graph().output, (PortRef{"b", "image"})) << "the output moves up the chain";
+  // A plain delete (the scripted "delete") still only unlinks.
+  ASSERT_TRUE(doc.remove_nodes({"a"}));
+  EXPECT_FALSE(doc.graph().nodes.at("b").inputs.count("image"));
+}
+
+}  // namespace
+}  // namespace aq::editor
+
+// ---- Recent files and dropped image files
+#include "editor/recent_files.h"
+
+#include <unistd.h>
+#include <filesystem>
+
+namespace aq::editor {
+namespace {
+
+TEST(RecentFiles, NewestFirstOnceEachKeptAcrossSessions) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("aq_recent_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  const std::string store = (dir / "aquarelle" / "recent.json").string();
+  {
+    RecentFiles recent(store);
+    EXPECT_TRUE(recent.paths().empty());
+    for (int i = 0; i < 12; ++i) recent.add("/graphs/g" + std::to_string(i) + ".json");
+    recent.add("/graphs/g5.json");
+    ASSERT_EQ(recent.paths().size(), RecentFiles::kKept);
+    EXPECT_EQ(recent.paths()[0], "/graphs/g5.json");
+    EXPECT_EQ(recent.paths()[1], "/graphs/g11.json");
+  }
+  RecentFiles again(store);  // the next session
+  ASSERT_EQ(again.paths().size(), RecentFiles::kKept);
+  EXPECT_EQ(again.paths()[0], "/graphs/g5.json");
+  RecentFiles memory("");  // scripts: never written
+  memory.add("/graphs/a.json");
+  EXPECT_EQ(memory.paths().size(), 1u);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(DropFiles, ImageFilesBecomeReadNodesOthersAreNamed) {
+  Document doc(test::registry());
+  EditorState state(doc);
+  ASSERT_TRUE(doc.add_node("read", {0, 0}, "existing").ok());
+  auto added =
+      actions::drop_files(state, {"/tmp/paper.png", "/tmp/notes.txt", "/tmp/sky.EXR"}, {0, 0});
+  ASSERT_TRUE(added.ok()) << added.message();
+  ASSERT_EQ(added->size(), 2u);
+  const Graph& graph = doc.graph();
+  EXPECT_EQ(graph.nodes.at((*added)[0]).type, "read");
+  EXPECT_EQ(graph.nodes.at((*added)[0]).params.at("path"), "/tmp/paper.png");
+  EXPECT_EQ(graph.nodes.at((*added)[1]).params.at("path"), "/tmp/sky.EXR");
+  EXPECT_NE(state.status.find("notes.txt"), std::string::npos) << state.status;
+  for (const auto& id : *added) {
+    EXPECT_FALSE(node_rect(graph, test::registry(), id)
+                     .overlaps(node_rect(graph, test::registry(), "existing")))
+        << id;
+  }
+  EXPECT_FALSE(actions::drop_files(state, {"/tmp/notes.txt"}, {0, 0}).ok());
+}
+
+}  // namespace
+}  // namespace aq::editor
+
+// ---- The viewer's histogram and min/max
+#include "editor/image_stats.h"
+
+#include <cmath>
+
+namespace aq::editor {
+namespace {
+
+TEST(ImageStats, MinMaxOverColourAndLuminanceHistogram) {
+  // Four RGBA pixels: black, white, mid grey, and a NaN left out; alpha is not counted.
+  const std::vector<float> pixels = {0, 0, 0, 1,   1, 1, 1, 0.5f,  0.5f, 0.5f, 0.5f, 7,
+                                     NAN, 0, 0, 1};
+  const ImageStats stats = image_stats(pixels, 4);
+  EXPECT_EQ(stats.counted, 3u);
+  EXPECT_FLOAT_EQ(stats.min, 0.0f);
+  EXPECT_FLOAT_EQ(stats.max, 1.0f);
+  ASSERT_EQ(stats.bins.size(), static_cast<size_t>(kHistogramBins));
+  EXPECT_EQ(stats.bins.front(), 1.0f);
+  EXPECT_EQ(stats.bins.back(), 1.0f);
+  EXPECT_EQ(stats.bins[kHistogramBins / 2], 1.0f);
+  const ImageStats depth = image_stats({2.0f, 4.0f, 4.0f, INFINITY}, 1);
+  EXPECT_FLOAT_EQ(depth.min, 2.0f);
+  EXPECT_FLOAT_EQ(depth.max, 4.0f);
+  EXPECT_EQ(depth.bins.back(), 2.0f);
 }
 
 }  // namespace
