@@ -342,6 +342,7 @@ struct Layered {
       float* row2 = &table_pixels[4 * (2 * n + i)];
       row0[0] = layer.id;
       row0[1] = layer.wet_in_wet ? 1.0f : 0.0f;
+      row0[2] = static_cast<float>(f.channel[i] / kLayersPerRange);  // its range
       for (int c = 0; c < 3; ++c) {
         row1[c] = static_cast<float>(layer.light[c]);
         row2[c] = static_cast<float>(layer.dark[c]);
@@ -609,6 +610,9 @@ struct Layered {
     aq::set_float(p, "u_granulation", f.has_paper ? ctx.param_float(kGranulation) : 0.0);
     aq::set_float(p, "u_density", ctx.param_float(kDensity));
     aq::bind_texture(p, "u_colours", 12, f.colours);
+    // The last range draws the whole image, where the owner image may still hold earlier
+    // ranges' layers: the composite skips layers of other ranges.
+    aq::set_float(p, "u_range", static_cast<double>(r));
     if (last) return ctx.draw(target);
     if (!ctx.bind_targets(&target, 1)) return false;
     return each(rects, &RangeRects::paint, [&] {
