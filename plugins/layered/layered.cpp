@@ -349,6 +349,10 @@ struct Layered {
       }
     }
     glTextureSubImage2D(f.table.texture, 0, 0, 0, n, 3, GL_RGBA, GL_FLOAT, table_pixels.data());
+    // The owner image comes from the pool with what an earlier call left: zero it once per
+    // frame (the last range's composite reads it everywhere).
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(f.owner.texture, 0, GL_RGBA, GL_FLOAT, zero);
     return true;
   }
 
