@@ -119,7 +119,13 @@ std::optional<int> parse_command_line(CLI::App& cli, int argc, char** argv) {
   } catch (const CLI::ParseError& error) {
     std::string who = cli.get_name();
     for (const CLI::App* command : cli.get_subcommands()) who += " " + command->get_name();
-    std::fprintf(stderr, "%s: %s (see --help)\n", who.c_str(), error.what());
+    std::string message = error.what();
+    // CLI11 says "--size: 1 required WxH missing"; the commands have always said this:
+    const size_t colon = message.find(':');
+    if (error.get_name() == "ArgumentMismatch" && colon != std::string::npos &&
+        message.find(" required ") != std::string::npos)
+      message = message.substr(0, colon) + " needs a value";
+    std::fprintf(stderr, "%s: %s (see --help)\n", who.c_str(), message.c_str());
     return 1;
   }
 }

@@ -41,6 +41,10 @@ int main(int argc, char** argv) {
       aq::app::add_nodes_command(cli), aq::app::add_bench_command(cli),
       aq::app::add_edit_command(cli)};
   if (argc < 2) return refuse_command(cli, {});
+  if (std::string(argv[1]) == "help") {  // `aquarelle help`, as before CLI11
+    std::fputs(cli.help().c_str(), stdout);
+    return aq::app::kExitOk;
+  }
   if (auto stop = aq::app::parse_command_line(cli, argc, argv)) return *stop;
   for (const auto& command : commands) {
     if (!command.cli->parsed()) continue;

@@ -315,7 +315,7 @@ def obj_ship():
         count += 4
         uv += 4
     write("ship.obj", "\n".join(lines) + "\n")
-    write("ship.mtl", "newmtl wood\nKd 0.36 0.22 0.12\n\nnewmtl canvas\nKd 1 1 1\nmap_Kd sail.png\n")
+    write("ship.mtl", "newmtl wood\nKd 0.62 0.42 0.24\n\nnewmtl canvas\nKd 1 1 1\nmap_Kd sail.png\n")
     png("sail.png", 64, 64, sail)
 
 

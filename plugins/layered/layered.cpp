@@ -168,7 +168,7 @@ void normalise(double v[3], const double fallback[3]) {
 
 struct Layered {
   // Composed shader texts (the host compiles them at once and caches by text).
-  std::string segment_text, edges_text, paper_text, composite_text, peak_text;
+  std::string segment_text, edges_text, paper_text, composite_text, peak_text, colours_text;
   std::vector<float> id_pixels, depth_pixels, albedo_pixels, owner_pixels, table_pixels;
 
   // What the passes of one frame share.
@@ -183,9 +183,9 @@ struct Layered {
     bool thin = false;
     bool whole = false, run_edges = false, has_paper = false;
     int64_t wet_edges = kWetToDry;
-    GLuint segment = 0, edge = 0, paper = 0, composite = 0, peak_program = 0;
+    GLuint segment = 0, edge = 0, paper = 0, composite = 0, peak_program = 0, colours_program = 0;
     aq_image intensity{}, diffuse{}, depth{}, blur_intensity{}, blur_diffuse{}, blur_depth{},
-        edges{}, blur_edges{}, horizontal{}, under[2]{}, out{}, owner{}, table{}, peak{};
+        edges{}, blur_edges{}, horizontal{}, under[2]{}, out{}, owner{}, table{}, peak{}, colours{};
   };
 
   // The boxes each pass of a range fills around one of its layers (see range_rects).
@@ -220,9 +220,10 @@ struct Layered {
     // copied across before the next range paints its own box (so only the last composite
     // covers the whole image).
     std::vector<Rect> last_paint;
+    if (f.range_count > 0) ok = ok && gooch_colours(ctx, f);
     for (size_t r = 0; ok && r < f.range_count; ++r) ok = run_range(ctx, f, r, last_paint);
     glDisable(GL_SCISSOR_TEST);
-    aq::unbind_textures(12);
+    aq::unbind_textures(13);
     return ok ? AQ_OK : AQ_ERROR;
   }
 
@@ -332,7 +333,7 @@ struct Layered {
       if (!ctx.scratch(f.w, f.h, f32, t)) return false;
     }
     const int n = static_cast<int>(f.layers.size());
-    if (!ctx.scratch(n, 3, f32, &f.table)) return false;
+    if (!ctx.scratch(n, 3, f32, &f.table) || !ctx.scratch(n, 2, f32, &f.colours)) return false;
     table_pixels.assign(static_cast<size_t>(n) * 3 * 4, 0.0f);
     for (int i = 0; i < n; ++i) {
       const layered::Layer& layer = f.layers[i];
@@ -341,12 +342,17 @@ struct Layered {
       float* row2 = &table_pixels[4 * (2 * n + i)];
       row0[0] = layer.id;
       row0[1] = layer.wet_in_wet ? 1.0f : 0.0f;
+      row0[2] = static_cast<float>(f.channel[i] / kLayersPerRange);  // its range
       for (int c = 0; c < 3; ++c) {
         row1[c] = static_cast<float>(layer.light[c]);
         row2[c] = static_cast<float>(layer.dark[c]);
       }
     }
     glTextureSubImage2D(f.table.texture, 0, 0, 0, n, 3, GL_RGBA, GL_FLOAT, table_pixels.data());
+    // The owner image comes from the pool with what an earlier call left: zero it once per
+    // frame (the last range's composite reads it everywhere).
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(f.owner.texture, 0, GL_RGBA, GL_FLOAT, zero);
     return true;
   }
 
@@ -367,6 +373,10 @@ struct Layered {
     f.composite = ctx.program({"layered_composite.frag", composite_text.c_str(), nullptr});
     peak_text = compose(defines, shaders::layered_peak_frag, "");
     f.peak_program = ctx.program({"layered_peak.frag", peak_text.c_str(), nullptr});
+    colours_text =
+        compose(defines, shaders::layered_colours_frag, "#include \"aquarelle/pigment.glsl\"\n");
+    f.colours_program = ctx.program({"layered_colours.frag", colours_text.c_str(), nullptr});
+    if (f.colours_program == 0) return false;
     return f.segment != 0 && f.edge != 0 && f.paper != 0 && f.composite != 0 && f.peak_program != 0;
   }
 
@@ -428,11 +438,17 @@ struct Layered {
   static std::vector<RangeRects> range_rects(const Frame& f, size_t r) {
     const Rect full{0, 0, f.w - 1, f.h - 1};
     if (f.whole) return {{full, full, full, full, full, full, full}};
-    std::vector<RangeRects> out;
+    std::vector<Rect> boxes;
     for (size_t i = 0; i < f.layers.size(); ++i) {
-      if (static_cast<size_t>(f.channel[i]) / kLayersPerRange != r) continue;
+      if (static_cast<size_t>(f.channel[i]) / kLayersPerRange == r) {
+        boxes.push_back(paint_box(f, f.layers[i]));
+      }
+    }
+    merge_overlapping(boxes);
+    std::vector<RangeRects> out;
+    for (const Rect& paint : boxes) {
       RangeRects rr;
-      rr.paint = paint_box(f, f.layers[i]);
+      rr.paint = paint;
       rr.blurred = rr.paint.grown(std::max(2 * f.reach_e + 1, f.reach_peak), f.w, f.h);
       rr.blurred_rows = rr.blurred.grown(f.reach_a, f.w, f.h);
       rr.segmented = rr.blurred_rows.grown(f.reach_a, f.w, f.h);
@@ -442,6 +458,29 @@ struct Layered {
       out.push_back(rr);
     }
     return out;
+  }
+
+  // Boxes of one range overlap where layers of different channels meet: two boxes whose
+  // bounding box is no larger than their areas together become that box, so no pixel is drawn
+  // many times over.
+  static void merge_overlapping(std::vector<Rect>& boxes) {
+    auto area = [](const Rect& b) {
+      return static_cast<int64_t>(b.x1 - b.x0 + 1) * (b.y1 - b.y0 + 1);
+    };
+    for (bool merged = true; merged;) {
+      merged = false;
+      for (size_t i = 0; i < boxes.size() && !merged; ++i) {
+        for (size_t j = i + 1; j < boxes.size() && !merged; ++j) {
+          const Rect u{std::min(boxes[i].x0, boxes[j].x0), std::min(boxes[i].y0, boxes[j].y0),
+                       std::max(boxes[i].x1, boxes[j].x1), std::max(boxes[i].y1, boxes[j].y1)};
+          if (area(u) <= area(boxes[i]) + area(boxes[j])) {
+            boxes[i] = u;
+            boxes.erase(boxes.begin() + static_cast<std::ptrdiff_t>(j));
+            merged = true;
+          }
+        }
+      }
+    }
   }
 
   // Runs `draw` once per layer box of the range, scissored to that box's `which` rect.
@@ -574,13 +613,25 @@ struct Layered {
     aq::set_float(p, "u_depth_band", ctx.param_float(kDepthBand));
     aq::set_float(p, "u_granulation", f.has_paper ? ctx.param_float(kGranulation) : 0.0);
     aq::set_float(p, "u_density", ctx.param_float(kDensity));
-    set_gooch(ctx, p);
+    aq::bind_texture(p, "u_colours", 12, f.colours);
+    // The last range draws the whole image, where the owner image may still hold earlier
+    // ranges' layers: the composite skips layers of other ranges.
+    aq::set_float(p, "u_range", static_cast<double>(r));
     if (last) return ctx.draw(target);
     if (!ctx.bind_targets(&target, 1)) return false;
     return each(rects, &RangeRects::paint, [&] {
       ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
       return true;
     });
+  }
+
+  // The Gooch-mixed light and dark colour of every layer, once per frame (layered_colours).
+  static bool gooch_colours(aq::Context& ctx, const Frame& f) {
+    glDisable(GL_SCISSOR_TEST);
+    glUseProgram(f.colours_program);
+    aq::bind_texture(f.colours_program, "u_table", 0, f.table);
+    set_gooch(ctx, f.colours_program);
+    return ctx.draw(f.colours);
   }
 
   // Uniforms of layered_common.glsl.

@@ -39,7 +39,9 @@ double terrain_cliff_weight(const TerrainShape& shape, const TerrainNoise& noise
                             double z) {
   if (shape.cliff == 0.0) return 0.0;
   const double w = -z + 0.05 * noise.bumps(5.0 * x + 11.5, 0.5);
-  return smoothstep(0.28, 0.38, w);
+  // Along the back edge from the left, ending at about x = 0.2 (a cliff, not a rim round the
+  // whole floor).
+  return smoothstep(0.28, 0.38, w) * smoothstep(0.3, 0.1, x);
 }
 
 double terrain_height(const TerrainShape& shape, const TerrainNoise& noise, double x, double z) {

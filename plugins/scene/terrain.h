@@ -33,8 +33,9 @@ struct TerrainNoise {
 };
 
 // Height at (x, z), the unit square being [-0.5, 0.5]²:
-//   h = swell · P1(fs x, fs z) + bumps · P2(fb x, fb z) + cliff · smoothstep(0.28, 0.38, w)
-//   w = -z + 0.05 · P2(5 x + 11.5, 0.5)     (the foot of the cliff wavers along x)
+//   h = swell · P1(fs x, fs z) + bumps · P2(fb x, fb z) + cliff · c(x, z)
+//   c = smoothstep(0.28, 0.38, w) · smoothstep(0.3, 0.1, x),  w = -z + 0.05 · P2(5 x + 11.5, 0.5)
+//   (the foot of the cliff wavers along x; the cliff ends towards +x)
 double terrain_height(const TerrainShape& shape, const TerrainNoise& noise, double x, double z);
 
 // How much of (x, z) is cliff rather than floor, 0..1 (its colour: rock against sand).

@@ -30,6 +30,7 @@ TEST(CommandLine, EveryCommandHasHelpInTheSameStyle) {
   EXPECT_EQ(aquarelle("validate -h").output, aquarelle("validate --help").output);
   auto top = aquarelle("--help");
   EXPECT_EQ(top.exit_code, 0);
+  EXPECT_EQ(aquarelle("help").output, top.output);
   EXPECT_EQ(top.output.rfind("usage: aquarelle <command>", 0), 0u) << top.output;
   for (const char* command : {"render", "validate", "nodes", "bench", "edit"})
     EXPECT_TRUE(says(top, std::string("\n  ") + command + " ")) << top.output;
@@ -71,7 +72,7 @@ TEST(CommandLine, ATypoGetsASuggestionAndExitCodeOne) {
 TEST(CommandLine, AMissingValueIsExitCodeOne) {
   auto result = aquarelle("render " + source_path("graphs/tint.json") + " -o out.exr --size");
   EXPECT_EQ(result.exit_code, 1) << result.output;
-  EXPECT_TRUE(says(result, "aquarelle render: --size")) << result.output;
+  EXPECT_TRUE(says(result, "aquarelle render: --size needs a value")) << result.output;
 }
 
 TEST(CommandLine, TheEnvironmentIsExitCodeTwo) {

@@ -27,7 +27,8 @@ uniform sampler2D u_peak;  // peak of the blurred intensity over a window of rad
 uniform float u_thin;      // thin_shapes: how much of a thin shape the abstraction keeps
 uniform float u_line_width_scale;  // √(2π) σa: a thin line's blurred peak times it = its width
 uniform sampler2D u_owner;  // per channel: 1 + the layer painting here, 0 for none
-uniform sampler2D u_table;  // per layer: row 0 (id, wet-in-wet), row 1 light, row 2 dark
+uniform sampler2D u_table;  // per layer: row 0 (id, wet-in-wet, range), row 1 light, row 2 dark
+uniform float u_range;      // this range: owner entries of other ranges are stale
 uniform float u_edge_gain;
 uniform float u_edge_darkness;
 uniform float u_wet_spread;
@@ -35,9 +36,7 @@ uniform float u_edge_darkening;
 uniform float u_depth_band;
 uniform float u_granulation;
 uniform float u_density;
-uniform float u_gooch;  // Gooch: light towards warm, dark towards cool
-uniform vec3 u_warm;
-uniform vec3 u_cool;
+uniform sampler2D u_colours;  // per layer: Gooch light (row 0) and dark (row 1), see layered_colours
 
 vec3 pigment_mix(vec3 a, vec3 b, float t) {
 #if AQ_MIX_MODE == 0
@@ -97,6 +96,7 @@ void main() {
   for (int k = 0; k < 4; ++k) {
     if (!(owner[k] > 0.5)) continue;
     int layer = int(owner[k]) - 1;
+    if (texelFetch(u_table, ivec2(layer, 0), 0).b != u_range) continue;
     vec3 light_color = texelFetch(u_table, ivec2(layer, 1), 0).rgb;
     vec3 dark_color = texelFetch(u_table, ivec2(layer, 2), 0).rgb;
     bool wet_in_wet = texelFetch(u_table, ivec2(layer, 0), 0).g > 0.5;
@@ -108,8 +108,8 @@ void main() {
 #else
     if (!(b[k] > 1.0e-6)) continue;
     float d = clamp(bd[k] / b[k], 0.0, 1.0);
-    vec3 light = pigment_mix(light_color, u_warm, u_gooch);
-    vec3 dark = pigment_mix(dark_color, u_cool, u_gooch);
+    vec3 light = texelFetch(u_colours, ivec2(layer, 0), 0).rgb;  // Gooch-mixed, per layer
+    vec3 dark = texelFetch(u_colours, ivec2(layer, 1), 0).rgb;
     vec3 colour = pigment_mix(dark, light, d);
 #if AQ_VIEW == 3  // abstraction only
     under = glaze(under, colour, a[k]);
