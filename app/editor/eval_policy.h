@@ -41,9 +41,10 @@ struct DraftInputs {
 bool evaluate_as_draft(const DraftInputs& inputs);
 
 // The quality the viewer evaluates at while the user drags a value or plays, as Nuke and
-// Blender do: a graph at "final" quality is shown as a "preview" proxy during the interaction
-// ("draft" when even the preview cannot keep up), and in full once the user lets go; a
-// "preview" graph drafts only when it cannot keep up (evaluate_as_draft). "" is the graph's own.
+// Blender do: a graph at "final" quality whose full evaluation cannot keep up (see
+// evaluate_as_draft) is shown as a "preview" proxy during the interaction ("draft" when even
+// the preview cannot keep up), and in full once the user lets go; a "preview" graph drafts
+// only when it cannot keep up. A graph that keeps up is never reduced. "" is the graph's own.
 std::string proxy_quality(const DraftInputs& inputs);
 
 }  // namespace aq::editor

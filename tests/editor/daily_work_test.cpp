@@ -318,6 +318,9 @@ TEST(ProxyQuality, FinalGraphDragsAndPlaysAsPreviewAndRestsInFull) {
   EXPECT_EQ(proxy_quality(play), "preview") << "30 ms keeps up with 24 fps";
   play.last_preview_ms = 60;
   EXPECT_EQ(proxy_quality(play), "draft");
+  DraftInputs fast = drag;
+  fast.last_full_ms = 20;
+  EXPECT_EQ(proxy_quality(fast), "") << "a final graph that keeps up is never reduced";
 }
 
 TEST(ProxyQuality, PreviewAndDraftGraphsKeepTheirOwnUnlessTooSlow) {
@@ -625,8 +628,7 @@ namespace {
 
 TEST(ImageStats, MinMaxOverColourAndLuminanceHistogram) {
   // Four RGBA pixels: black, white, mid grey, and a NaN left out; alpha is not counted.
-  const std::vector<float> pixels = {0, 0, 0, 1,   1, 1, 1, 0.5f,  0.5f, 0.5f, 0.5f, 7,
-                                     NAN, 0, 0, 1};
+  const std::vector<float> pixels = {0, 0, 0, 1, 1, 1, 1, 0.5f, 0.5f, 0.5f, 0.5f, 7, NAN, 0, 0, 1};
   const ImageStats stats = image_stats(pixels, 4);
   EXPECT_EQ(stats.counted, 3u);
   EXPECT_FLOAT_EQ(stats.min, 0.0f);
