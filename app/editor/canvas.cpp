@@ -2,6 +2,8 @@
 #include "canvas.h"
 
 #include "editor_actions.h"
+#include "node_advice.h"
+#include "node_search.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -14,6 +16,7 @@
 #include <cstdio>
 #include <functional>
 #include <set>
+#include <utility>
 
 namespace aq::editor {
 
@@ -39,11 +42,6 @@ ImU32 category_colour(const std::string& category) {
   return ImGui::ColorConvertFloat4ToU32(ImVec4(r, g, b, 1.0f));
 }
 
-std::string lower(std::string text) {
-  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return text;
-}
-
 void draw_link(ImDrawList* draw, Vec2 from, Vec2 to, ImU32 colour, float zoom) {
   float dx = std::max(std::fabs(to.x - from.x) * 0.5f, 30.0f * zoom);
   draw->AddBezierCubic(im(from), ImVec2(from.x + dx, from.y), ImVec2(to.x - dx, to.y), im(to),
@@ -60,6 +58,22 @@ void Canvas::text(ImDrawList* draw, Vec2 at, float zoom, ImU32 colour,
   ImFont* chosen = font != fonts_.end() ? font->second : ImGui::GetFont();
   // Whole pixels: a glyph placed between pixels is resampled and goes soft.
   draw->AddText(chosen, pixels, ImVec2(std::round(at.x), std::round(at.y)), colour, label.c_str());
+}
+
+void Canvas::title(ImDrawList* draw, const Rect& header, float zoom, ImU32 colour,
+                   const std::string& label) const {
+  const float pixels = title_pixels(zoom);
+  auto font = fonts_.find(text_raster_size(pixels));
+  ImFont* chosen = font != fonts_.end() ? font->second : ImGui::GetFont();
+  // Kept legible when the whole graph is fitted small: never under kMinTitlePixels, cut at
+  // the node's edge rather than spilling over its neighbours.
+  const float bottom = std::max(header.max.y, header.min.y + pixels + 2.0f);
+  draw->PushClipRect(im(header.min), ImVec2(header.max.x, bottom), true);
+  const float y = header.min.y + std::max(0.0f, (header.max.y - header.min.y - pixels) * 0.5f);
+  draw->AddText(chosen, pixels,
+                ImVec2(std::round(header.min.x + 4.0f + 2.0f * zoom), std::round(y)), colour,
+                label.c_str());
+  draw->PopClipRect();
 }
 
 Vec2 Canvas::text_size(float zoom, const std::string& label) const {
@@ -79,13 +93,9 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
   CanvasView& view = state.canvas;
   const Rect bounds = graph_bounds(graph, registry);
   if (fit_requested_) {
-    // Readable zoom; the output node is kept in view when the graph is wider than the canvas.
-    std::optional<Vec2> focus;
-    if (graph.output && graph.nodes.count(graph.output->node)) {
-      Position at = node_position(graph, graph.output->node);
-      focus = Vec2{at.x, at.y};
-    }
-    view.fit(bounds, size_, focus, fit_whole_ ? CanvasView::kMinZoom : CanvasView::kReadableZoom);
+    // Every node on screen (a readable minimum zoom left 10 of the flagship's 16 off it);
+    // titles stay legible at any zoom (Canvas::title).
+    view.fit_all(bounds, size_);
     fit_requested_ = false;
   }
 
@@ -172,8 +182,7 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
                   failed || selected ? 2.5f : 1.0f);
     std::string title = layout.id == node.type ? layout.id : layout.id + " (" + node.type + ")";
     if (failed) title = "! " + title;
-    text(draw, {layout.header.min.x + 6 * z, layout.header.min.y + 4 * z}, z,
-         IM_COL32(245, 245, 245, 255), title);
+    this->title(draw, layout.header, z, IM_COL32(245, 245, 245, 255), title);
     if (bypassed) {
       // Nuke's mark of a disabled node: a diagonal across it.
       draw->AddLine(im(layout.rect.min), im(layout.rect.max), IM_COL32(230, 170, 60, 220),
@@ -225,11 +234,8 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
          footer);
     // The reason a node is marked, on hover: each message once.
     if (failed && ImGui::IsWindowHovered() && layout.rect.contains(vec(ImGui::GetMousePos()))) {
-      std::vector<std::string> messages;
-      if (type == nullptr) messages.push_back("type '" + node.type + "' is not installed");
-      for (const auto& problem : problems) messages.push_back(problem.message);
       const auto reasons =
-          node_reasons(messages, feedback.error_node == layout.id ? feedback.error : "");
+          node_advice(state.doc, layout.id, feedback.error_node == layout.id ? feedback.error : "");
       std::string why;
       for (const auto& reason : reasons) why += (why.empty() ? "" : "\n") + reason;
       ImGui::SetTooltip("%s", why.c_str());
@@ -254,11 +260,10 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
 
 void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin) {
   ImGuiIO& io = ImGui::GetIO();
-  ImDrawList* draw = ImGui::GetWindowDrawList();
   CanvasView& view = state.canvas;
   const Vec2 mouse = vec(io.MousePos);
   const bool hovered = ImGui::IsItemHovered();
-  const float reach = std::max(NodeMetrics::kPortRadius * view.zoom + 4.0f, 8.0f);
+  const std::optional<Press> press = std::exchange(press_, std::nullopt);
 
   if (hovered && io.MouseWheel != 0.0f) view.zoom_at(origin, mouse, std::pow(1.15f, io.MouseWheel));
 
@@ -301,89 +306,110 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
     return;
   }
 
-  // Left button: press starts a link, node, dot or box drag.
+  // Left button: press starts a link, node, dot or box drag, judged where and when the press
+  // happened (a quick drag from a port has left it by the time this frame runs).
   if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
-    press_at_ = mouse;
-    drag_moved_ = false;
-    auto port = port_at(layouts, mouse, reach);
-    auto node = node_at(layouts, mouse);
-    auto dot = reroute_at(state.doc.graph(), view, origin, mouse, reach);
-    const bool twice = ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
-    if (dot && !port && !node) {
-      if (twice) {
-        actions::report(state, state.doc.remove_reroute(dot->node, dot->input, dot->index),
-                        "removed a dot");
-      } else {
-        dragged_dot_ = *dot;
-        drag_ = Drag::kDot;
-      }
-    } else if (twice && !port && !node &&
-               link_at(state.doc.graph(), layouts, mouse, 6.0f, view.zoom)) {
-      // A double-click on a link adds a reroute dot there.
-      auto hit = link_at(state.doc.graph(), layouts, mouse, 6.0f, view.zoom);
-      Vec2 at = view.to_canvas(origin, mouse);
-      actions::report(state, state.doc.add_reroute(hit->node, hit->input, {at.x, at.y}),
-                      "added a dot to the link into " + hit->node + "." + hit->input);
-      drag_ = Drag::kNone;
-    } else if (port && !port->spot.is_input) {
-      drag_ = Drag::kLink;
-      link_from_ = {port->node, port->spot.port};
-    } else if (port && port->spot.is_input) {
-      const auto& inputs = state.doc.graph().nodes.at(port->node).inputs;
-      auto linked = inputs.find(port->spot.port);
-      if (linked != inputs.end()) {
-        // Pick the link up from its input: it follows the mouse from its source.
-        link_from_ = linked->second;
-        (void)actions::unlink(state, port->node, port->spot.port);
-        drag_ = Drag::kLink;
-      }
-    } else if (!node && group_title_at(state, layouts, mouse)) {
-      // The title of an expanded group: a double-click collapses it, a click selects its nodes.
-      const Group group = *group_title_at(state, layouts, mouse);
-      if (twice) {
-        (void)actions::set_group_collapsed(state, group.name, true);
-      } else {
-        actions::select(state, group.nodes, io.KeyCtrl);
-      }
-      drag_ = Drag::kNone;
-    } else if (!node && backdrop_title_at(state, mouse)) {
-      backdrop_ = *backdrop_title_at(state, mouse);
-      backdrop_moved_ = {0, 0};
-      drag_ = Drag::kBackdrop;
-      if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
-        label_backdrop_ = true;
-        label_text_ = read_backdrops(state.doc.graph())[backdrop_].label;
-        drag_ = Drag::kNone;
-      }
-    } else if (node) {
-      if (io.KeyCtrl) {
-        if (!state.selection.erase(*node)) state.selection.insert(*node);
-      } else if (!state.selection.count(*node)) {
-        actions::select(state, {*node});
-      }
-      if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && group_name_of_item(*node)) {
-        // A double-click opens a collapsed group.
-        (void)actions::set_group_collapsed(state, *group_name_of_item(*node), false);
-        drag_ = Drag::kNone;
-        return;
-      }
-      if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
-        const NodeType* type = state.doc.registry().find(state.doc.graph().nodes.at(*node).type);
-        if (type != nullptr && !type->outputs.empty()) {
-          (void)actions::select_output(state, {*node, type->outputs.front().name});
-        }
-      }
-      drag_ = Drag::kNodes;
-      drag_origins_.clear();
-      for (const auto& id : state.selection) {
-        drag_origins_[id] = item_position(state.doc.graph(), id);
-      }
-    } else {
-      if (!io.KeyCtrl) actions::clear_selection(state);
-      drag_ = Drag::kBox;
-    }
+    const Vec2 at = press ? Vec2{press->x, press->y} : mouse;
+    const bool twice =
+        press ? press->double_click : ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
+    begin_press(state, layouts, origin, at, twice);
   }
+  continue_drag(state, layouts, origin);
+}
 
+// A left press at `mouse` (where it happened, see mouse_press.h): starts a link, node, dot,
+// backdrop or box drag, or acts on a double-click (`twice`).
+void Canvas::begin_press(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin,
+                         Vec2 mouse, bool twice) {
+  ImGuiIO& io = ImGui::GetIO();
+  CanvasView& view = state.canvas;
+  const float reach = std::max(NodeMetrics::kPortRadius * view.zoom + 4.0f, 8.0f);
+  press_at_ = mouse;
+  drag_moved_ = false;
+  auto port = port_at(layouts, mouse, reach);
+  auto node = node_at(layouts, mouse);
+  auto dot = reroute_at(state.doc.graph(), view, origin, mouse, reach);
+  if (dot && !port && !node) {
+    if (twice) {
+      actions::report(state, state.doc.remove_reroute(dot->node, dot->input, dot->index),
+                      "removed a dot");
+    } else {
+      dragged_dot_ = *dot;
+      drag_ = Drag::kDot;
+    }
+  } else if (twice && !port && !node &&
+             link_at(state.doc.graph(), layouts, mouse, 6.0f, view.zoom)) {
+    // A double-click on a link adds a reroute dot there.
+    auto hit = link_at(state.doc.graph(), layouts, mouse, 6.0f, view.zoom);
+    Vec2 at = view.to_canvas(origin, mouse);
+    actions::report(state, state.doc.add_reroute(hit->node, hit->input, {at.x, at.y}),
+                    "added a dot to the link into " + hit->node + "." + hit->input);
+    drag_ = Drag::kNone;
+  } else if (port && !port->spot.is_input) {
+    drag_ = Drag::kLink;
+    link_from_ = {port->node, port->spot.port};
+  } else if (port && port->spot.is_input) {
+    const auto& inputs = state.doc.graph().nodes.at(port->node).inputs;
+    auto linked = inputs.find(port->spot.port);
+    if (linked != inputs.end()) {
+      // Pick the link up from its input: it follows the mouse from its source.
+      link_from_ = linked->second;
+      (void)actions::unlink(state, port->node, port->spot.port);
+      drag_ = Drag::kLink;
+    }
+  } else if (!node && group_title_at(state, layouts, mouse)) {
+    // The title of an expanded group: a double-click collapses it, a click selects its nodes.
+    const Group group = *group_title_at(state, layouts, mouse);
+    if (twice) {
+      (void)actions::set_group_collapsed(state, group.name, true);
+    } else {
+      actions::select(state, group.nodes, io.KeyCtrl);
+    }
+    drag_ = Drag::kNone;
+  } else if (!node && backdrop_title_at(state, mouse)) {
+    backdrop_ = *backdrop_title_at(state, mouse);
+    backdrop_moved_ = {0, 0};
+    drag_ = Drag::kBackdrop;
+    if (twice) {
+      label_backdrop_ = true;
+      label_text_ = read_backdrops(state.doc.graph())[backdrop_].label;
+      drag_ = Drag::kNone;
+    }
+  } else if (node) {
+    if (io.KeyCtrl) {
+      if (!state.selection.erase(*node)) state.selection.insert(*node);
+    } else if (!state.selection.count(*node)) {
+      actions::select(state, {*node});
+    }
+    if (twice && group_name_of_item(*node)) {
+      // A double-click opens a collapsed group.
+      (void)actions::set_group_collapsed(state, *group_name_of_item(*node), false);
+      drag_ = Drag::kNone;
+      return;
+    }
+    if (twice) {
+      const NodeType* type = state.doc.registry().find(state.doc.graph().nodes.at(*node).type);
+      if (type != nullptr && !type->outputs.empty()) {
+        (void)actions::select_output(state, {*node, type->outputs.front().name});
+      }
+    }
+    drag_ = Drag::kNodes;
+    drag_origins_.clear();
+    for (const auto& id : state.selection) {
+      drag_origins_[id] = item_position(state.doc.graph(), id);
+    }
+  } else {
+    if (!io.KeyCtrl) actions::clear_selection(state);
+    drag_ = Drag::kBox;
+  }
+}
+
+// The drag under way (nodes, dot, backdrop, link, box) follows the mouse and ends on release.
+void Canvas::continue_drag(EditorState& state, const std::vector<NodeLayout>& layouts,
+                           Vec2 origin) {
+  CanvasView& view = state.canvas;
+  const Vec2 mouse = vec(ImGui::GetIO().MousePos);
+  const float reach = std::max(NodeMetrics::kPortRadius * view.zoom + 4.0f, 8.0f);
   const bool left_down = ImGui::IsMouseDown(ImGuiMouseButton_Left);
   if (left_down && (std::fabs(mouse.x - press_at_.x) > 3 || std::fabs(mouse.y - press_at_.y) > 3)) {
     drag_moved_ = true;
@@ -426,52 +452,8 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
     }
   }
 
-  if (drag_ == Drag::kLink) {
-    const PortSpot* from = find_port_spot(layouts, link_from_.node, link_from_.port, false);
-    auto target = port_at(layouts, mouse, reach);
-    std::string why;
-    if (target && target->spot.is_input) {
-      why = state.doc.why_not_link(link_from_, target->node, target->spot.port);
-    }
-    if (from != nullptr && drag_moved_) {
-      ImU32 colour = !why.empty()                      ? IM_COL32(255, 90, 80, 255)
-                     : target && target->spot.is_input ? IM_COL32(120, 230, 120, 255)
-                                                       : IM_COL32(220, 220, 220, 255);
-      draw_link(draw, from->at, target && target->spot.is_input ? target->spot.at : mouse, colour,
-                view.zoom);
-      if (!why.empty()) ImGui::SetTooltip("%s", why.c_str());
-    }
-    if (!left_down) {
-      if (target && target->spot.is_input) {
-        (void)actions::link(state, link_from_, target->node, target->spot.port);
-      } else if (!drag_moved_ && ImGui::GetIO().KeyShift) {
-        (void)actions::compare_with(state, link_from_);  // shift+click: B of the A/B wipe
-      } else if (!drag_moved_) {
-        (void)actions::select_output(state, link_from_);  // a click on an output views it
-      }
-      drag_ = Drag::kNone;
-    }
-  }
-
-  if (drag_ == Drag::kBox) {
-    Rect box{{std::min(press_at_.x, mouse.x), std::min(press_at_.y, mouse.y)},
-             {std::max(press_at_.x, mouse.x), std::max(press_at_.y, mouse.y)}};
-    if (drag_moved_) {
-      draw->AddRectFilled(im(box.min), im(box.max), IM_COL32(120, 160, 255, 40));
-      draw->AddRect(im(box.min), im(box.max), IM_COL32(120, 160, 255, 200));
-    }
-    if (!left_down) {
-      if (drag_moved_) {
-        std::vector<std::string> inside;
-        for (const auto& layout : layouts) {
-          if (box.overlaps(layout.rect)) inside.push_back(layout.id);
-        }
-        actions::select(state, inside, /*add=*/true);
-      }
-      drag_ = Drag::kNone;
-    }
-  }
-
+  if (drag_ == Drag::kLink) continue_link(state, layouts, mouse, reach, left_down);
+  if (drag_ == Drag::kBox) continue_box(state, layouts, mouse, left_down);
   if (drag_ == Drag::kNodes && !left_down) {
     actions::end_gesture(state);
     drag_ = Drag::kNone;
@@ -491,6 +473,57 @@ void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& lay
         }
       }
     }
+  }
+}
+
+void Canvas::continue_link(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 mouse,
+                           float reach, bool left_down) {
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const CanvasView& view = state.canvas;
+  const PortSpot* from = find_port_spot(layouts, link_from_.node, link_from_.port, false);
+  auto target = port_at(layouts, mouse, reach);
+  std::string why;
+  if (target && target->spot.is_input) {
+    why = state.doc.why_not_link(link_from_, target->node, target->spot.port);
+  }
+  if (from != nullptr && drag_moved_) {
+    ImU32 colour = !why.empty()                      ? IM_COL32(255, 90, 80, 255)
+                   : target && target->spot.is_input ? IM_COL32(120, 230, 120, 255)
+                                                     : IM_COL32(220, 220, 220, 255);
+    draw_link(draw, from->at, target && target->spot.is_input ? target->spot.at : mouse, colour,
+              view.zoom);
+    if (!why.empty()) ImGui::SetTooltip("%s", why.c_str());
+  }
+  if (!left_down) {
+    if (target && target->spot.is_input) {
+      (void)actions::link(state, link_from_, target->node, target->spot.port);
+    } else if (!drag_moved_ && ImGui::GetIO().KeyShift) {
+      (void)actions::compare_with(state, link_from_);  // shift+click: B of the A/B wipe
+    } else if (!drag_moved_) {
+      (void)actions::select_output(state, link_from_);  // a click on an output views it
+    }
+    drag_ = Drag::kNone;
+  }
+}
+
+void Canvas::continue_box(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 mouse,
+                          bool left_down) {
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  Rect box{{std::min(press_at_.x, mouse.x), std::min(press_at_.y, mouse.y)},
+           {std::max(press_at_.x, mouse.x), std::max(press_at_.y, mouse.y)}};
+  if (drag_moved_) {
+    draw->AddRectFilled(im(box.min), im(box.max), IM_COL32(120, 160, 255, 40));
+    draw->AddRect(im(box.min), im(box.max), IM_COL32(120, 160, 255, 200));
+  }
+  if (!left_down) {
+    if (drag_moved_) {
+      std::vector<std::string> inside;
+      for (const auto& layout : layouts) {
+        if (box.overlaps(layout.rect)) inside.push_back(layout.id);
+      }
+      actions::select(state, inside, /*add=*/true);
+    }
+    drag_ = Drag::kNone;
   }
 }
 
@@ -657,6 +690,25 @@ void Canvas::draw_rename(EditorState& state) {
   ImGui::EndPopup();
 }
 
+void Canvas::draw_add_menu_categories(EditorState& state, std::string* chosen) {
+  std::map<std::string, std::vector<const NodeType*>> by_category;
+  for (const auto& [name, type] : state.doc.registry().types()) {
+    by_category[type.category.empty() ? "Other" : type.category].push_back(&type);
+  }
+  for (const auto& [category, types] : by_category) {
+    ImGui::SetNextItemOpen(true, ImGuiCond_Appearing);
+    if (ImGui::TreeNode(category.c_str())) {
+      for (const NodeType* type : types) {
+        if (ImGui::MenuItem(type->name.c_str())) *chosen = type->name;
+        if (ImGui::IsItemHovered() && !type->description.empty()) {
+          ImGui::SetTooltip("%s", type->description.c_str());
+        }
+      }
+      ImGui::TreePop();
+    }
+  }
+}
+
 void Canvas::draw_add_menu(EditorState& state) {
   if (add_menu_requested_) {
     // At the cursor when it is over the canvas (Tab), else at the centre (menu bar).
@@ -675,30 +727,21 @@ void Canvas::draw_add_menu(EditorState& state) {
   if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
   bool enter = ImGui::InputTextWithHint("##filter", "search nodes", &add_filter_,
                                         ImGuiInputTextFlags_EnterReturnsTrue);
-  std::string needle = lower(add_filter_);
-  std::map<std::string, std::vector<const NodeType*>> by_category;
-  for (const auto& [name, type] : state.doc.registry().types()) {
-    if (needle.empty() || lower(name).find(needle) != std::string::npos ||
-        lower(type.description).find(needle) != std::string::npos ||
-        lower(type.category).find(needle) != std::string::npos) {
-      by_category[type.category.empty() ? "Other" : type.category].push_back(&type);
-    }
-  }
   std::string chosen;
-  for (const auto& [category, types] : by_category) {
-    if (enter && chosen.empty()) chosen = types.front()->name;
-    ImGui::SetNextItemOpen(true, needle.empty() ? ImGuiCond_Appearing : ImGuiCond_Always);
-    if (ImGui::TreeNode(category.c_str())) {
-      for (const NodeType* type : types) {
-        if (ImGui::MenuItem(type->name.c_str())) chosen = type->name;
-        if (ImGui::IsItemHovered() && !type->description.empty()) {
-          ImGui::SetTooltip("%s", type->description.c_str());
-        }
+  if (!add_filter_.empty()) {
+    // Typed: one list, best match first (names before descriptions); Enter adds the first.
+    const std::vector<const NodeType*> found = search_node_types(state.doc.registry(), add_filter_);
+    if (enter && !found.empty()) chosen = found.front()->name;
+    for (const NodeType* type : found) {
+      if (ImGui::MenuItem(type->name.c_str(), type->category.c_str())) chosen = type->name;
+      if (ImGui::IsItemHovered() && !type->description.empty()) {
+        ImGui::SetTooltip("%s", type->description.c_str());
       }
-      ImGui::TreePop();
     }
+    if (found.empty()) ImGui::TextDisabled("no node matches");
+  } else {
+    draw_add_menu_categories(state, &chosen);
   }
-  if (by_category.empty()) ImGui::TextDisabled("no node matches");
   if (!chosen.empty()) {
     if (add_on_link_) {
       (void)actions::insert_on_link(state, chosen, add_at_, add_on_link_->node,
@@ -833,9 +876,8 @@ void Canvas::draw_group_node(EditorState& state, ImDrawList* draw, const NodeLay
   draw->AddRect(im(layout.rect.min), im(layout.rect.max), border, rounding, 0,
                 failed || selected ? 2.5f : 1.5f);
   const std::string name = group_name_of_item(layout.id).value_or(layout.id);
-  text(draw, {layout.header.min.x + 6 * z, layout.header.min.y + 4 * z}, z,
-       IM_COL32(245, 245, 245, 255),
-       (failed ? "! " : "") + name + " (" + std::to_string(layout.members.size()) + " nodes)");
+  title(draw, layout.header, z, IM_COL32(245, 245, 245, 255),
+        (failed ? "! " : "") + name + " (" + std::to_string(layout.members.size()) + " nodes)");
   const auto shown = state.shown_output();
   const Graph& graph = state.doc.graph();
   for (const auto& spot : layout.inputs) {
@@ -865,10 +907,8 @@ void Canvas::draw_group_node(EditorState& state, ImDrawList* draw, const NodeLay
   if (failed && ImGui::IsWindowHovered() && layout.rect.contains(vec(ImGui::GetMousePos()))) {
     std::string why;
     for (const auto& id : layout.members) {
-      std::vector<std::string> messages;
-      for (const auto& problem : state.doc.problems_of(id)) messages.push_back(problem.message);
       for (const auto& reason :
-           node_reasons(messages, feedback.error_node == id ? feedback.error : "")) {
+           node_advice(state.doc, id, feedback.error_node == id ? feedback.error : "")) {
         why += (why.empty() ? "" : "\n") + id + ": " + reason;
       }
     }

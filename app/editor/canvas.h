@@ -25,6 +25,7 @@
 
 #include "canvas_view.h"
 #include "editor_state.h"
+#include "mouse_press.h"
 
 #include <aquarelle/core/evaluator.h>
 #include <imgui.h>
@@ -70,13 +71,12 @@ class Canvas {
   const std::vector<NodeLayout>& layouts() const { return layouts_; }
   Vec2 origin() const { return origin_; }
   Vec2 size() const { return size_; }
-  // Fit all nodes into view on the next draw.
-  // `whole`: every node in view however small (View > Show whole graph, scripts); otherwise at
-  // a readable zoom.
-  void request_fit(bool whole = false) {
-    fit_requested_ = true;
-    fit_whole_ = whole;
-  }
+  // Fit every node into view on the next draw (`F`, View > Fit graph); titles stay legible.
+  // `whole` is kept for scripts: both fit every node.
+  void request_fit(bool /*whole*/ = false) { fit_requested_ = true; }
+  // The left press of this frame as it happened (place, double-click), from the window's
+  // callback or a scripted gesture; without it the canvas uses ImGui's own.
+  void set_press(std::optional<Press> press) { press_ = press; }
   // Opens the add-node menu at the canvas centre (menu bar, Tab).
   void request_add_menu(const std::string& filter = "") {
     add_menu_requested_ = true;
@@ -87,6 +87,13 @@ class Canvas {
   enum class Drag { kNone, kNodes, kLink, kBox, kPan, kBackdrop, kDot };
 
   void handle_mouse(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin);
+  void begin_press(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin,
+                   Vec2 mouse, bool twice);
+  void continue_drag(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin);
+  void continue_link(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 mouse,
+                     float reach, bool left_down);
+  void continue_box(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 mouse,
+                    bool left_down);
   void handle_keys(EditorState& state, const std::vector<KeyChord>& chords);
   void draw_minimap(EditorState& state, const Rect& bounds);
   void draw_rename(EditorState& state);
@@ -101,8 +108,13 @@ class Canvas {
                                       const std::vector<NodeLayout>& layouts, Vec2 screen) const;
   std::optional<size_t> backdrop_title_at(const EditorState& state, Vec2 screen) const;
   void text(ImDrawList* draw, Vec2 at, float zoom, ImU32 colour, const std::string& text) const;
+  // A node's title in its header: at least kMinTitlePixels tall, clipped to the header.
+  void title(ImDrawList* draw, const Rect& header, float zoom, ImU32 colour,
+             const std::string& label) const;
   Vec2 text_size(float zoom, const std::string& text) const;
   void draw_add_menu(EditorState& state);
+  // The add menu before anything is typed: every type, by category.
+  void draw_add_menu_categories(EditorState& state, std::string* chosen);
   void draw_node_menu(EditorState& state);
 
   Drag drag_ = Drag::kNone;
@@ -114,7 +126,7 @@ class Canvas {
   Position add_at_;
   std::string add_filter_;
   bool fit_requested_ = true;
-  bool fit_whole_ = false;
+  std::optional<Press> press_;  // this frame's left press as it happened (set_press)
   bool add_menu_requested_ = false;
   std::string requested_filter_;
   std::optional<LinkHit> add_on_link_;  // the add menu opened over a link: insert on it

@@ -42,6 +42,42 @@ std::vector<MouseFrame> press_drag_release(Vec2 from, Vec2 to) {
   return frames;
 }
 
+// A hand faster than the UI: the press at `from` is seen by the first frame only once the mouse
+// is already a third of the way to `to` (the window's callback reports where it happened).
+std::vector<MouseFrame> quick_press_drag_release(Vec2 from, Vec2 to) {
+  std::vector<MouseFrame> frames;
+  frames.push_back({from.x, from.y, false, 0});
+  for (int i = 2; i <= kMoveSteps; ++i) {
+    float t = static_cast<float>(i) / kMoveSteps;
+    frames.push_back({from.x + (to.x - from.x) * t, from.y + (to.y - from.y) * t, true, 0});
+  }
+  frames[1].press_after = 1.0f;
+  frames[1].press_x = from.x;
+  frames[1].press_y = from.y;
+  frames.push_back({to.x, to.y, false, 0});
+  frames.push_back({to.x, to.y, false, 0});
+  return frames;
+}
+
+// Two clicks 0.15 s apart on a loaded machine: `slow_frames` UI frames pass between them, so
+// the frames' own clock sees them far apart; the presses' times say otherwise.
+std::vector<MouseFrame> double_click(Vec2 at, int slow_frames) {
+  std::vector<MouseFrame> frames;
+  frames.push_back({at.x, at.y, false, 0});
+  MouseFrame press{at.x, at.y, true, 0};
+  press.press_x = at.x;
+  press.press_y = at.y;
+  press.press_after = 1.0f;
+  frames.push_back(press);
+  frames.push_back({at.x, at.y, false, 0});
+  for (int i = 0; i < slow_frames; ++i) frames.push_back({at.x, at.y, false, 0});
+  press.press_after = 0.15f;
+  frames.push_back(press);
+  frames.push_back({at.x, at.y, false, 0});
+  frames.push_back({at.x, at.y, false, 0});
+  return frames;
+}
+
 }  // namespace
 
 Result<std::vector<MouseFrame>> plan_gesture(const nlohmann::json& action,
@@ -53,7 +89,20 @@ Result<std::vector<MouseFrame>> plan_gesture(const nlohmann::json& action,
     if (!from) return from.error();
     auto to = spot(layouts, action.value("to", std::string()), true);
     if (!to) return to.error();
-    return press_drag_release(*from, *to);
+    return action.value("quick", false) ? quick_press_drag_release(*from, *to)
+                                        : press_drag_release(*from, *to);
+  }
+  if (kind == "double_click_link") {
+    // The middle of the link's curve into "to" (a symmetric cubic: halfway between its ends).
+    auto to_ref = PortRef::parse(action.value("to", std::string()));
+    if (!to_ref) return make_error("\"to\" must be \"node.input\"");
+    auto to = spot(layouts, to_ref->str(), true);
+    if (!to) return to.error();
+    auto from = action.contains("from") ? spot(layouts, action.value("from", std::string()), false)
+                                        : Result<Vec2>(make_error("needs \"from\": its source"));
+    if (!from) return from.error();
+    return double_click({(from->x + to->x) * 0.5f, (from->y + to->y) * 0.5f},
+                        action.value("slow_frames", 30));
   }
   if (kind == "click_output") {
     auto at = spot(layouts, action.value("output", std::string()), false);

@@ -152,7 +152,7 @@ std::vector<NodeLayout> layout_graph(const Graph& graph, const Registry& registr
   bool all_placed = std::all_of(graph.nodes.begin(), graph.nodes.end(), [&](const auto& entry) {
     return read_position(graph, entry.first).has_value();
   });
-  if (!all_placed) automatic = automatic_positions(graph);
+  if (!all_placed) automatic = automatic_positions(graph, &registry);
   std::vector<NodeLayout> out;
   out.reserve(graph.nodes.size());
   const std::vector<Group> groups = read_groups(graph);
@@ -215,6 +215,38 @@ Position free_spot(const Graph& graph, const Registry& registry, const std::stri
     at.y = hit->max.y + kGap + 1.0f;
   }
   return at;
+}
+
+Position clear_offset(const Graph& graph, const Registry& registry,
+                      const std::vector<std::string>& ids, Position offset) {
+  constexpr float kGap = 20.0f;
+  CanvasView identity;
+  identity.pan = {0, 0};
+  identity.zoom = 1.0f;
+  std::vector<Rect> others;
+  for (const auto& layout : layout_graph(graph, registry, identity, {0, 0})) {
+    others.push_back(layout.rect);
+  }
+  std::vector<Rect> moving;
+  for (const auto& id : ids) {
+    if (graph.nodes.count(id)) moving.push_back(node_rect(graph, registry, id));
+  }
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    float lowest_hit = -1e30f;
+    for (const Rect& rect : moving) {
+      Rect padded{{rect.min.x + offset.x - kGap, rect.min.y + offset.y - kGap},
+                  {rect.max.x + offset.x + kGap, rect.max.y + offset.y + kGap}};
+      for (const Rect& other : others) {
+        if (padded.overlaps(other)) {
+          // Move down so that this copy's top clears the node it hit.
+          lowest_hit = std::max(lowest_hit, other.max.y + kGap + 1.0f - rect.min.y);
+        }
+      }
+    }
+    if (lowest_hit <= -1e29f) return offset;
+    offset.y = std::max(offset.y + 1.0f, lowest_hit);
+  }
+  return offset;
 }
 
 float text_raster_size(float pixels) {

@@ -54,6 +54,8 @@ struct CanvasView {
   // point, when given, is kept in view), the rest a pan away.
   void fit(Rect bounds, Vec2 size, std::optional<Vec2> focus = std::nullopt,
            float min_zoom = kReadableZoom);
+  // `F`: every node in view (down to kMinZoom; titles stay legible, see title_pixels).
+  void fit_all(Rect bounds, Vec2 size) { fit(bounds, size, std::nullopt, kMinZoom); }
 };
 
 // Node geometry in canvas units.
@@ -112,6 +114,11 @@ Rect node_rect(const Graph& graph, const Registry& registry, const std::string& 
 // other node (with a small gap).
 Position free_spot(const Graph& graph, const Registry& registry, const std::string& type,
                    Position at);
+// The offset, starting from `offset` and moved further down as needed, at which copies of the
+// nodes `ids` land clear of every node of the graph (Ctrl+D: copies below the originals, but
+// never on the nodes already below them).
+Position clear_offset(const Graph& graph, const Registry& registry,
+                      const std::vector<std::string>& ids, Position offset);
 
 // Canvas text is drawn at kTextSize * zoom pixels from a font rasterised at one of
 // kTextRasterSizes: the smallest at least that large, so glyphs are only ever shrunk, by less
@@ -121,6 +128,12 @@ inline constexpr float kTextSize = 13.0f;
 inline constexpr float kTextRasterSizes[] = {4,  5,  6,  7,  8,  9,  10, 11, 12, 13,
                                              14, 16, 18, 20, 23, 26, 29, 33, 37, 42};
 float text_raster_size(float pixels);
+// Node titles are drawn at least this large (clipped to the node), so a graph fitted whole
+// keeps its labels; other canvas text vanishes below 4 pixels.
+inline constexpr float kMinTitlePixels = 9.0f;
+inline float title_pixels(float zoom) {
+  return kTextSize * zoom > kMinTitlePixels ? kTextSize * zoom : kMinTitlePixels;
+}
 
 // What a marked node's tooltip says: each reason once, in the editor's terms (a validation fix
 // written for the JSON file, such as `add "inputs": {...}`, becomes the canvas gesture), and

@@ -2,6 +2,8 @@
 // document.h for the shape of a change.
 #include "document.h"
 
+#include "canvas_view.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -125,9 +127,18 @@ std::string why_bad_param_value(const ParamInfo& param, const nlohmann::json& va
   return what + " has a type the editor does not know";
 }
 
-std::map<std::string, Position> automatic_positions(const Graph& graph) {
+std::map<std::string, Position> automatic_positions(const Graph& graph, const Registry* registry) {
   constexpr float kColumnStep = 230.0f;
-  constexpr float kRowStep = 180.0f;  // fits a node with six ports
+  float kRowStep = 180.0f;  // fits a node with six ports
+  if (registry != nullptr) {
+    for (const auto& [id, node] : graph.nodes) {
+      if (const NodeType* type = registry->find(node.type)) {
+        const size_t rows = std::max(type->inputs.size(), type->outputs.size());
+        kRowStep = std::max(kRowStep, NodeMetrics::kHeader + rows * NodeMetrics::kRow +
+                                          NodeMetrics::kFooter + 30.0f);
+      }
+    }
+  }
   // Column = longest path from a source, so the layout flows left to right.
   std::map<std::string, int> depth;
   std::set<std::string> visiting;
@@ -169,12 +180,12 @@ std::map<std::string, Position> automatic_positions(const Graph& graph) {
   return out;
 }
 
-std::vector<std::string> place_unplaced_nodes(Graph& graph) {
+std::vector<std::string> place_unplaced_nodes(Graph& graph, const Registry* registry) {
   std::map<std::string, Position> automatic;
   std::vector<std::string> placed;
   for (const auto& [id, node] : graph.nodes) {
     if (read_position(graph, id)) continue;
-    if (automatic.empty()) automatic = automatic_positions(graph);
+    if (automatic.empty()) automatic = automatic_positions(graph, registry);
     write_position(graph, id, automatic[id]);
     placed.push_back(id);
   }
@@ -242,7 +253,7 @@ Status Document::open(const std::string& path) {
   // A graph written by hand has no positions: place them once, so the canvas does not
   // rearrange itself while links are edited. Not an edit: the file is not marked changed,
   // and saving it unedited leaves them out.
-  auto_placed_ = place_unplaced_nodes(graph_);
+  auto_placed_ = place_unplaced_nodes(graph_, &registry_);
   path_ = path;
   std::error_code ignored;
   disk_time_ = fs::last_write_time(path, ignored);
@@ -344,7 +355,7 @@ Status Document::recover() {
     return make_error("the autosave '" + side + "' is not valid JSON; delete it");
   }
   ReadResult read = read_graph_text(text.str(), registry_, side);
-  place_unplaced_nodes(read.graph);
+  place_unplaced_nodes(read.graph, &registry_);
   Change change;
   change.label = "recover autosave";
   std::set<std::string> ids;
@@ -504,7 +515,28 @@ Result<std::string> Document::add_node(const std::string& type, Position at,
   return id;
 }
 
-Status Document::remove_nodes(const std::vector<std::string>& ids) {
+std::optional<PortRef> Document::source_around(PortRef read,
+                                               const std::set<std::string>& doomed) const {
+  for (size_t step = 0; step <= doomed.size(); ++step) {
+    auto node = graph_.nodes.find(read.node);
+    if (node == graph_.nodes.end()) return std::nullopt;
+    const NodeType* type = registry_.find(node->second.type);
+    if (type == nullptr || type->inputs.empty()) return std::nullopt;
+    auto out = std::find_if(type->outputs.begin(), type->outputs.end(),
+                            [&](const PortInfo& port) { return port.name == read.port; });
+    const PortInfo& first = type->inputs.front();
+    auto link = node->second.inputs.find(first.name);
+    if (out == type->outputs.end() || first.type != out->type ||
+        link == node->second.inputs.end()) {
+      return std::nullopt;
+    }
+    if (!doomed.count(link->second.node)) return link->second;
+    read = link->second;  // a chain of deleted nodes: around all of them
+  }
+  return std::nullopt;
+}
+
+Status Document::remove_nodes(const std::vector<std::string>& ids, bool reconnect) {
   std::set<std::string> doomed;
   for (const auto& id : ids) {
     if (!graph_.nodes.count(id)) return make_error("cannot delete node '" + id + "': no such node");
@@ -521,8 +553,22 @@ Status Document::remove_nodes(const std::vector<std::string>& ids) {
   for (const auto& [id, node] : graph_.nodes) {
     if (doomed.count(id)) continue;
     Node kept = node;
-    std::erase_if(kept.inputs, [&](const auto& link) { return doomed.count(link.second.node); });
-    if (kept.inputs.size() != node.inputs.size()) {
+    bool changed = false;
+    for (auto it = kept.inputs.begin(); it != kept.inputs.end();) {
+      if (!doomed.count(it->second.node)) {
+        ++it;
+        continue;
+      }
+      changed = true;
+      const auto around = reconnect ? source_around(it->second, doomed) : std::nullopt;
+      if (around) {
+        it->second = *around;
+        ++it;
+      } else {
+        it = kept.inputs.erase(it);
+      }
+    }
+    if (changed) {
       change.before[id] = state_of(id);
       change.after[id] = NodeState{kept, read_position(graph_, id)};
     }
@@ -543,7 +589,10 @@ Status Document::remove_nodes(const std::vector<std::string>& ids) {
         nlohmann::json{{"groups", edited.editor.value("groups", nlohmann::json())}};
   }
   change.output_before = change.output_after = graph_.output;
-  if (graph_.output && doomed.count(graph_.output->node)) change.output_after.reset();
+  if (graph_.output && doomed.count(graph_.output->node)) {
+    change.output_after =
+        reconnect ? source_around(*graph_.output, doomed) : std::optional<PortRef>();
+  }
   change.settings_before = change.settings_after = graph_.settings;
   commit(std::move(change));
   return Ok{};

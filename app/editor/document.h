@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -115,7 +116,10 @@ class Document {
   Result<std::string> add_node(const std::string& type, Position at,
                                const std::string& wanted_id = "");
   // Removes the nodes and every link into them; the output is cleared if it named one.
-  Status remove_nodes(const std::vector<std::string>& ids);
+  // `reconnect` (Del in the canvas, as Nuke and Blender do): a reader of a deleted node is
+  // linked to what fed the deleted node's first input, when that carries the port type it read
+  // (the graph's output too); one undo step.
+  Status remove_nodes(const std::vector<std::string>& ids, bool reconnect = false);
   // Copies the nodes with new ids, their parameters, the links among them and the links into
   // them from outside; the copies sit at `offset` from the originals. Returns the new ids.
   Result<std::vector<std::string>> duplicate_nodes(const std::vector<std::string>& ids,
@@ -206,6 +210,8 @@ class Document {
   Status rename_group(const std::string& name, const std::string& new_name);
 
  private:
+  // What feeds a reader of `read` once the nodes in `doomed` are gone (see remove_nodes).
+  std::optional<PortRef> source_around(PortRef read, const std::set<std::string>& doomed) const;
   NodeState state_of(const std::string& id) const;
   void apply_side(const std::map<std::string, NodeState>& side, const std::optional<PortRef>& out,
                   const Settings& settings);
@@ -258,7 +264,10 @@ void write_position(Graph& graph, const std::string& id, const std::optional<Pos
 
 // Positions for nodes in columns by their longest path from a source (for graphs written by
 // hand), and writing them for the nodes that have none.
-std::map<std::string, Position> automatic_positions(const Graph& graph);
+// With `registry`, rows are spaced for the tallest node (a node with many ports, cel_light's
+// eight inputs, is taller than the default row step).
+std::map<std::string, Position> automatic_positions(const Graph& graph,
+                                                    const Registry* registry = nullptr);
 struct Backdrop {
   std::string label;
   Position at;  // top-left, canvas units
@@ -324,7 +333,7 @@ std::vector<std::string> expand_group_items(const Graph& graph,
                                             const std::vector<std::string>& ids);
 
 // Returns the ids it placed.
-std::vector<std::string> place_unplaced_nodes(Graph& graph);
+std::vector<std::string> place_unplaced_nodes(Graph& graph, const Registry* registry = nullptr);
 
 // A float parameter value that came from a float (an ImGui slider or field) as the shortest
 // decimal that reads back to the same float: 0.30000001192092896 → 0.3. Other values as given.

@@ -556,7 +556,8 @@ Status Document::remove_reroute(const std::string& node, const std::string& inpu
 Status Document::auto_layout() {
   if (graph_.nodes.empty()) return make_error("nothing to lay out: the graph is empty");
   Graph edited = graph_;
-  for (const auto& [id, at] : automatic_positions(graph_)) write_position(edited, id, at);
+  for (const auto& [id, at] : automatic_positions(graph_, &registry_))
+    write_position(edited, id, at);
   // Collapsed groups go where their nodes went.
   auto groups = read_groups(edited);
   for (auto& group : groups) group.position = members_top_left(edited, registry_, group.nodes);

@@ -3,6 +3,8 @@
 #include "editor_actions.h"
 
 #include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <set>
 
 namespace aq::editor {
@@ -119,7 +121,12 @@ Status delete_nodes(EditorState& state, const std::vector<std::string>& ids) {
 }
 
 Status delete_selection(EditorState& state) {
-  return delete_nodes(state, selected_nodes(state));
+  // Del reconnects the chain around what it deletes (Nuke, Blender).
+  const std::vector<std::string> ids = selected_nodes(state);
+  Status removed = state.doc.remove_nodes(ids, /*reconnect=*/true);
+  report(state, removed, "deleted " + std::to_string(ids.size()) + " node(s), chain reconnected");
+  forget_missing(state);
+  return removed;
 }
 
 Status duplicate_selection(EditorState& state) {
@@ -134,7 +141,8 @@ Status duplicate_selection(EditorState& state) {
     top = std::min(top, rect.min.y);
     bottom = std::max(bottom, rect.max.y);
   }
-  const Position offset{30.0f, bottom > top ? bottom - top + 30.0f : 40.0f};
+  const Position offset = clear_offset(graph, state.doc.registry(), selected_nodes(state),
+                                       {30.0f, bottom > top ? bottom - top + 30.0f : 40.0f});
   auto copies = state.doc.duplicate_nodes(selected_nodes(state), offset);
   if (!copies) {
     report(state, copies.error(), "");
@@ -193,6 +201,7 @@ Result<std::string> add_node_at_cursor(EditorState& state, const std::string& ty
 
 Result<std::string> insert_on_link(EditorState& state, const std::string& type, Position at,
                                    const std::string& to_node, const std::string& to_input) {
+  at = free_spot(state.doc.graph(), state.doc.registry(), type, at);  // never on another node
   auto inserted = state.doc.insert_node_on_link(type, at, to_node, to_input);
   if (inserted) {
     state.selection = {*inserted};
@@ -201,6 +210,51 @@ Result<std::string> insert_on_link(EditorState& state, const std::string& type, 
     report(state, inserted.error(), "");
   }
   return inserted;
+}
+
+Result<std::vector<std::string>> drop_files(EditorState& state,
+                                            const std::vector<std::string>& paths, Position at) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> added;
+  std::string skipped;
+  for (const std::string& path : paths) {
+    std::string extension = fs::path(path).extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    static const std::set<std::string> kImages = {".png",  ".jpg", ".jpeg", ".exr", ".tif",
+                                                  ".tiff", ".hdr", ".bmp",  ".tga"};
+    if (!kImages.count(extension)) {
+      skipped += (skipped.empty() ? "" : ", ") + fs::path(path).filename().string();
+      continue;
+    }
+    std::string stored = path;
+    if (!state.doc.path().empty()) {  // relative to the graph's folder when under it
+      std::error_code error;
+      const fs::path base = fs::absolute(state.doc.path(), error).parent_path();
+      const fs::path relative = fs::relative(fs::absolute(path, error), base, error);
+      if (!error && !relative.empty() && relative.string().rfind("..", 0) != 0) {
+        stored = relative.string();
+      }
+    }
+    const Position spot = free_spot(state.doc.graph(), state.doc.registry(), "read", at);
+    auto id = state.doc.add_node("read", spot);
+    if (!id) {
+      report(state, id.error(), "");
+      return id.error();
+    }
+    (void)state.doc.set_param(*id, "path", stored);
+    added.push_back(*id);
+  }
+  if (added.empty()) {
+    const Error none = make_error("nothing to add: " + (skipped.empty() ? "no files" : skipped) +
+                                  " (drop image files: png, jpg, exr, tif, hdr, bmp, tga)");
+    report(state, none, "");
+    return none;
+  }
+  state.selection = {added.begin(), added.end()};
+  report(state, Ok{},
+         "added " + std::to_string(added.size()) + " read node(s)" +
+             (skipped.empty() ? "" : "; not images: " + skipped));
+  return added;
 }
 
 std::string copy_selection(EditorState& state) {

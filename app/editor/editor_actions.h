@@ -70,6 +70,12 @@ void cycle_output(EditorState& state, int step);
 // Changes what the graph renders (`output` in the file).
 Status set_graph_output(EditorState& state, const PortRef& output);
 
+// Files dropped on the window: each image file (png, jpg, exr, tif, hdr, bmp, tga) becomes a
+// `read` node at `at` (stacked clear of other nodes), its path relative to the graph's folder
+// when it lies under it; the new nodes are selected. Refused when none is an image.
+Result<std::vector<std::string>> drop_files(EditorState& state,
+                                            const std::vector<std::string>& paths, Position at);
+
 bool undo(EditorState& state);
 bool redo(EditorState& state);
 Status save(EditorState& state);

@@ -3,6 +3,7 @@
 
 #include "canvas_gestures.h"
 #include "editor_actions.h"
+#include "param_widgets.h"
 #include "script.h"
 
 #include <aquarelle/core/image.h>
@@ -30,7 +31,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kAutosaveSeconds = 30.0;
+// The command line's exit status for a problem of the machine (no display, no GL 4.5), as
+// every command uses it: 0 ok, 1 bad input, 2 environment.
+constexpr int kExitEnvironment = 2;
 constexpr double kHotReloadPollSeconds = 1.0;
 constexpr int kFramesBeforeScreenshot = 3;  // ImGui settles its layout over a couple of frames
 
@@ -50,6 +53,36 @@ void on_key(GLFWwindow*, int key, int, int action, int mods) {
   if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
   key_queue().push_back({key, (mods & GLFW_MOD_CONTROL) != 0, (mods & GLFW_MOD_SHIFT) != 0,
                          (mods & GLFW_MOD_ALT) != 0});
+}
+
+// Left presses as GLFW reports them (time, place), for the canvas: a UI frame sees only where
+// the mouse is when it starts (mouse_press.h).
+struct RawPress {
+  double time;
+  float x;
+  float y;
+};
+std::vector<RawPress>& press_queue() {
+  static std::vector<RawPress> queue;
+  return queue;
+}
+
+void on_mouse_button(GLFWwindow* window, int button, int action, int) {
+  if (button != GLFW_MOUSE_BUTTON_LEFT || action != GLFW_PRESS) return;
+  double x = 0;
+  double y = 0;
+  glfwGetCursorPos(window, &x, &y);
+  press_queue().push_back({glfwGetTime(), static_cast<float>(x), static_cast<float>(y)});
+}
+
+// Files dropped on the window, taken by the next frame.
+std::vector<std::string>& drop_queue() {
+  static std::vector<std::string> queue;
+  return queue;
+}
+
+void on_drop(GLFWwindow*, int count, const char** paths) {
+  for (int i = 0; i < count; ++i) drop_queue().emplace_back(paths[i]);
 }
 
 // "ctrl+shift+s" → the chord; nullopt for a name it does not know.
@@ -121,7 +154,12 @@ std::vector<fs::path> shader_source_folders() {
 }
 
 EditorApp::EditorApp(const Registry& registry, EditorOptions options)
-    : registry_(registry), options_(std::move(options)), document_(registry), state_(document_) {}
+    : registry_(registry),
+      options_(std::move(options)),
+      document_(registry),
+      state_(document_),
+      // Scripts and tests never touch the user's list.
+      recent_(options_.script.empty() && !options_.quit ? default_recent_store() : "") {}
 
 EditorApp::~EditorApp() {
   viewer_.reset();  // joins the evaluation thread; GL objects go while the contexts exist
@@ -137,14 +175,18 @@ EditorApp::~EditorApp() {
 }
 
 Status EditorApp::create_window() {
+  // Without a display GLFW's own report would be a second line: it goes into the one message.
+  glfwSetErrorCallback(nullptr);
+  if (!glfwInit()) {
+    const char* why = nullptr;
+    glfwGetError(&why);
+    return make_error(std::string("no display to open the editor window on (") +
+                      (why != nullptr ? why : "GLFW could not start") +
+                      "): run it in a desktop session, or as `xvfb-run -a aquarelle edit ...`");
+  }
   glfwSetErrorCallback([](int code, const char* message) {
     std::fprintf(stderr, "aquarelle edit: GLFW error %d: %s\n", code, message);
   });
-  if (!glfwInit()) {
-    return make_error(
-        "cannot start GLFW: is there a display? (run under a desktop session, or "
-        "headless as `xvfb-run -a aquarelle edit ...`)");
-  }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -164,7 +206,9 @@ Status EditorApp::create_window() {
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini dropped in the user's folder
   ImGui::StyleColorsDark();
   load_canvas_fonts();
-  glfwSetKeyCallback(window_, &on_key);  // ImGui's backend chains to it
+  glfwSetKeyCallback(window_, &on_key);  // ImGui's backend chains to these
+  glfwSetMouseButtonCallback(window_, &on_mouse_button);
+  glfwSetDropCallback(window_, &on_drop);
   ImGui_ImplGlfw_InitForOpenGL(window_, true);
   ImGui_ImplOpenGL3_Init("#version 450 core");
   // The evaluation thread's context: an invisible window's, sharing textures with this one.
@@ -223,38 +267,7 @@ void EditorApp::load_canvas_fonts() {
   canvas_.set_fonts(std::move(fonts));
 }
 
-int EditorApp::run() {
-  if (!options_.graph.empty()) {
-    std::error_code error;
-    if (fs::exists(options_.graph, error)) {
-      Status opened = actions::open(state_, options_.graph);
-      if (!opened) {
-        std::fprintf(stderr, "aquarelle edit: %s\n", opened.message().c_str());
-        return 1;
-      }
-      for (const auto& problem : document_.problems()) {
-        std::fprintf(stderr, "aquarelle edit: %s\n", format_problem(problem).c_str());
-      }
-    } else {
-      document_.new_graph(options_.graph);  // a new file, written on the first save
-    }
-  }
-  state_.frame = document_.graph().settings.first_frame;
-  ask_recovery_ = options_.script.empty() && document_.has_recovery();
-
-  if (Status made = create_window(); !made) {
-    std::fprintf(stderr, "aquarelle edit: %s\n", made.message().c_str());
-    return 1;
-  }
-
-  if (!options_.script.empty()) {
-    auto read = read_script(options_.script);
-    if (!read) {
-      std::fprintf(stderr, "aquarelle edit: %s\n", read.message().c_str());
-      return 1;
-    }
-    runner_ = std::make_unique<ScriptRunner>(*read);
-  }
+ScriptHooks EditorApp::script_hooks() {
   ScriptHooks hooks;
   hooks.fit = [this](bool whole) { canvas_.request_fit(whole); };
   hooks.add_menu = [this](const std::string& filter) { canvas_.request_add_menu(filter); };
@@ -267,6 +280,12 @@ int EditorApp::run() {
   };
   hooks.view = [this](const nlohmann::json& action) -> Status {
     if (action.contains("backdrop")) canvas_backdrop_ = action.value("backdrop", false);
+    if (action.contains("split")) {  // the splitter dragged by this many pixels
+      if (!action["split"].is_number()) throw std::invalid_argument("\"split\" is pixels");
+      canvas_share_ = split_after_drag(canvas_share_, action["split"].get<float>(),
+                                       ImGui::GetMainViewport()->WorkSize.x);
+      state_.status = "canvas " + std::to_string(static_cast<int>(canvas_share_ * 100)) + "%";
+    }
     if (action.contains("wipe")) {
       if (!action["wipe"].is_number()) throw std::invalid_argument("\"wipe\" is a fraction 0..1");
       viewer_->set_wipe(action["wipe"].get<float>());
@@ -286,6 +305,57 @@ int EditorApp::run() {
   hooks.gesture = [this](const nlohmann::json& action) {
     return plan_gesture(action, canvas_.layouts(), canvas_.origin(), canvas_.size());
   };
+  hooks.playback_fps = [this] { return playback_rate_.fps(); };
+  return hooks;
+}
+
+// The graph named on the command line (a new file when it does not exist yet), and what the
+// user must know at start (failed plugins); false when the graph cannot be read.
+bool EditorApp::open_initial_graph() {
+  if (!options_.graph.empty()) {
+    std::error_code error;
+    if (fs::exists(options_.graph, error)) {
+      Status opened = actions::open(state_, options_.graph);
+      if (!opened) {
+        std::fprintf(stderr, "aquarelle edit: %s\n", opened.message().c_str());
+        return false;
+      }
+      for (const auto& problem : document_.problems()) {
+        std::fprintf(stderr, "aquarelle edit: %s\n", format_problem(problem).c_str());
+      }
+    } else {
+      document_.new_graph(options_.graph);  // a new file, written on the first save
+    }
+  }
+  state_.frame = document_.graph().settings.first_frame;
+  if (!options_.refused_plugins.empty()) {
+    actions::report(state_,
+                    make_error(std::to_string(options_.refused_plugins.size()) +
+                               " plugin(s) failed to load: " + options_.refused_plugins.front() +
+                               " (menu Plugins lists them)"),
+                    "");
+  }
+  return true;
+}
+
+int EditorApp::run() {
+  if (!open_initial_graph()) return 1;
+  ask_recovery_ = options_.script.empty() && document_.has_recovery();
+
+  if (Status made = create_window(); !made) {
+    std::fprintf(stderr, "aquarelle edit: %s\n", made.message().c_str());
+    return kExitEnvironment;  // no display or no GL 4.5: the machine, not the user's input
+  }
+
+  if (!options_.script.empty()) {
+    auto read = read_script(options_.script);
+    if (!read) {
+      std::fprintf(stderr, "aquarelle edit: %s\n", read.message().c_str());
+      return 1;
+    }
+    runner_ = std::make_unique<ScriptRunner>(*read);
+  }
+  const ScriptHooks hooks = script_hooks();
 
   int exit_status = 0;
   int frame_index = 0;
@@ -316,6 +386,7 @@ int EditorApp::run() {
 
     const bool evaluating = viewer_->busy();
     frame();
+    track_playback(now);
 
     // The script starts once the first frame has laid out the canvas, then advances a step per
     // frame so its mouse gestures play as input to the following frames.
@@ -350,10 +421,10 @@ int EditorApp::run() {
     if (frame_index > 1) frame_stats_.add((frame_end - last_frame_start) * 1000.0, evaluating);
     last_frame_start = frame_end;
 
-    if (!scripted && now - last_autosave_ > kAutosaveSeconds) {
-      last_autosave_ = now;
+    if (autosave_timer_.due(now, document_.revision(), document_.in_gesture())) {
       auto saved = document_.autosave();
       if (!saved) actions::report(state_, saved.error(), "");
+      autosave_timer_.written(now, document_.revision());
     }
     if (hot_reload_ && now - last_reload_poll_ > kHotReloadPollSeconds) {
       last_reload_poll_ = now;
@@ -365,6 +436,16 @@ int EditorApp::run() {
     std::fprintf(stderr, "aquarelle edit: viewer: %s\n", viewer_->error().c_str());
   }
   return exit_status;
+}
+
+void EditorApp::track_playback(double now) {
+  if (!state_.playing) {
+    was_playing_ = false;
+    return;
+  }
+  if (!was_playing_) playback_rate_.reset();
+  was_playing_ = true;
+  if (viewer_->settled()) playback_rate_.shown(now, viewer_->shown_frame());
 }
 
 void EditorApp::advance_time(double seconds) {
@@ -410,6 +491,9 @@ void EditorApp::frame() {
 
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  std::optional<Press> press;
+  for (const RawPress& raw : press_queue()) press = press_tracker_.press(raw.time, raw.x, raw.y);
+  press_queue().clear();
   if (!mouse_frames_.empty()) {
     // A scripted gesture stands in for the real mouse this frame.
     ImGuiIO& io = ImGui::GetIO();
@@ -418,7 +502,24 @@ void EditorApp::frame() {
     io.MouseDown[0] = input.left_down;
     io.MouseDown[1] = io.MouseDown[2] = false;
     io.MouseWheel = input.wheel;
+    if (input.press_after >= 0) {  // a press as it happened, on the script's own clock
+      scripted_press_clock_ += input.press_after;
+      press = press_tracker_.press(scripted_press_clock_, input.press_x, input.press_y);
+    }
     mouse_frames_.erase(mouse_frames_.begin());
+  }
+  canvas_.set_press(press);
+  if (!drop_queue().empty()) {  // dropped image files become read nodes at the canvas centre
+    const Vec2 centre{canvas_.origin().x + canvas_.size().x * 0.5f,
+                      canvas_.origin().y + canvas_.size().y * 0.5f};
+    const Vec2 at = state_.canvas.to_canvas(canvas_.origin(), centre);
+    (void)actions::drop_files(state_, drop_queue(), {at.x, at.y});
+    drop_queue().clear();
+  }
+  if (const std::string& path = document_.path();
+      !path.empty() && path != recent_recorded_ && fs::exists(path)) {
+    recent_.add(path);  // opened or saved under this name
+    recent_recorded_ = path;
   }
   ImGui::NewFrame();
   chords_ = std::move(key_queue());
@@ -436,7 +537,8 @@ void EditorApp::frame() {
   ImGui::PopStyleVar();
   const float bar_height = ImGui::GetFrameHeightWithSpacing() * 2.0f + 4.0f;
   ImVec2 available = ImGui::GetContentRegionAvail();
-  float canvas_width = std::floor(available.x * 0.56f);
+  constexpr float kSplitter = 6.0f;  // the bar between canvas and viewer, dragged to resize
+  float canvas_width = std::floor((available.x - kSplitter) * canvas_share_);
   float body_height = available.y - bar_height;
 
   ImGui::BeginChild("##canvas", ImVec2(canvas_width, body_height), true,
@@ -449,7 +551,16 @@ void EditorApp::frame() {
   }
   canvas_.draw(state_, feedback_, chords_);
   ImGui::EndChild();
-  ImGui::SameLine();
+  ImGui::SameLine(0, 0);
+  ImGui::InvisibleButton("##split", ImVec2(kSplitter, body_height));
+  if (ImGui::IsItemHovered() || ImGui::IsItemActive()) {
+    ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
+  }
+  if (ImGui::IsItemActive()) {
+    canvas_share_ =
+        split_after_drag(canvas_share_, ImGui::GetIO().MouseDelta.x, available.x - kSplitter);
+  }
+  ImGui::SameLine(0, 0);
   ImGui::BeginGroup();
   ImGui::BeginChild("##viewer", ImVec2(0, std::floor(body_height * 0.58f)), true,
                     ImGuiWindowFlags_NoScrollbar);
@@ -536,6 +647,12 @@ void EditorApp::draw_menu_bar() {
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("New", "Ctrl+N")) request(Pending::kNew);
     if (ImGui::MenuItem("Open...", "Ctrl+O")) request(Pending::kOpen);
+    if (ImGui::BeginMenu("Open Recent", !recent_.paths().empty())) {
+      for (const std::string& path : recent_.paths()) {
+        if (ImGui::MenuItem(path.c_str())) open_recent(path);
+      }
+      ImGui::EndMenu();
+    }
     if (ImGui::MenuItem("Save", "Ctrl+S")) save_or_save_as();
     if (ImGui::MenuItem("Save As...", "Ctrl+Shift+S")) {
       file_dialog_.open("Save graph as", document_.path());
@@ -600,6 +717,11 @@ void EditorApp::draw_menu_bar() {
     }
     ImGui::EndMenu();
   }
+  if (!options_.refused_plugins.empty() && ImGui::BeginMenu("Plugins (failed)")) {
+    ImGui::TextDisabled("these plugin files could not be loaded; their nodes are missing:");
+    for (const auto& refused : options_.refused_plugins) ImGui::TextUnformatted(refused.c_str());
+    ImGui::EndMenu();
+  }
   ImGui::EndMainMenuBar();
 }
 
@@ -616,18 +738,26 @@ void EditorApp::draw_time_bar() {
   int frame = state_.frame;
   double seconds = (state_.frame - settings.first_frame) / std::max(settings.fps, 1e-3);
   const double ui_ms = frame_stats_.recent_ms();
-  char timing[160];
-  std::snprintf(
-      timing, sizeof timing, "t = %.2f s  %.0f fps  eval %.1f ms%s  UI %.1f ms (%.0f fps)", seconds,
-      settings.fps, viewer_->last_evaluation_ms(), viewer_->showing_draft() ? " (draft)" : "",
-      ui_ms, ui_ms > 0 ? 1000.0 / ui_ms : 0.0);
+  // The rate playback reaches beside the graph's own; the UI's redraw time without a rate
+  // (an idle UI redraws on demand, its rate says nothing about playback).
+  char rate[64];
+  if (state_.playing || playback_rate_.fps() > 0) {
+    std::snprintf(rate, sizeof rate, "%s %.1f of %g fps", state_.playing ? "playing" : "played",
+                  playback_rate_.fps(), settings.fps);
+  } else {
+    std::snprintf(rate, sizeof rate, "%g fps", settings.fps);
+  }
+  char timing[200];
+  std::snprintf(timing, sizeof timing, "t = %.2f s  %s  eval %.1f ms%s  UI %.1f ms", seconds, rate,
+                viewer_->last_evaluation_ms(), viewer_->showing_draft() ? " (proxy)" : "", ui_ms);
   // The slider takes what the timing text leaves, so the text is never cut by the window edge.
   ImGui::SetNextItemWidth(std::max(ImGui::GetContentRegionAvail().x -
                                        ImGui::CalcTextSize(timing).x -
                                        2 * ImGui::GetStyle().ItemSpacing.x,
                                    80.0f));
-  if (ImGui::SliderInt("##frame", &frame, settings.first_frame,
-                       std::max(settings.first_frame, settings.last_frame), "frame %d")) {
+  // Guarded: a graph may declare frames beyond what ImGui's slider holds (it would abort).
+  if (slider_int_guarded("##frame", &frame, settings.first_frame,
+                         std::max(settings.first_frame, settings.last_frame), "frame %d")) {
     actions::set_frame(state_, frame);
   }
   ImGui::SameLine();
@@ -661,6 +791,11 @@ void EditorApp::request(Pending pending) {
   perform(pending);
 }
 
+void EditorApp::open_recent(const std::string& path) {
+  recent_target_ = path;
+  request(Pending::kOpenRecent);
+}
+
 void EditorApp::perform(Pending pending) {
   switch (pending) {
     case Pending::kQuit:
@@ -672,6 +807,9 @@ void EditorApp::perform(Pending pending) {
       break;
     case Pending::kOpen:
       file_dialog_.open("Open graph", document_.path());
+      break;
+    case Pending::kOpenRecent:
+      if (actions::open(state_, recent_target_)) canvas_.request_fit();
       break;
     case Pending::kNone:
       break;

@@ -7,12 +7,17 @@
 //          ─► ImGui: menus, canvas, viewer, parameters, time bar ─► render ─► [screenshot] ─► swap
 #pragma once
 
+#include "autosave_timer.h"
 #include "canvas.h"
 #include "document.h"
 #include "editor_state.h"
 #include "file_dialog.h"
 #include "frame_stats.h"
+#include "mouse_press.h"
+#include "pane_split.h"
 #include "param_panel.h"
+#include "playback_rate.h"
+#include "recent_files.h"
 #include "script.h"
 #include "viewer.h"
 
@@ -38,6 +43,8 @@ struct EditorOptions {
   bool quit = false;       // exit after the screenshot (or the script)
   int width = 1280;
   int height = 800;
+  // Plugins that failed to load ("FILE: reason"): shown in the editor, not only on the terminal.
+  std::vector<std::string> refused_plugins;
 };
 
 class EditorApp {
@@ -51,9 +58,10 @@ class EditorApp {
   int run();
 
  private:
-  enum class Pending { kNone, kQuit, kNew, kOpen };
+  enum class Pending { kNone, kQuit, kNew, kOpen, kOpenRecent };
 
   Status create_window();
+  bool open_initial_graph();
   void frame();
   void draw_menu_bar();
   void draw_time_bar();
@@ -61,11 +69,16 @@ class EditorApp {
   void handle_shortcuts();
   void load_canvas_fonts();
   void advance_time(double seconds);
+  // Feeds the reached playback rate the graph frame on screen (every UI frame).
+  void track_playback(double now);
+  ScriptHooks script_hooks();
   void update_feedback();
   void poll_hot_reload();
   // Runs `pending` now, or asks first when there are unsaved changes.
   void request(Pending pending);
   void perform(Pending pending);
+  // File > Open Recent: opens `path` once unsaved changes are settled.
+  void open_recent(const std::string& path);
   void save_or_save_as();
   void update_title();
   Status write_screenshot(const std::string& path);
@@ -96,7 +109,16 @@ class EditorApp {
   std::string replace_path_;  // Save As named an existing file: asking before replacing it
   bool running_ = true;
   double play_accumulator_ = 0;
-  double last_autosave_ = 0;
+  float canvas_share_ = kDefaultCanvasShare;  // of the width; the splitter moves it
+  PressTracker press_tracker_;                // double-clicks from the presses' own times
+  double scripted_press_clock_ = 1000.0;
+  RecentFiles recent_;
+  std::string recent_recorded_;
+  std::string recent_target_;   // what Open Recent opens (Pending::kOpenRecent)  // the document
+                                // path last added to recent_
+  PlaybackRate playback_rate_;  // the frame rate playback reaches
+  bool was_playing_ = false;
+  AutosaveTimer autosave_timer_;  // after each completed edit, debounced
   std::string title_;
 
   bool hot_reload_ = false;

@@ -17,10 +17,12 @@ int run_editor(const aq::editor::EditorOptions& options) {
   for (const auto& refused : report.refused) {
     std::fprintf(stderr, "aquarelle edit: plugin refused: %s\n", refused.c_str());
   }
+  aq::editor::EditorOptions shown = options;
+  shown.refused_plugins = report.refused;  // the editor shows them too
   // The app holds GL objects from plugins: it must go before the plugin libraries unload.
   int status = 0;
   {
-    aq::editor::EditorApp app(registry, options);
+    aq::editor::EditorApp app(registry, shown);
     status = app.run();
   }
   return status;

@@ -45,3 +45,18 @@ bool evaluate_as_draft(const DraftInputs& in) {
 }
 
 }  // namespace aq::editor
+
+namespace aq::editor {
+
+std::string proxy_quality(const DraftInputs& in) {
+  if (!in.gesture && !in.playing) return "";  // idle: the full picture
+  if (in.graph_is_draft || in.graph_quality == "draft") return "";
+  if (in.graph_quality == "preview") return evaluate_as_draft(in) ? "draft" : "";
+  // "final" (or a name the evaluator reads as final): in full while it keeps up (a fast graph
+  // is never reduced), else the preview proxy, else draft.
+  if (!evaluate_as_draft(in)) return "";
+  const double budget = in.playing ? 1000.0 / (in.fps > 0 ? in.fps : 24.0) : in.gesture_budget_ms;
+  return in.last_preview_ms > budget ? "draft" : "preview";
+}
+
+}  // namespace aq::editor

@@ -34,7 +34,17 @@ struct DraftInputs {
   double last_full_ms = 0;      // the last evaluation at the graph's own quality; 0 = none yet
   bool graph_is_draft = false;  // the graph's own quality is "draft" already
   double gesture_budget_ms = kGestureBudgetMs;
+  // The graph's own quality ("final" by default) and the last "preview" proxy's cost (0: none).
+  std::string graph_quality = "final";
+  double last_preview_ms = 0;
 };
 bool evaluate_as_draft(const DraftInputs& inputs);
+
+// The quality the viewer evaluates at while the user drags a value or plays, as Nuke and
+// Blender do: a graph at "final" quality whose full evaluation cannot keep up (see
+// evaluate_as_draft) is shown as a "preview" proxy during the interaction ("draft" when even
+// the preview cannot keep up), and in full once the user lets go; a "preview" graph drafts
+// only when it cannot keep up. A graph that keeps up is never reduced. "" is the graph's own.
+std::string proxy_quality(const DraftInputs& inputs);
 
 }  // namespace aq::editor

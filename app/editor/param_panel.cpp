@@ -2,6 +2,8 @@
 #include "param_panel.h"
 
 #include "editor_actions.h"
+#include "node_advice.h"
+#include "param_widgets.h"
 
 #include <aquarelle/core/graph_io.h>
 #include <imgui.h>
@@ -101,11 +103,10 @@ void ParamPanel::draw_node(EditorState& state, const std::string& id,
                         timing->second.gpu_ms, timing->second.cpu_ms);
   }
   ImGui::PushTextWrapPos(0);
-  for (const auto& problem : state.doc.problems_of(id)) {
-    ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", problem.message.c_str());
-  }
-  if (feedback.error_node == id) {
-    ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", feedback.error.c_str());
+  // The same advice as the node's tooltip on the canvas.
+  for (const auto& reason :
+       node_advice(state.doc, id, feedback.error_node == id ? feedback.error : "")) {
+    ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", reason.c_str());
   }
   ImGui::PopTextWrapPos();
 
@@ -125,99 +126,37 @@ void ParamPanel::draw_node(EditorState& state, const std::string& id,
     }
   }
 
-  if (type->params.empty()) return;
+  draw_params(state, id, *type);
+}
+
+void ParamPanel::draw_params(EditorState& state, const std::string& id, const NodeType& type) {
+  if (type.params.empty()) return;
   if (!ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  for (const ParamInfo& param : type->params) {
+  const Node& node = state.doc.graph().nodes.at(id);
+  for (const ParamInfo& param : type.params) {
     ImGui::PushID(param.name.c_str());
-    nlohmann::json value = param_value_or_default(node, param);
-    const char* label = param.name.c_str();
-    bool has_range = param.max_value > param.min_value;
-    switch (param.type) {
-      case AQ_PARAM_FLOAT: {
-        float v = value.is_number() ? value.get<float>() : 0.0f;
-        ImGuiSliderFlags flags = param.ui_hint == "log" ? ImGuiSliderFlags_Logarithmic : 0;
-        bool changed =
-            has_range
-                ? ImGui::SliderFloat(label, &v, static_cast<float>(param.min_value),
-                                     static_cast<float>(param.max_value), "%.4g", flags)
-                : ImGui::DragFloat(label, &v, param.step > 0 ? param.step : 0.01f, 0, 0, "%.4g");
-        if (changed) (void)actions::set_param(state, id, param.name, static_cast<double>(v), true);
-        end_gesture_after_edit(state);
-        break;
+    const nlohmann::json value = param_value_or_default(node, param);
+    if (param.type == AQ_PARAM_PATH) {
+      if (ImGui::Button("...")) {
+        file_target_ = id + "\n" + param.name;
+        const std::string text = value.is_string() ? value.get<std::string>() : "";
+        fs::path start = fs::path(state.doc.path()).parent_path() / text;
+        file_dialog_.open("Choose a file for " + id + "." + param.name, start.string(), {});
       }
-      case AQ_PARAM_INT: {
-        int v = value.is_number() ? value.get<int>() : 0;
-        bool changed = has_range ? ImGui::SliderInt(label, &v, static_cast<int>(param.min_value),
-                                                    static_cast<int>(param.max_value))
-                                 : ImGui::DragInt(label, &v);
-        if (changed) (void)actions::set_param(state, id, param.name, v, true);
-        end_gesture_after_edit(state);
-        break;
-      }
-      case AQ_PARAM_BOOL: {
-        bool v = value.is_boolean() && value.get<bool>();
-        if (ImGui::Checkbox(label, &v)) (void)actions::set_param(state, id, param.name, v);
-        break;
-      }
-      case AQ_PARAM_ENUM: {
-        std::string current = value.is_string() ? value.get<std::string>() : "";
-        if (value.is_number_integer() && value.get<size_t>() < param.enum_values.size()) {
-          current = param.enum_values[value.get<size_t>()];
-        }
-        if (ImGui::BeginCombo(label, current.c_str())) {
-          for (const auto& name : param.enum_values) {
-            if (ImGui::Selectable(name.c_str(), name == current) && name != current) {
-              (void)actions::set_param(state, id, param.name, name);
-            }
-          }
-          ImGui::EndCombo();
-        }
-        break;
-      }
-      case AQ_PARAM_STRING:
-      case AQ_PARAM_PATH: {
-        std::string text = value.is_string() ? value.get<std::string>() : "";
-        if (param.type == AQ_PARAM_PATH) {
-          if (ImGui::Button("...")) {
-            file_target_ = id + "\n" + param.name;
-            fs::path start = fs::path(state.doc.path()).parent_path() / text;
-            file_dialog_.open("Choose a file for " + id + "." + param.name, start.string(), {});
-          }
-          ImGui::SameLine();
-        }
-        if (ImGui::InputText(label, &text)) {
-          (void)actions::set_param(state, id, param.name, text, true);
-        }
-        end_gesture_after_edit(state);
-        break;
-      }
-      case AQ_PARAM_COLOR:
-      case AQ_PARAM_VEC3: {
-        float v[3] = {0, 0, 0};
-        if (value.is_array() && value.size() == 3) {
-          for (int i = 0; i < 3; ++i) v[i] = value[i].get<float>();
-        }
-        bool changed =
-            param.type == AQ_PARAM_COLOR
-                ? ImGui::ColorEdit3(label, v, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)
-                : ImGui::DragFloat3(label, v, param.step > 0 ? param.step : 0.01f,
-                                    static_cast<float>(param.min_value),
-                                    static_cast<float>(param.max_value), "%.4g");
-        if (changed) {
-          (void)actions::set_param(state, id, param.name, nlohmann::json::array({v[0], v[1], v[2]}),
-                                   true);
-        }
-        end_gesture_after_edit(state);
-        break;
-      }
+      ImGui::SameLine();
     }
+    if (auto edit = draw_param_widget(param, value)) {
+      (void)actions::set_param(state, id, param.name, edit->value, edit->continuous);
+    }
+    end_gesture_after_edit(state);
     if (ImGui::BeginPopupContextItem("##reset")) {
       if (ImGui::MenuItem("reset to default")) {
         (void)actions::set_param(state, id, param.name, nullptr);
       }
       ImGui::EndPopup();
     }
-    if (ImGui::IsItemHovered() && !param.description.empty()) {
+    // The description while hovering, never while dragging: it would hide the value.
+    if (ImGui::IsItemHovered() && !ImGui::IsItemActive() && !param.description.empty()) {
       ImGui::SetTooltip("%s", param.description.c_str());
     }
     ImGui::PopID();

@@ -20,6 +20,7 @@ class ParamPanel {
 
  private:
   void draw_node(EditorState& state, const std::string& id, const NodeFeedback& feedback);
+  void draw_params(EditorState& state, const std::string& id, const NodeType& type);
   void draw_settings(EditorState& state);
   // A collapsed group: its nodes as a list; the parameters of the one picked.
   void draw_group(EditorState& state, const std::string& name, const NodeFeedback& feedback);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -60,8 +61,9 @@ Status status_of(bool done, const std::string& why) {
   return done ? Status(Ok{}) : Status(make_error(why));
 }
 
-Status run_action(EditorState& state, const nlohmann::json& action, const ScriptHooks& hooks) {
-  const std::string kind = text_field(action, "do");
+// The actions that edit the graph or the selection; nullopt for any other kind.
+std::optional<Status> run_edit_action(EditorState& state, const std::string& kind,
+                                      const nlohmann::json& action) {
   if (kind == "add_node") {
     auto added =
         actions::add_node(state, text_field(action, "type"), position_field(action, "at", {0, 0}),
@@ -108,6 +110,23 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
     }
     actions::set_frame(state, action["frame"].get<int>());
     return Ok{};
+  }
+  return std::nullopt;
+}
+
+// Menus, keys, clipboard, groups and views: the actions that need more than the document.
+Status run_other_action(EditorState& state, const std::string& kind, const nlohmann::json& action,
+                        const ScriptHooks& hooks) {
+  if (kind == "open") return actions::open(state, text_field(action, "path"));
+  if (kind == "expect_status") {  // the status line as the user sees it now
+    const std::string wanted = text_field(action, "contains");
+    if (state.status.find(wanted) != std::string::npos) return Ok{};
+    return make_error("the status line says '" + state.status + "', not '" + wanted + "'");
+  }
+  if (kind == "recover") {  // what the recovery prompt's "recover" does
+    Status recovered = state.doc.recover();
+    actions::report(state, recovered, "recovered the autosave");
+    return recovered;
   }
   if (kind == "add_menu") {
     if (hooks.add_menu) hooks.add_menu(action.value("filter", std::string()));
@@ -192,7 +211,13 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
       "' (add_node, link, unlink, set_param, move, select_output, "
       "set_output, delete, duplicate, select, undo, redo, save, frame, fit, add_menu, play, key, "
       "copy, paste, rename, bypass, auto_layout, insert, backdrop, wait, view, dot, group, "
-      "ungroup, collapse, expand, compare)");
+      "ungroup, collapse, expand, compare, open, recover, expect_status)");
+}
+
+Status run_action(EditorState& state, const nlohmann::json& action, const ScriptHooks& hooks) {
+  const std::string kind = text_field(action, "do");
+  if (std::optional<Status> edited = run_edit_action(state, kind, action)) return *edited;
+  return run_other_action(state, kind, action, hooks);
 }
 
 }  // namespace
@@ -216,7 +241,8 @@ namespace {
 
 bool is_mouse_action(const nlohmann::json& action) {
   std::string kind = action.value("do", std::string());
-  return kind == "drag_link" || kind == "drag_node" || kind == "click_output" || kind == "wheel";
+  return kind == "drag_link" || kind == "drag_node" || kind == "click_output" || kind == "wheel" ||
+         kind == "double_click_link";
 }
 
 std::string describe(size_t index, const nlohmann::json& action) {
@@ -252,6 +278,12 @@ Status ScriptRunner::step(EditorState& state, const ScriptHooks& hooks,
     state.playing = false;
     play_until_ = -1;
     state.status = "played to frame " + std::to_string(state.frame);
+    if (hooks.playback_fps) {
+      char reached[96];
+      std::snprintf(reached, sizeof reached, " (reached %.2f fps of the graph's %g)",
+                    hooks.playback_fps(), state.doc.graph().settings.fps);
+      state.status += reached;
+    }
     if (Status judged = judge(state, Ok{}); !judged) return judged;
   }
   if (waiting_) {
@@ -309,7 +341,7 @@ Status ScriptRunner::step(EditorState& state, const ScriptHooks& hooks,
       return Ok{};
     }
     Status outcome = Ok{};
-    state.status.clear();
+    if (action.value("do", std::string()) != "expect_status") state.status.clear();
     try {
       outcome = run_action(state, action, hooks);
     } catch (const std::exception& bad) {  // malformed action, not a refused edit

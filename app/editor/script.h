@@ -18,6 +18,11 @@
 //   {"do": "drag_node", "node": "soft", "by": [120, 40]}            screen pixels
 //   {"do": "click_output", "output": "gbuf.depth"}                  views that output
 //   {"do": "wheel", "steps": 2}                                     zoom at the canvas centre
+//   {"do": "drag_link", ..., "quick": true}   the press seen by the UI only after the mouse left
+//                                            the port (a hand faster than a frame)
+//   {"do": "double_click_link", "from": "light.image", "to": "tint.image", "slow_frames": 30}
+//                                            two clicks 0.15 s apart at the link's middle, with
+//                                            that many UI frames between them
 //
 // Also: "delete" / "duplicate" / "select" {"nodes": [...]}, "set_output" {"output"},
 // "frame" {"frame"}, "fit" {"whole": true for every node however small}, "add_menu" {"filter"}
@@ -51,6 +56,11 @@ struct MouseFrame {
   float y = 0;
   bool left_down = false;
   float wheel = 0;
+  // A left press as the window's callback reports it, when this frame carries one: where it
+  // happened and how long after the previous such press (seconds; < 0: none).
+  float press_after = -1;
+  float press_x = 0;
+  float press_y = 0;
 };
 
 struct ScriptHooks {
@@ -58,6 +68,8 @@ struct ScriptHooks {
   std::function<void(const std::string&)> add_menu;  // opens the add-node menu (screenshots)
   // The frame of the image on screen once the viewer is settled, -1 while it evaluates.
   std::function<int()> shown_frame;
+  // The frame rate the last playback reached (frames shown per second).
+  std::function<double()> playback_fps;
   // Presses a key chord ("ctrl+shift+s") as if pressed and released between two frames.
   std::function<Status(const std::string&)> key;
   // The system clipboard (the window's); without them a stand-in inside the script runner.

@@ -3,11 +3,13 @@
 
 #include "editor_actions.h"
 #include "eval_policy.h"
+#include "image_stats.h"
 
 #include <glad/gl.h>
 #include <imgui.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -168,11 +170,13 @@ void Viewer::take_finished() {
   error_node_.clear();
   shown_texture_.reset(done->texture);
   image_ = done->image;
+  stats_stale_ = true;  // a new picture: its histogram is read again when shown
   has_image_ = true;
   shown_frame_ = wanted.frame;
   evaluated_output_ = wanted.output;
   showing_draft_ = wanted.draft;
   if (!wanted.draft) last_full_ms_ = done->ms;
+  if (wanted.quality == "preview") last_preview_ms_ = done->ms;
   display_stale_ = true;
   if (range_from_image_) measure_range();
 }
@@ -205,11 +209,14 @@ void Viewer::update(const EditorState& state, bool force) {
   draft_inputs.last_full_ms = last_full_ms_;
   draft_inputs.graph_is_draft = graph.settings.quality == "draft";
   draft_inputs.gesture_budget_ms = gesture_budget_ms_;
+  draft_inputs.graph_quality = graph.settings.quality;
+  draft_inputs.last_preview_ms = last_preview_ms_;
   Wanted wanted;
   wanted.key = evaluation_key(graph, output);
   wanted.frame = state.frame;
   wanted.divisor = preview_divisor_;
-  wanted.draft = evaluate_as_draft(draft_inputs);
+  wanted.quality = proxy_quality(draft_inputs);
+  wanted.draft = !wanted.quality.empty();
   wanted.output = output;
   const bool ask = force || !requested_ || !(*requested_ == wanted);
   settled_ = !ask && !worker_->busy();
@@ -226,7 +233,7 @@ void Viewer::update(const EditorState& state, bool force) {
     Settings& settings = request.graph.settings;
     settings.width = std::max(1, settings.width / preview_divisor_);
     settings.height = std::max(1, settings.height / preview_divisor_);
-    if (wanted.draft) settings.quality = "draft";
+    if (wanted.draft) settings.quality = wanted.quality;  // the preset's render scale shrinks it
   }
   request.tag = next_tag_++;
   in_flight_[request.tag] = wanted;
@@ -404,6 +411,24 @@ unsigned Viewer::compare_display_texture() {
 }
 
 void Viewer::draw(EditorState& state) {
+  draw_toolbar(state);
+  if (!error_.empty() && !has_image_) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+    ImGui::TextWrapped("%s", error_.c_str());
+    ImGui::PopStyleColor();
+  }
+  if (!has_image_) {
+    draw_progress(ImGui::GetCursorScreenPos(), ImGui::GetContentRegionAvail().x);
+    return;
+  }
+  if (display_stale_) render_display_texture();
+  if (!display_) return;
+  if (show_histogram_) draw_histogram();
+
+  draw_image_area(state);
+}
+
+void Viewer::draw_toolbar(EditorState& state) {
   // Toolbar.
   auto shown = state.shown_output();
   ImGui::TextUnformatted(shown ? shown->str().c_str() : "(no output)");
@@ -438,33 +463,7 @@ void Viewer::draw(EditorState& state) {
     ImGui::SameLine();
     ImGui::Checkbox("wipe A|B", &wipe_);
   }
-  if (compare_) {
-    // B of the A/B compare: any output of the graph, evaluated beside A.
-    ImGui::SameLine();
-    const std::string current = state.compare ? "B: " + state.compare->str() : "compare with...";
-    ImGui::SetNextItemWidth(150);
-    if (ImGui::BeginCombo("##compare", current.c_str())) {
-      if (ImGui::Selectable("(no compare)", !state.compare)) {
-        (void)actions::compare_with(state, std::nullopt);
-      }
-      for (const auto& [id, node] : state.doc.graph().nodes) {
-        const NodeType* type = state.doc.registry().find(node.type);
-        if (type == nullptr) continue;
-        for (const auto& port : type->outputs) {
-          const PortRef ref{id, port.name};
-          if (ImGui::Selectable(ref.str().c_str(), state.compare == ref)) {
-            (void)actions::compare_with(state, ref);
-          }
-        }
-      }
-      ImGui::EndCombo();
-    }
-    if (ImGui::IsItemHovered()) {
-      ImGui::SetTooltip(
-          "A/B wipe: the viewed output (A) left of the line, this one (B) right; "
-          "shift+click an output port to pick it");
-    }
-  }
+  if (compare_) draw_compare_menu(state);
   if (has_image_) {
     const aq_image& image = image_;
     ImGui::SameLine();
@@ -504,19 +503,43 @@ void Viewer::draw(EditorState& state) {
       ImGui::SameLine();
       if (ImGui::Checkbox("sRGB", &srgb_)) display_stale_ = true;
     }
+    ImGui::SameLine();
+    if (ImGui::Checkbox("histogram", &show_histogram_)) stats_stale_ = true;
   }
-  if (!error_.empty() && !has_image_) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
-    ImGui::TextWrapped("%s", error_.c_str());
-    ImGui::PopStyleColor();
-  }
-  if (!has_image_) {
-    draw_progress(ImGui::GetCursorScreenPos(), ImGui::GetContentRegionAvail().x);
-    return;
-  }
-  if (display_stale_) render_display_texture();
-  if (!display_) return;
+}
 
+// B of the A/B compare: any output of the graph, evaluated beside A.
+void Viewer::draw_compare_menu(EditorState& state) {
+  // B of the A/B compare: any output of the graph, evaluated beside A.
+  ImGui::SameLine();
+  const std::string current = state.compare ? "B: " + state.compare->str() : "compare with...";
+  ImGui::SetNextItemWidth(150);
+  if (ImGui::BeginCombo("##compare", current.c_str())) {
+    if (ImGui::Selectable("(no compare)", !state.compare)) {
+      (void)actions::compare_with(state, std::nullopt);
+    }
+    for (const auto& [id, node] : state.doc.graph().nodes) {
+      const NodeType* type = state.doc.registry().find(node.type);
+      if (type == nullptr) continue;
+      for (const auto& port : type->outputs) {
+        const PortRef ref{id, port.name};
+        if (ImGui::Selectable(ref.str().c_str(), state.compare == ref)) {
+          (void)actions::compare_with(state, ref);
+        }
+      }
+    }
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "A/B wipe: the viewed output (A) left of the line, this one (B) right; "
+        "shift+click an output port to pick it");
+  }
+}
+
+// The picture (or the A/B wipe), its error and progress, with zoom and pan.
+void Viewer::draw_image_area(EditorState& state) {
+  (void)state;
   const aq_image& image = image_;
   ImVec2 avail = ImGui::GetContentRegionAvail();
   avail.y -= ImGui::GetTextLineHeightWithSpacing();  // the probe line below
@@ -604,6 +627,11 @@ void Viewer::draw(EditorState& state) {
   }
   ImGui::EndChild();
 
+  draw_probe(hovered, area_at, compared, split_x);
+}
+
+// The raw value under the cursor (B's right of the wipe line).
+void Viewer::draw_probe(bool hovered, ImVec2 area_at, unsigned compared, float split_x) {
   if (hovered) {
     ImVec2 mouse = ImGui::GetMousePos();
     float px = 0;
@@ -649,6 +677,37 @@ void Viewer::draw(EditorState& state) {
     }
   }
   ImGui::TextDisabled("hover the image for pixel values (row 0 is the bottom)");
+}
+
+// Min, max and the spread of the viewed image's values (colour: luminance), read back once per
+// new image while shown.
+void Viewer::draw_histogram() {
+  if (stats_stale_ || stats_image_ != image_.texture) {
+    stats_stale_ = false;
+    stats_image_ = image_.texture;
+    const int channels = is_single_channel_float(image_.format) ? 1 : 4;
+    const bool integer = image_.format == AQ_FORMAT_R32UI || image_.format == AQ_FORMAT_RGBA32UI;
+    std::vector<float> pixels(static_cast<size_t>(image_.width) * image_.height * channels);
+    if (!integer && !pixels.empty()) {
+      const GLenum format =
+          channels == 1 ? (image_.format == AQ_FORMAT_DEPTH32F ? GL_DEPTH_COMPONENT : GL_RED)
+                        : GL_RGBA;
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glGetTextureImage(image_.texture, 0, format, GL_FLOAT,
+                        static_cast<GLsizei>(pixels.size() * sizeof(float)), pixels.data());
+      stats_ = image_stats(pixels, channels);
+    } else {
+      stats_ = ImageStats{};
+    }
+  }
+  if (stats_.counted == 0) {
+    ImGui::TextDisabled("histogram: no finite values (or an integer image)");
+    return;
+  }
+  char label[96];
+  std::snprintf(label, sizeof label, "min %.4g  max %.4g", stats_.min, stats_.max);
+  ImGui::PlotHistogram("##histogram", stats_.bins.data(), static_cast<int>(stats_.bins.size()), 0,
+                       label, 0.0f, FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 48.0f));
 }
 
 }  // namespace aq::editor

@@ -16,6 +16,7 @@
 #include "editor_state.h"
 #include "eval_policy.h"
 #include "eval_worker.h"
+#include "image_stats.h"
 #include "image_view.h"
 
 #include <aquarelle/core/evaluator.h>
@@ -99,6 +100,11 @@ class Viewer {
   int display_height() const { return display_height_; }
 
  private:
+  void draw_toolbar(EditorState& state);
+  void draw_compare_menu(EditorState& state);
+  void draw_image_area(EditorState& state);
+  void draw_probe(bool hovered, ImVec2 area_at, unsigned compared, float split_x);
+  void draw_histogram();
   enum class Mapping { kColor = 0, kDepth = 1, kId = 2 };
   Mapping current_mapping() const;
   void render_display_texture();
@@ -113,7 +119,8 @@ class Viewer {
     uint64_t key = 0;
     int frame = -1;
     int divisor = 1;
-    bool draft = false;
+    bool draft = false;   // a proxy: "preview" or "draft" while the user drags or plays
+    std::string quality;  // the proxy's quality; "" the graph's own
     std::optional<PortRef> output;
     bool operator==(const Wanted&) const = default;
   };
@@ -139,6 +146,11 @@ class Viewer {
   double last_ms_ = 0;
   double last_full_ms_ = 0;  // the last evaluation at the graph's own quality
   bool showing_draft_ = false;
+  bool show_histogram_ = false;  // the histogram and min/max under the toolbar
+  bool stats_stale_ = true;
+  unsigned stats_image_ = 0;  // the texture stats_ were read from
+  ImageStats stats_;
+  double last_preview_ms_ = 0;  // the last "preview" proxy's evaluation time
   double gesture_budget_ms_ = kGestureBudgetMs;
 
   gl::Program program_;

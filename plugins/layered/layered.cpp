@@ -342,12 +342,17 @@ struct Layered {
       float* row2 = &table_pixels[4 * (2 * n + i)];
       row0[0] = layer.id;
       row0[1] = layer.wet_in_wet ? 1.0f : 0.0f;
+      row0[2] = static_cast<float>(f.channel[i] / kLayersPerRange);  // its range
       for (int c = 0; c < 3; ++c) {
         row1[c] = static_cast<float>(layer.light[c]);
         row2[c] = static_cast<float>(layer.dark[c]);
       }
     }
     glTextureSubImage2D(f.table.texture, 0, 0, 0, n, 3, GL_RGBA, GL_FLOAT, table_pixels.data());
+    // The owner image comes from the pool with what an earlier call left: zero it once per
+    // frame (the last range's composite reads it everywhere).
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(f.owner.texture, 0, GL_RGBA, GL_FLOAT, zero);
     return true;
   }
 
@@ -609,6 +614,9 @@ struct Layered {
     aq::set_float(p, "u_granulation", f.has_paper ? ctx.param_float(kGranulation) : 0.0);
     aq::set_float(p, "u_density", ctx.param_float(kDensity));
     aq::bind_texture(p, "u_colours", 12, f.colours);
+    // The last range draws the whole image, where the owner image may still hold earlier
+    // ranges' layers: the composite skips layers of other ranges.
+    aq::set_float(p, "u_range", static_cast<double>(r));
     if (last) return ctx.draw(target);
     if (!ctx.bind_targets(&target, 1)) return false;
     return each(rects, &RangeRects::paint, [&] {

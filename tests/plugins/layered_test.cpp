@@ -476,3 +476,22 @@ TEST(Layered, GoochIsWarmAndCoolAtItsDefault) {
   EXPECT_GT(warmth(lit), 0.1) << "the lit side is warm (red above blue)";
   EXPECT_LT(warmth(shaded), -0.03) << "the shaded side is cool (blue above red)";
 }
+
+TEST(Layered, ManyRangesOverAFloorMatchTheReference) {
+  // A floor under the whole image and a pile of seven overlapping squares in one corner: eight
+  // channels (two ranges), the last range's boxes cover only the corner. Each layer is glazed
+  // once: nowhere does the floor come twice (the last range draws the whole image).
+  GBuffer g(96, 96);
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 96; ++x) g.set(x, y, 50, 20.0f, 0.8f, 0.7f, 0.5f, 0.0f, 0.7f, 0.7f);
+  for (int k = 0; k < 7; ++k)
+    for (int y = 4 + 3 * k; y < 20 + 3 * k; ++y)
+      for (int x = 4 + 3 * k; x < 20 + 3 * k; ++x)
+        g.set(x, y, static_cast<float>(k + 1), 10.0f - k, 0.2f + 0.1f * k, 0.3f, 0.8f - 0.1f * k);
+  LayeredParams p = comparable();
+  p.abstraction_sigma = 1.0;
+  p.edge_width = 1.0;
+  const ImageF out = run(g, p);
+  ASSERT_TRUE(aq::test::all_finite(out));
+  EXPECT_LT(aq::test::max_abs_diff(out, reference(g, p), 3), 5e-3);
+}

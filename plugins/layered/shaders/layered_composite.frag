@@ -27,7 +27,8 @@ uniform sampler2D u_peak;  // peak of the blurred intensity over a window of rad
 uniform float u_thin;      // thin_shapes: how much of a thin shape the abstraction keeps
 uniform float u_line_width_scale;  // √(2π) σa: a thin line's blurred peak times it = its width
 uniform sampler2D u_owner;  // per channel: 1 + the layer painting here, 0 for none
-uniform sampler2D u_table;  // per layer: row 0 (id, wet-in-wet), row 1 light, row 2 dark
+uniform sampler2D u_table;  // per layer: row 0 (id, wet-in-wet, range), row 1 light, row 2 dark
+uniform float u_range;      // this range: owner entries of other ranges are stale
 uniform float u_edge_gain;
 uniform float u_edge_darkness;
 uniform float u_wet_spread;
@@ -95,6 +96,7 @@ void main() {
   for (int k = 0; k < 4; ++k) {
     if (!(owner[k] > 0.5)) continue;
     int layer = int(owner[k]) - 1;
+    if (texelFetch(u_table, ivec2(layer, 0), 0).b != u_range) continue;
     vec3 light_color = texelFetch(u_table, ivec2(layer, 1), 0).rgb;
     vec3 dark_color = texelFetch(u_table, ivec2(layer, 2), 0).rgb;
     bool wet_in_wet = texelFetch(u_table, ivec2(layer, 0), 0).g > 0.5;
