@@ -156,89 +156,11 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
   }
 
   // Nodes.
-  const auto shown = state.shown_output();
-  const float z = view.zoom;
-  const float rounding = 5.0f * z;
   for (const auto& layout : layouts) {
     if (layout.group) {
       draw_group_node(state, draw, layout, feedback);
-      continue;
-    }
-    const Node& node = graph.nodes.at(layout.id);
-    const NodeType* type = registry.find(node.type);
-    auto problems = state.doc.problems_of(layout.id);
-    bool failed = !problems.empty() || feedback.error_node == layout.id || type == nullptr;
-    bool selected = state.selection.count(layout.id) > 0;
-    const bool bypassed = state.doc.bypassed(layout.id);
-    draw->AddRectFilled(im(layout.rect.min), im(layout.rect.max),
-                        bypassed ? IM_COL32(44, 44, 48, 240) : IM_COL32(58, 60, 66, 240), rounding);
-    draw->AddRectFilled(im(layout.header.min), im(layout.header.max),
-                        type ? category_colour(type->category) : IM_COL32(120, 40, 40, 255),
-                        rounding, ImDrawFlags_RoundCornersTop);
-    ImU32 border = failed     ? IM_COL32(255, 80, 70, 255)
-                   : selected ? IM_COL32(255, 220, 120, 255)
-                              : IM_COL32(20, 20, 22, 255);
-    draw->AddRect(im(layout.rect.min), im(layout.rect.max), border, rounding, 0,
-                  failed || selected ? 2.5f : 1.0f);
-    std::string title = layout.id == node.type ? layout.id : layout.id + " (" + node.type + ")";
-    if (failed) title = "! " + title;
-    this->title(draw, layout.header, z, IM_COL32(245, 245, 245, 255), title);
-    if (bypassed) {
-      // Nuke's mark of a disabled node: a diagonal across it.
-      draw->AddLine(im(layout.rect.min), im(layout.rect.max), IM_COL32(230, 170, 60, 220),
-                    2.0f * z);
-    }
-    for (const auto& spot : layout.inputs) {
-      bool linked = node.inputs.count(spot.port) > 0;
-      draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z,
-                            linked ? port_colour(spot.type) : IM_COL32(70, 70, 76, 255));
-      draw->AddCircle(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type), 0, 1.5f);
-      // A port holding several links (AQ_PORT_MULTI) says how many.
-      const size_t links = node.inputs.count(spot.port);
-      text(draw, {spot.at.x + 9 * z, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
-           links > 1 ? spot.port + " (" + std::to_string(links) + ")" : spot.port);
-    }
-    for (const auto& spot : layout.outputs) {
-      draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type));
-      if (shown && shown->node == layout.id && shown->port == spot.port) {
-        draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 4) * z,
-                        IM_COL32(255, 255, 255, 255), 0, 2.0f);
-      }
-      if (state.compare && state.compare->node == layout.id && state.compare->port == spot.port) {
-        // B of the viewer's A/B wipe.
-        draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 7) * z,
-                        IM_COL32(255, 170, 60, 255), 0, 2.0f);
-      }
-      const Vec2 label = text_size(z, spot.port);
-      text(draw, {spot.at.x - 9 * z - label.x, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
-           spot.port);
-    }
-    // Footer: GPU time of the last evaluation.
-    std::string footer;
-    auto timing = feedback.timings.find(layout.id);
-    if (bypassed) {
-      footer = "bypassed";
-    } else if (feedback.error_node == layout.id) {
-      footer = "failed";
-    } else if (timing != feedback.timings.end()) {
-      char text[64];
-      std::snprintf(text, sizeof text, "gpu %.2f ms%s", timing->second.gpu_ms,
-                    timing->second.cached ? "  (cached)" : "");
-      footer = text;
     } else {
-      footer = "not evaluated";
-    }
-    text(draw, {layout.rect.min.x + 6 * z, layout.rect.max.y - NodeMetrics::kFooter * z}, z,
-         feedback.error_node == layout.id ? IM_COL32(255, 120, 110, 255)
-                                          : IM_COL32(150, 200, 150, 255),
-         footer);
-    // The reason a node is marked, on hover: each message once.
-    if (failed && ImGui::IsWindowHovered() && layout.rect.contains(vec(ImGui::GetMousePos()))) {
-      const auto reasons =
-          node_advice(state.doc, layout.id, feedback.error_node == layout.id ? feedback.error : "");
-      std::string why;
-      for (const auto& reason : reasons) why += (why.empty() ? "" : "\n") + reason;
-      ImGui::SetTooltip("%s", why.c_str());
+      draw_node(state, draw, layout, feedback);
     }
   }
 
@@ -256,6 +178,92 @@ void Canvas::draw(EditorState& state, const NodeFeedback& feedback,
   draw_add_menu(state);
   draw_node_menu(state);
   draw_rename(state);
+}
+
+// One node (not a collapsed group): body, header, title, ports, timing footer, the reason it
+// is marked on hover.
+void Canvas::draw_node(EditorState& state, ImDrawList* draw, const NodeLayout& layout,
+                       const NodeFeedback& feedback) {
+  const Graph& graph = state.doc.graph();
+  const Registry& registry = state.doc.registry();
+  const auto shown = state.shown_output();
+  const float z = state.canvas.zoom;
+  const float rounding = 5.0f * z;
+  const Node& node = graph.nodes.at(layout.id);
+  const NodeType* type = registry.find(node.type);
+  auto problems = state.doc.problems_of(layout.id);
+  bool failed = !problems.empty() || feedback.error_node == layout.id || type == nullptr;
+  bool selected = state.selection.count(layout.id) > 0;
+  const bool bypassed = state.doc.bypassed(layout.id);
+  draw->AddRectFilled(im(layout.rect.min), im(layout.rect.max),
+                      bypassed ? IM_COL32(44, 44, 48, 240) : IM_COL32(58, 60, 66, 240), rounding);
+  draw->AddRectFilled(im(layout.header.min), im(layout.header.max),
+                      type ? category_colour(type->category) : IM_COL32(120, 40, 40, 255), rounding,
+                      ImDrawFlags_RoundCornersTop);
+  ImU32 border = failed     ? IM_COL32(255, 80, 70, 255)
+                 : selected ? IM_COL32(255, 220, 120, 255)
+                            : IM_COL32(20, 20, 22, 255);
+  draw->AddRect(im(layout.rect.min), im(layout.rect.max), border, rounding, 0,
+                failed || selected ? 2.5f : 1.0f);
+  std::string title = layout.id == node.type ? layout.id : layout.id + " (" + node.type + ")";
+  if (failed) title = "! " + title;
+  this->title(draw, layout.header, z, IM_COL32(245, 245, 245, 255), title);
+  if (bypassed) {
+    // Nuke's mark of a disabled node: a diagonal across it.
+    draw->AddLine(im(layout.rect.min), im(layout.rect.max), IM_COL32(230, 170, 60, 220), 2.0f * z);
+  }
+  for (const auto& spot : layout.inputs) {
+    bool linked = node.inputs.count(spot.port) > 0;
+    draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z,
+                          linked ? port_colour(spot.type) : IM_COL32(70, 70, 76, 255));
+    draw->AddCircle(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type), 0, 1.5f);
+    // A port holding several links (AQ_PORT_MULTI) says how many.
+    const size_t links = node.inputs.count(spot.port);
+    text(draw, {spot.at.x + 9 * z, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
+         links > 1 ? spot.port + " (" + std::to_string(links) + ")" : spot.port);
+  }
+  for (const auto& spot : layout.outputs) {
+    draw->AddCircleFilled(im(spot.at), NodeMetrics::kPortRadius * z, port_colour(spot.type));
+    if (shown && shown->node == layout.id && shown->port == spot.port) {
+      draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 4) * z, IM_COL32(255, 255, 255, 255),
+                      0, 2.0f);
+    }
+    if (state.compare && state.compare->node == layout.id && state.compare->port == spot.port) {
+      // B of the viewer's A/B wipe.
+      draw->AddCircle(im(spot.at), (NodeMetrics::kPortRadius + 7) * z, IM_COL32(255, 170, 60, 255),
+                      0, 2.0f);
+    }
+    const Vec2 label = text_size(z, spot.port);
+    text(draw, {spot.at.x - 9 * z - label.x, spot.at.y - 7 * z}, z, IM_COL32(210, 210, 215, 255),
+         spot.port);
+  }
+  // Footer: GPU time of the last evaluation.
+  std::string footer;
+  auto timing = feedback.timings.find(layout.id);
+  if (bypassed) {
+    footer = "bypassed";
+  } else if (feedback.error_node == layout.id) {
+    footer = "failed";
+  } else if (timing != feedback.timings.end()) {
+    char text[64];
+    std::snprintf(text, sizeof text, "gpu %.2f ms%s", timing->second.gpu_ms,
+                  timing->second.cached ? "  (cached)" : "");
+    footer = text;
+  } else {
+    footer = "not evaluated";
+  }
+  text(draw, {layout.rect.min.x + 6 * z, layout.rect.max.y - NodeMetrics::kFooter * z}, z,
+       feedback.error_node == layout.id ? IM_COL32(255, 120, 110, 255)
+                                        : IM_COL32(150, 200, 150, 255),
+       footer);
+  // The reason a node is marked, on hover: each message once.
+  if (failed && ImGui::IsWindowHovered() && layout.rect.contains(vec(ImGui::GetMousePos()))) {
+    const auto reasons =
+        node_advice(state.doc, layout.id, feedback.error_node == layout.id ? feedback.error : "");
+    std::string why;
+    for (const auto& reason : reasons) why += (why.empty() ? "" : "\n") + reason;
+    ImGui::SetTooltip("%s", why.c_str());
+  }
 }
 
 void Canvas::handle_mouse(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin) {

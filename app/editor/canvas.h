@@ -86,6 +86,8 @@ class Canvas {
  private:
   enum class Drag { kNone, kNodes, kLink, kBox, kPan, kBackdrop, kDot };
 
+  void draw_node(EditorState& state, ImDrawList* draw, const NodeLayout& layout,
+                 const NodeFeedback& feedback);
   void handle_mouse(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin);
   void begin_press(EditorState& state, const std::vector<NodeLayout>& layouts, Vec2 origin,
                    Vec2 mouse, bool twice);
