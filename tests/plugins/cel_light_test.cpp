@@ -405,7 +405,9 @@ TEST(CelLight, RegionsAreAFlatColourPerObject) {
     for (int c = 0; c < 3; ++c)
       largest = std::max(largest, std::abs(static_cast<double>(regions->at(16 * id + 8, 10, c)) -
                                            regions->at(16 * (id + 1) + 8, 10, c)));
-    if (id + 1 < 4) EXPECT_GT(largest, 0.1) << "ids " << id + 1 << " and " << id + 2;
+    if (id + 1 < 4) {
+      EXPECT_GT(largest, 0.1) << "ids " << id + 1 << " and " << id + 2;
+    }
   }
   // The light itself is unchanged by what `plain` holds.
   LightSetup light = s;
