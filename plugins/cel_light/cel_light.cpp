@@ -182,21 +182,7 @@ struct CelLight {
       aq::bind_texture(program, "u_id", 3, ctx.input_image(kId));
     }
     if (has_shadow) aq::bind_texture(program, "u_shadow", 4, ctx.input_image(kShadow));
-    if (has_caustics) {
-      // One period of the caustics: the hardware's repeat wrap gives the periodic bilinear
-      // lookup in one read (pool textures clamp at the edge).
-      if (!repeating || sampler_generation != ctx.raw()->gl_generation) {
-        repeating.forget();  // a name from an old context means nothing here
-        const GLuint sampler = repeating.create();
-        glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_REPEAT);
-        glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_REPEAT);
-        glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        sampler_generation = ctx.raw()->gl_generation;
-      }
-      aq::bind_texture(program, "u_caustics", 5, ctx.input_image(kCaustics));
-      glBindSampler(5, repeating.get());
-    }
+    if (has_caustics) bind_caustics(ctx, program);
 
     // The matrix the shadow map was drawn with: fitted to the receivers in view, for its size.
     glm::mat4 light = aq::scene_math::light_view_projection(*scene);
@@ -237,6 +223,22 @@ struct CelLight {
     aq::unbind_textures(6);
     return bound && ctx.set_output_damage(0, damage) && ctx.set_output_damage(1, damage) ? AQ_OK
                                                                                          : AQ_ERROR;
+  }
+
+  // One period of the caustics: the hardware's repeat wrap gives the periodic bilinear lookup
+  // in one read (pool textures clamp at the edge).
+  void bind_caustics(aq::Context& ctx, GLuint program) {
+    if (!repeating || sampler_generation != ctx.raw()->gl_generation) {
+      repeating.forget();  // a name from an old context means nothing here
+      const GLuint sampler = repeating.create();
+      glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_REPEAT);
+      glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_REPEAT);
+      glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      sampler_generation = ctx.raw()->gl_generation;
+    }
+    aq::bind_texture(program, "u_caustics", 5, ctx.input_image(kCaustics));
+    glBindSampler(5, repeating.get());
   }
 
   // The inputs a pixel's surface is read from besides its position.
