@@ -1,6 +1,8 @@
 // The command line's shared parts (cli.h).
 #include "cli.h"
 
+#include <aquarelle/core/message_text.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -99,10 +101,14 @@ std::string unknown_arguments(const CLI::App& command) {
   const std::vector<std::string> left = command.remaining();
   if (left.empty()) return "";
   std::string argument = left.front();
-  if (argument.size() < 2 || argument[0] != '-') return "unexpected argument '" + argument + "'";
+  // Arguments are echoed escaped, as every message is: a newline or an ESC sequence in one
+  // would forge a line or clear the terminal.
+  if (argument.size() < 2 || argument[0] != '-') {
+    return "unexpected argument " + quote_for_message(argument);
+  }
   argument = argument.substr(0, argument.find('='));  // --frmes=1-3
   const std::string guess = closest(argument, option_names(command));
-  return "unknown option '" + argument + "'" +
+  return "unknown option " + quote_for_message(argument) +
          (guess.empty() ? " (see --help)" : " (did you mean '" + guess + "'? see --help)");
 }
 
@@ -125,7 +131,8 @@ std::optional<int> parse_command_line(CLI::App& cli, int argc, char** argv) {
     if (error.get_name() == "ArgumentMismatch" && colon != std::string::npos &&
         message.find(" required ") != std::string::npos)
       message = message.substr(0, colon) + " needs a value";
-    std::fprintf(stderr, "%s: %s (see --help)\n", who.c_str(), message.c_str());
+    // CLI11 quotes the argument it refused: escaped like every other message.
+    std::fprintf(stderr, "%s: %s (see --help)\n", who.c_str(), escape_for_message(message).c_str());
     return 1;
   }
 }

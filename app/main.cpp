@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <aquarelle/core/message_text.h>
+
 #include "commands.h"
 
 namespace {
@@ -21,7 +23,8 @@ int refuse_command(const CLI::App& cli, const std::vector<std::string>& left) {
     std::vector<std::string> names;
     for (const CLI::App* command : cli.get_subcommands({})) names.push_back(command->get_name());
     const std::string guess = aq::app::closest(left.front(), names);
-    std::fprintf(stderr, "aquarelle: unknown command '%s'%s\n\n", left.front().c_str(),
+    std::fprintf(stderr, "aquarelle: unknown command %s%s\n\n",
+                 aq::quote_for_message(left.front()).c_str(),
                  guess.empty() ? "" : (" (did you mean '" + guess + "'?)").c_str());
   }
   std::fputs(cli.help().c_str(), stderr);

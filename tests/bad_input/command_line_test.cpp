@@ -172,5 +172,25 @@ TEST(PluginAbi, UnknownOutputFormatIsRefusedNamingTheNode) {
   EXPECT_FALSE(fs::exists(dir / "out.exr"));
 }
 
+// Issue 40, class 7: what the command line echoes back (CLI11's parse errors, an unknown
+// command or option) is escaped like every other message: an argument holding a newline
+// cannot forge a `file:line:col:` line, nor an ESC sequence clear the terminal.
+TEST(Messages, ArgumentsEchoedByTheCommandLineAreEscaped) {
+  const fs::path dir = scratch_dir("bad_input_argv_escaped");
+  write_bytes(dir / "g.json", kCubeGraph);
+  const std::string forged = "\"$(printf 'x\\n/g.json:1:1: forged\\033[2J')\"";
+  for (const std::string& arguments :
+       {"render " + (dir / "g.json").string() + " --quiet=" + forged,  // CLI11's ParseError
+        "render " + (dir / "g.json").string() + " --" + forged,        // unknown option
+        std::string("rend") + forged}) {                               // unknown command
+    auto result = aquarelle_within(30, arguments);
+    EXPECT_EQ(result.exit_code, 1) << arguments << ": " << result.output;
+    const std::string first = result.output.substr(0, result.output.find('\n'));
+    EXPECT_TRUE(mentions(first, "\\n/g.json:1:1: forged\\x1b[2J")) << result.output;
+    EXPECT_FALSE(mentions(result.output, "\x1b")) << arguments;
+    EXPECT_FALSE(mentions(result.output, "\n/g.json:1:1")) << arguments;
+  }
+}
+
 }  // namespace
 }  // namespace aq::test::bad_input
