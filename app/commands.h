@@ -4,6 +4,8 @@
 
 #include <functional>
 
+#include <aquarelle/core/message_text.h>  // arguments echoed in messages are escaped
+
 #include "cli.h"
 
 namespace aq::app {

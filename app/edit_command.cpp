@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <aquarelle/core/message_text.h>
+
 #include "commands.h"
 #ifdef AQ_HAVE_EDITOR
 #include "editor/editor.h"
@@ -27,8 +29,9 @@ struct EditArguments {
 
 int run_edit(const EditArguments& args) {
   if (args.graphs.size() > 1) {
-    std::fprintf(stderr, "aquarelle edit: one graph at a time ('%s' and '%s')\n",
-                 args.graphs[0].c_str(), args.graphs[1].c_str());
+    std::fprintf(stderr, "aquarelle edit: one graph at a time (%s and %s)\n",
+                 quote_for_message(args.graphs[0]).c_str(),
+                 quote_for_message(args.graphs[1]).c_str());
     return kExitBadInput;
   }
 #ifdef AQ_HAVE_EDITOR

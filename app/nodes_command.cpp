@@ -177,8 +177,8 @@ int run_nodes(const NodesArguments& args) {
   if (!only.empty() && registry.find(only) == nullptr) {
     std::string names;
     for (const auto& n : registry.names()) names += (names.empty() ? "" : ", ") + n;
-    std::fprintf(stderr, "aquarelle nodes: no node type '%s' (installed: %s)\n", only.c_str(),
-                 names.c_str());
+    std::fprintf(stderr, "aquarelle nodes: no node type %s (installed: %s)\n",
+                 quote_for_message(only).c_str(), names.c_str());
     return kExitBadInput;
   }
   nlohmann::json all = nlohmann::json::array();

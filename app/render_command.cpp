@@ -8,6 +8,7 @@
 #include <aquarelle/core/display_transform.h>
 #include <aquarelle/core/evaluator.h>
 #include <aquarelle/core/image_io.h>
+#include <aquarelle/core/message_text.h>
 
 #include <algorithm>
 #include <chrono>
@@ -101,8 +102,9 @@ void declare_options(CLI::App& command, RenderArguments& args) {
   command.add_flag("-q,--quiet", args.quiet, "no progress output");
 }
 
+// Messages may quote arguments: escaped, so a newline or ESC in one cannot forge a line.
 int refuse(const std::string& message, int code = kExitBadInput) {
-  std::fprintf(stderr, "aquarelle render: %s\n", message.c_str());
+  std::fprintf(stderr, "aquarelle render: %s\n", escape_for_message(message).c_str());
   return code;
 }
 

@@ -30,8 +30,8 @@ int run_validate(const ValidateArguments& args) {
     return kExitBadInput;
   }
   if (args.graphs.size() > 1) {
-    std::fprintf(stderr, "aquarelle validate: one graph at a time ('%s')\n",
-                 args.graphs[1].c_str());
+    std::fprintf(stderr, "aquarelle validate: one graph at a time (%s)\n",
+                 quote_for_message(args.graphs[1]).c_str());
     return kExitBadInput;
   }
   const std::string& graph_path = args.graphs[0];

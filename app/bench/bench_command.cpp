@@ -132,16 +132,16 @@ bool parse_count(const char* name, const std::string& text, int minimum, int* ou
     }
   } catch (const std::exception&) {
   }
-  std::fprintf(stderr, "aquarelle bench: %s '%s': expected a whole number >= %d\n", name,
-               text.c_str(), minimum);
+  std::fprintf(stderr, "aquarelle bench: %s %s: expected a whole number >= %d\n", name,
+               quote_for_message(text).c_str(), minimum);
   return false;
 }
 
 // Checks and completes the parsed arguments; returns an exit code when the command should stop.
 std::optional<int> check_arguments(Arguments* args) {
   if (args->graphs.size() > 1) {
-    std::fprintf(stderr, "aquarelle bench: more than one graph given ('%s')\n",
-                 args->graphs[1].c_str());
+    std::fprintf(stderr, "aquarelle bench: more than one graph given (%s)\n",
+                 quote_for_message(args->graphs[1]).c_str());
     return kExitBadInput;
   }
   if (!args->graphs.empty()) args->graph_path = args->graphs[0];
@@ -153,8 +153,8 @@ std::optional<int> check_arguments(Arguments* args) {
   }
   if (!args->quality.empty() && args->quality != "draft" && args->quality != "preview" &&
       args->quality != "final") {
-    std::fprintf(stderr, "aquarelle bench: --quality '%s': must be draft, preview or final\n",
-                 args->quality.c_str());
+    std::fprintf(stderr, "aquarelle bench: --quality %s: must be draft, preview or final\n",
+                 quote_for_message(args->quality).c_str());
     return kExitBadInput;
   }
   args->node_types.insert(args->node_list.begin(), args->node_list.end());

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <unordered_map>
 
@@ -466,6 +467,11 @@ std::vector<Problem> check_graph(const Graph& graph, const Registry& registry,
         "unsupported version " + std::to_string(graph.version) + "; this build reads version 1"));
   }
   check_settings(graph.settings, &problems);
+  if (graph.output) {
+    if (std::string why = node_count_problem(graph, *graph.output); !why.empty()) {
+      problems.push_back(problem_at("/output", why));
+    }
+  }
   std::vector<std::string> ids;
   ids.reserve(graph.nodes.size());
   for (const auto& entry : graph.nodes) ids.push_back(entry.first);
@@ -521,6 +527,24 @@ std::string frame_range_problem(long long first, long long last) {
            " frames; render it in parts";
   }
   return "";
+}
+
+std::string node_count_problem(const Graph& graph, const PortRef& output) {
+  std::set<std::string> seen{output.node};
+  std::vector<std::string> next{output.node};
+  while (!next.empty() && seen.size() <= kMaxGraphNodes) {
+    auto node = graph.nodes.find(next.back());
+    next.pop_back();
+    if (node == graph.nodes.end()) continue;
+    for (const auto& [port, source] : node->second.inputs) {
+      if (seen.insert(source.node).second) next.push_back(source.node);
+    }
+  }
+  if (seen.size() <= kMaxGraphNodes) return "";
+  return "the output '" + output.str() + "' depends on more than " +
+         std::to_string(kMaxGraphNodes) +
+         " nodes, and each is work every frame: merge repeated nodes (e.g. one erode of a "
+         "larger size) or split the graph into several renders";
 }
 
 }  // namespace aq

@@ -1,4 +1,5 @@
 // Compiling the evaluation plan (see plan.h).
+#include <aquarelle/core/graph_io.h>
 #include <aquarelle/core/plan.h>
 #include <aquarelle/core/texture_pool.h>
 
@@ -192,6 +193,8 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
     return make_error("output '" + target->str() + "' names node '" + target->node +
                       "', which is not in the graph");
   }
+  // Graphs that were never validated (built in Python or the editor) meet the same bound.
+  if (std::string why = node_count_problem(graph, *target); !why.empty()) return make_error(why);
   plan.output = *target;
   plan.working = working_size(graph.settings);
   plan.output_size = PixelSize{graph.settings.width, graph.settings.height};

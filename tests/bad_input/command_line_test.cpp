@@ -182,7 +182,11 @@ TEST(Messages, ArgumentsEchoedByTheCommandLineAreEscaped) {
   for (const std::string& arguments :
        {"render " + (dir / "g.json").string() + " --quiet=" + forged,  // CLI11's ParseError
         "render " + (dir / "g.json").string() + " --" + forged,        // unknown option
-        std::string("rend") + forged}) {                               // unknown command
+        std::string("rend") + forged,                                  // unknown command
+        "nodes " + forged,                                             // unknown node type
+        "validate " + (dir / "g.json").string() + " " + forged,        // a second graph
+        "render " + (dir / "g.json").string() + " " + forged,          // a second graph
+        "bench --warmup " + forged}) {                                 // a bad number
     auto result = aquarelle_within(30, arguments);
     EXPECT_EQ(result.exit_code, 1) << arguments << ": " << result.output;
     const std::string first = result.output.substr(0, result.output.find('\n'));

@@ -8,6 +8,7 @@
 
 #include <climits>
 #include <random>
+#include <utility>
 
 #include "bad_input/bad_input_support.h"
 
@@ -68,6 +69,73 @@ TEST(Hangs, FrameRangeAtTheTopOfIntIsRefused) {
   for (const auto& entry : fs::directory_iterator(dir))
     written += entry.path().extension() == ".exr";
   EXPECT_EQ(written, 0u);
+}
+
+// A chain of `count` nodes of `type` after the cube's g-buffer.
+std::string chain_graph(int count, const std::string& type) {
+  nlohmann::json nodes = {{"model", {{"type", "scene"}, {"params", {{"preset", "cube"}}}}},
+                          {"gbuf", {{"type", "gbuffer"}, {"inputs", {{"scene", "model.scene"}}}}}};
+  std::string previous = "gbuf.albedo";
+  for (int i = 0; i < count; ++i) {
+    const std::string id = "n" + std::to_string(i);
+    nodes[id] = {{"type", type}, {"inputs", {{"image", previous}}}};
+    previous = id + ".image";
+  }
+  nlohmann::json graph = {{"aquarelle", 1},
+                          {"settings", {{"width", 16}, {"height", 16}, {"frames", {1, 1}}}},
+                          {"nodes", nodes},
+                          {"output", previous}};
+  return graph.dump();
+}
+
+// 20,000 `erode` nodes in a chain ran for 151 s (1,000: 4 s): refused by `validate` and
+// `render` alike, in seconds, naming the limit. A chain at the limit still renders.
+TEST(Hangs, TwentyThousandNodeChainIsRefusedInSeconds) {
+  const fs::path dir = scratch_dir("bad_input_long_chain");
+  write_bytes(dir / "long.json", chain_graph(20000, "erode"));
+  for (const std::string& command :
+       {"validate " + (dir / "long.json").string(),
+        "render " + (dir / "long.json").string() + " -q -o " + (dir / "out.exr").string()}) {
+    const MeasuredRun run = aquarelle_measured(60, command);
+    EXPECT_EQ(run.exit_code, 1) << command << ": " << run.output.substr(0, 2000);
+    EXPECT_TRUE(mentions(run.output, "more than 1000 nodes")) << run.output.substr(0, 2000);
+    EXPECT_LT(run.seconds, 20.0) << command;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out.exr"));
+  write_bytes(dir / "limit.json", chain_graph(static_cast<int>(kMaxGraphNodes) - 2, "tint"));
+  auto at_limit = aquarelle_within(
+      120, "render " + (dir / "limit.json").string() + " -q -o " + (dir / "out.exr").string());
+  EXPECT_EQ(at_limit.exit_code, 0) << at_limit.output.substr(0, 2000);
+}
+
+// A 200 GB sparse file named .png or .obj (no disk used) is refused by its size before any
+// format probe reads it: the probe used to read it whole.
+TEST(Hangs, SparseFileOf200GigabytesIsRefusedBeforeAProbeReadsIt) {
+  const fs::path dir = scratch_dir("bad_input_sparse_200g");
+  for (const char* name : {"huge.png", "huge.obj"}) {
+    std::error_code error;
+    write_bytes(dir / name, "");
+    fs::resize_file(dir / name, 200ull << 30, error);
+    if (error) GTEST_SKIP() << "this file system cannot hold a 200 GB sparse file: " << error;
+  }
+  write_bytes(dir / "image.json", R"({"aquarelle": 1,
+  "settings": {"width": 8, "height": 8, "frames": [1, 1]},
+  "nodes": {"source": {"type": "read", "params": {"path": "huge.png"}}},
+  "output": "source.image"})");
+  write_bytes(dir / "mesh.json", mesh_graph("huge.obj"));
+  for (const auto& [graph, file] :
+       {std::pair{"image.json", "huge.png"}, {"mesh.json", "huge.obj"}}) {
+    for (const std::string command : {"validate", "render"}) {
+      const MeasuredRun run = aquarelle_measured(
+          60, command + " " + (dir / graph).string() +
+                  (command == "render" ? " -q -o " + (dir / "out.exr").string() : ""));
+      EXPECT_EQ(run.exit_code, 1) << command << " " << graph << ": " << run.output;
+      EXPECT_TRUE(mentions(run.output, file)) << run.output;
+      EXPECT_TRUE(mentions(run.output, "memory budget")) << run.output;
+      EXPECT_LT(run.seconds, 20.0) << command << " " << graph;
+      EXPECT_LT(run.peak_kib, 1000L * 1000L) << command << " " << graph;
+    }
+  }
 }
 
 // Random folders of hostile plugin candidates: FIFOs, folders, links to devices, to nothing and
