@@ -125,7 +125,9 @@ TEST(Hangs, SparseFileOf200GigabytesIsRefusedBeforeAProbeReadsIt) {
   write_bytes(dir / "mesh.json", mesh_graph("huge.obj"));
   for (const auto& [graph, file] :
        {std::pair{"image.json", "huge.png"}, {"mesh.json", "huge.obj"}}) {
+    // `validate` does not open meshes; it probes images.
     for (const std::string command : {"validate", "render"}) {
+      if (command == "validate" && std::string(file) == "huge.obj") continue;
       const MeasuredRun run = aquarelle_measured(
           60, command + " " + (dir / graph).string() +
                   (command == "render" ? " -q -o " + (dir / "out.exr").string() : ""));
