@@ -1,7 +1,9 @@
 // graphs/deep_ocean.json (issue 38, seed 001's scene) and its watercolor sibling validate and
 // render animated frames (small, to keep CI short; the 1280x720 picture is in docs/), with the
 // parts the issue asks to see: terrain, ship and sails, jellyfish, the image environment behind
-// them and caustics that move; `aquarelle bench` sweeps the caustics' blend_count.
+// them and caustics that move; `aquarelle bench` sweeps every node and parameter the issue
+// added (blend_count, shift, blend_interval, environment, terrain_cells, swim_forward,
+// light_shafts), each against its reference.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
