@@ -72,7 +72,7 @@ TEST(DeepOcean, EveryPartIsInViewAndTheFrameMoves) {
   EXPECT_TRUE(aq::test::all_finite(watercolor));
 }
 
-TEST(DeepOcean, BenchSweepsTheCausticBlend) {
+TEST(DeepOcean, BenchSweepsTheCausticBlendShiftAndInterval) {
   const auto dir = aq::test::scratch_dir("deep_ocean_bench");
   const std::string err_path = (dir / "stderr.txt").string();
   const auto result = aq::test::run_command(
@@ -92,6 +92,21 @@ TEST(DeepOcean, BenchSweepsTheCausticBlend) {
   ASSERT_FALSE((*blend)["points"].empty());
   EXPECT_EQ((*blend)["points"].back()["mean_abs"].get<double>(), 0.0);   // the reference again
   EXPECT_GT((*blend)["points"].front()["mean_abs"].get<double>(), 0.0);  // one image differs
+  // shift and blend_interval, each against the flux reference (CPU) with the same setting.
+  for (const char* series : {"caustics shift", "caustics blend_interval"}) {
+    const nlohmann::json* sweep = nullptr;
+    for (const auto& s : report["sweeps"]) {
+      if (s["series"] == series) sweep = &s;
+    }
+    ASSERT_NE(sweep, nullptr) << series << " missing from " << result.output;
+    EXPECT_EQ((*sweep)["kind"], "cpu_reference");
+    ASSERT_GE((*sweep)["points"].size(), 3u) << series;
+    for (const auto& point : (*sweep)["points"]) {
+      // The node on a 128 grid against the 512-grid flux: the estimator's error, not a
+      // misplaced shift (0.1) or a wrong blend (the intervals' images differ by far more).
+      EXPECT_LT(point["mean_abs"].get<double>(), 0.05) << series << " " << point;
+    }
+  }
 }
 
 // Every node and parameter issue 38 added is in the bench's speed-against-error report, each
@@ -135,34 +150,6 @@ TEST(DeepOcean, BenchSweepsEveryNewNodeAndParameter) {
   EXPECT_EQ(terrain.back()["mean_abs"].get<double>(), 0.0);
   const auto& shafts = sweeps["light_shafts steps"]["points"];
   EXPECT_GT(shafts.front()["mean_abs"].get<double>(), shafts.back()["mean_abs"].get<double>());
-}
-
-// The caustics' seed-001 parameters: shift and blend_interval, each against the flux reference
-// (CPU) with the same setting.
-TEST(DeepOcean, BenchSweepsTheCausticShiftAndInterval) {
-  const auto dir = aq::test::scratch_dir("deep_ocean_bench_caustics");
-  const std::string err_path = (dir / "stderr.txt").string();
-  const auto result = aq::test::run_command(
-      "{ " + std::string(AQ_APP_PATH) + " bench " +
-      aq::test::source_path("graphs/deep_ocean.json") +
-      " --node caustics --size 64x36 --frames 1 --warmup 0 -q --json 2>" + err_path + "; }");
-  std::stringstream errors;
-  errors << std::ifstream(err_path).rdbuf();
-  ASSERT_EQ(result.exit_code, 0) << errors.str();
-  const auto report = nlohmann::json::parse(result.output, nullptr, false);
-  ASSERT_TRUE(report.is_object()) << errors.str();
-  std::map<std::string, nlohmann::json> sweeps;
-  for (const auto& s : report["sweeps"]) sweeps[s["series"].get<std::string>()] = s;
-  for (const char* series : {"caustics shift", "caustics blend_interval"}) {
-    ASSERT_TRUE(sweeps.count(series)) << series << " missing from " << result.output;
-    EXPECT_EQ(sweeps[series]["kind"], "cpu_reference");
-    ASSERT_GE(sweeps[series]["points"].size(), 3u) << series;
-    for (const auto& point : sweeps[series]["points"]) {
-      // The node on a 128 grid against the 512-grid flux: the estimator's error, not a
-      // misplaced shift (0.1) or a wrong blend (the intervals' images differ by far more).
-      EXPECT_LT(point["mean_abs"].get<double>(), 0.05) << series << " " << point;
-    }
-  }
 }
 
 }  // namespace
