@@ -343,5 +343,54 @@ TEST(ConfinedMorphologyChain, ATwoPixelBladeKeepsAnUnbrokenPath) {
   }
 }
 
+// The flagship's own light (graphs/underwater.json at 256 x 144, frame 12): its chain, confined
+// to the light's regions, against the definition applied to the light and regions read back.
+// Half precision (the shipped render): the chain compares the light's 8-bit codes in blocks and
+// hands its passes on (dilate takes columns first), the reference the values: the tolerance is
+// the encoding's bound (hdr8.glsl) plus half's rounding. Float precision (the golden frames'):
+// no codes, no blocks, rows first everywhere, exact up to float. A pixel that took another
+// object's colour, or a window that left its object, is far outside either.
+TEST(Flagship, TheChainKeepsToTheObjectsOfItsOwnLight) {
+  constexpr auto kRows = MorphologyAxes::kRowsFirst, kColumns = MorphologyAxes::kColumnsFirst;
+  for (const std::string precision : {"half", "float"}) {
+    RenderOptions options;
+    options.width = 256;
+    options.height = 144;
+    options.frame = 12;
+    options.precision = precision;
+    const std::string graph = std::string(AQ_SOURCE_DIR) + "/graphs/underwater.json";
+    auto read = [&](const char* output) {
+      RenderOptions o = options;
+      o.output = output;
+      return render_graph_file(graph, o);
+    };
+    auto light = read("light.image");
+    auto regions = read("light.plain");
+    auto chain = read("close_erode.image");
+    ASSERT_TRUE(light.ok()) << light.message();
+    ASSERT_TRUE(regions.ok()) << regions.message();
+    ASSERT_TRUE(chain.ok()) << chain.message();
+    const bool half = precision == "half";
+    const ImageF expected =
+        reference_chain(*light, *regions, {kRows, half ? kColumns : kRows, kRows});
+    int outside = 0;
+    for (int y = 0; y < expected.height; ++y) {
+      for (int x = 0; x < expected.width; ++x) {
+        for (int c = 0; c < 3; ++c) {
+          const double want = expected.at(x, y, c), got = chain->at(x, y, c);
+          const double e = encode(std::max(want, 0.0));
+          const double allowed = half ? e * (1.0 + want) * (1.0 + want) / 255.0 +
+                                            1.0e-3 * std::max(1.0, std::abs(want))
+                                      : 1.0e-6 * std::max(1.0, std::abs(want));
+          outside += std::abs(got - want) > allowed;
+        }
+      }
+    }
+    EXPECT_EQ(outside, 0) << precision;
+    // The chain moved something.
+    EXPECT_GT(max_abs_diff(*chain, *light, 3), 0.05) << precision;
+  }
+}
+
 }  // namespace
 }  // namespace aq::test
