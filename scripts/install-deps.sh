@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config python3 python3-glad
   libglfw3-dev libglm-dev libopenimageio-dev libimath-dev openimageio-tools libopencolorio-dev
   libosmesa6-dev libegl-dev libegl1-mesa-dev libgl-dev libimgui-dev nlohmann-json3-dev
-  libassimp-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
+  libassimp-dev zlib1g-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
   pybind11-dev python3-pybind11 python3-dev python3-pytest python3-numpy python3-matplotlib
   slurm-wlm munge libplplot-dev plplot-driver-cairo
   fonts-dejavu-core

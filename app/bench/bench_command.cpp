@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bench_copy_pass.h"
+#include "bench_node_error.h"
 #include "bench_pipeline.h"
 #include "bench_plot.h"
 #include "bench_report.h"
@@ -29,7 +30,9 @@ constexpr const char* kBenchHelp =
 Measures speed against error. First times a full-screen copy pass of the graph's size and
 format (the yardstick), then each node of GRAPH over N frames after warm-up (median GPU and CPU
 time with their spread), once with every node running each frame and once with static nodes
-cached, and reports the frame cost as copy passes per frame. Then sweeps the quality settings
+cached, and reports the frame cost as copy passes per frame. Beside each node that runs an
+approximation (cells, rays per block, linear taps, a coarse grid) the table gives its error:
+its output against the same node at its exact setting on the same inputs. Then sweeps the quality settings
 of the graph's nodes (blur method and taps, caustic grid, erode/dilate size and footprint,
 shadow map size and its auto size, caustic texture size and its footprint size, normal
 smoothing iterations, half or float precision) measuring time and error (max abs, mean abs,
@@ -264,6 +267,8 @@ std::optional<int> time_graph(const Arguments& args, GlContext& context, const R
     copy_timestamp.push_back(sample.timestamp_ms);
   }
   report->copy_pass = CopyPassTiming{summarize(copy_wall), summarize(copy_timestamp)};
+  progress(args, "measuring each approximating node against its exact setting");
+  report->node_errors = node_errors(context, registry, graph);
   return std::nullopt;
 }
 

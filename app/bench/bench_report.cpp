@@ -32,7 +32,21 @@ double ratio(double frame_ms, double copy_ms) {
   return copy_ms > 0 ? frame_ms / copy_ms : 0.0;
 }
 
-json pipeline_json(const PipelineTiming& timing, double copy_ms) {
+// A node's error against its exact setting (bench_node_error.h); null when it has none.
+json node_error_json(const std::map<std::string, NodeError>& errors, const std::string& id) {
+  const auto found = errors.find(id);
+  if (found == errors.end()) return nullptr;
+  const NodeError& e = found->second;
+  return {{"against", e.against},
+          {"exact", e.exact},
+          {"max_abs", number(e.error.max_abs)},
+          {"mean_abs", number(e.error.mean_abs)},
+          {"psnr", number(e.error.psnr)},
+          {"note", e.note}};
+}
+
+json pipeline_json(const PipelineTiming& timing, double copy_ms,
+                   const std::map<std::string, NodeError>& errors) {
   json nodes = json::array();
   for (const auto& n : timing.nodes) {
     nodes.push_back({{"id", n.id},
@@ -41,13 +55,38 @@ json pipeline_json(const PipelineTiming& timing, double copy_ms) {
                      {"gpu_ms", spread_json(n.gpu_ms)},
                      {"copy_passes", ratio(n.wall_ms.median, copy_ms)},
                      {"runs", n.runs},
-                     {"fused", n.fused}});
+                     {"fused", n.fused},
+                     {"error", node_error_json(errors, n.id)}});
   }
   return {{"static_nodes_cached", timing.static_cached},
           {"frame_ms", spread_json(timing.frame_ms)},
           {"node_wall_sum_ms", spread_json(timing.node_wall_sum_ms)},
           {"copy_passes_per_frame", ratio(timing.frame_ms.median, copy_ms)},
           {"nodes", nodes}};
+}
+
+// The table's error column: mean and max abs against the exact node, "exact" when the node
+// runs at its exact setting, blank for nodes without an approximation.
+std::string error_cell(const std::map<std::string, NodeError>& errors, const std::string& id) {
+  const auto found = errors.find(id);
+  if (found == errors.end()) return "";
+  if (found->second.exact) return "     exact";
+  char cell[48];
+  std::snprintf(cell, sizeof(cell), "%10.3g %10.3g", found->second.error.mean_abs,
+                found->second.error.max_abs);
+  return cell;
+}
+
+void print_error_legend(const std::map<std::string, NodeError>& errors, std::FILE* out) {
+  if (errors.empty()) return;
+  std::fprintf(out,
+               "error: the node's output against the same node at its exact setting, same inputs, "
+               "first frame:");
+  for (const auto& [id, e] : errors) {
+    std::fprintf(out, " %s (%s%s%s);", id.c_str(), e.against.c_str(), e.note.empty() ? "" : ": ",
+                 e.note.c_str());
+  }
+  std::fprintf(out, "\n");
 }
 
 std::string csv_field(const std::string& text) {
@@ -117,10 +156,10 @@ json report_json(const BenchReport& r) {
       {"frame_ms", number(r.cached.frame_ms.median)},
       {"copy_passes_per_frame", number(r.copy_passes_per_frame())},
       {"copy_passes_per_frame_every_node_runs", number(r.copy_passes_per_frame_every_node_runs())},
-      {"nodes", pipeline_json(r.every_node_runs, copy_ms)["nodes"]},
+      {"nodes", pipeline_json(r.every_node_runs, copy_ms, r.node_errors)["nodes"]},
       {"modes",
-       {{"every_node_runs", pipeline_json(r.every_node_runs, copy_ms)},
-        {"cached_static_nodes", pipeline_json(r.cached, copy_ms)}}},
+       {{"every_node_runs", pipeline_json(r.every_node_runs, copy_ms, r.node_errors)},
+        {"cached_static_nodes", pipeline_json(r.cached, copy_ms, r.node_errors)}}},
       {"cpu_references", r.cpu_references},
       {"references_note", r.cpu_references
                               ? "CPU references linked (reference/, aquarelle_reference)"
@@ -144,10 +183,10 @@ void print_report(const BenchReport& r, std::FILE* out) {
   std::fprintf(out,
                "node time: process() between two glFinish calls (wall); copies = median / "
                "copy pass\n");
-  std::fprintf(out, "%-14s %-12s %36s %27s %10s\n", "node", "type", "every node runs: ms",
-               "static cached: ms", "GL tstamp");
-  std::fprintf(out, "%-14s %-12s %9s %17s %8s %9s %17s %10s\n", "", "", "median", "[min .. max]",
-               "copies", "median", "[min .. max]", "ms");
+  std::fprintf(out, "%-14s %-12s %36s %27s %10s %21s\n", "node", "type", "every node runs: ms",
+               "static cached: ms", "GL tstamp", "error vs exact node");
+  std::fprintf(out, "%-14s %-12s %9s %17s %8s %9s %17s %10s %10s %10s\n", "", "", "median",
+               "[min .. max]", "copies", "median", "[min .. max]", "ms", "mean abs", "max abs");
   for (size_t i = 0; i < r.every_node_runs.nodes.size(); ++i) {
     const NodeStats& n = r.every_node_runs.nodes[i];
     const NodeStats* c = nullptr;
@@ -164,10 +203,12 @@ void print_report(const BenchReport& r, std::FILE* out) {
       std::snprintf(cached, sizeof(cached), "%9.3f [%6.3f .. %6.3f]", c->wall_ms.median,
                     c->wall_ms.min, c->wall_ms.max);
     }
-    std::fprintf(out, "%-14s %-12s %9.3f [%6.3f .. %6.3f] %8.1f %27s %10.3f\n", n.id.c_str(),
+    std::fprintf(out, "%-14s %-12s %9.3f [%6.3f .. %6.3f] %8.1f %27s %10.3f %s\n", n.id.c_str(),
                  n.type.c_str(), n.wall_ms.median, n.wall_ms.min, n.wall_ms.max,
-                 ratio(n.wall_ms.median, copy_ms), cached, n.gpu_ms.median);
+                 ratio(n.wall_ms.median, copy_ms), cached, n.gpu_ms.median,
+                 error_cell(r.node_errors, n.id).c_str());
   }
+  print_error_legend(r.node_errors, out);
   std::fprintf(out,
                "\nframe (wall, timers off): every node runs %.3f ms = %.1f copy passes; "
                "static nodes cached %.3f ms = %.1f copy passes\n",
@@ -235,8 +276,13 @@ Status write_report_csv(const BenchReport& r, const std::string& path) {
     for (const auto* timing : {&r.every_node_runs, &r.cached}) {
       const std::string mode = timing->static_cached ? "cached_static_nodes" : "every_node_runs";
       for (const auto& n : timing->nodes) {
-        row("node", mode, n.id, n.type, "", r.precision, n.wall_ms, n.gpu_ms.median,
-            std::to_string(n.runs), "", "", "", "", "", "");
+        const auto e = r.node_errors.find(n.id);
+        const bool has_error = e != r.node_errors.end();
+        const ErrorStats error = has_error ? e->second.error : ErrorStats{};
+        row("node", mode, n.id, n.type, has_error ? e->second.against : "", r.precision, n.wall_ms,
+            n.gpu_ms.median, std::to_string(n.runs), has_error ? csv_number(error.max_abs) : "",
+            has_error ? csv_number(error.mean_abs) : "", has_error ? csv_number(error.psnr) : "",
+            "", "", has_error ? "exact node: " + e->second.against : "");
       }
       row("frame", mode, "", "", "", r.precision, timing->frame_ms, 0.0, "", "", "", "", "", "",
           "");

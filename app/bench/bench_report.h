@@ -9,10 +9,12 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "bench_copy_pass.h"
+#include "bench_node_error.h"
 #include "bench_pipeline.h"
 #include "bench_sweep.h"
 
@@ -30,6 +32,8 @@ struct BenchReport {
   CopyPassTiming copy_pass;
   PipelineTiming every_node_runs;  // outputs not kept: every node runs every frame
   PipelineTiming cached;           // outputs kept: unchanged (static) nodes reused
+  // By node id: the nodes that run an approximation, against their exact setting.
+  std::map<std::string, NodeError> node_errors;
   bool cpu_references = false;
   std::vector<Sweep> sweeps;
 

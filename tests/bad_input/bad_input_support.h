@@ -6,10 +6,14 @@
 #include <aquarelle/core/image.h>
 #include <aquarelle/core/result.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -34,6 +38,25 @@ inline fs::path make_fifo(const fs::path& path) {
   fs::remove(path);
   EXPECT_EQ(::mkfifo(path.c_str(), 0600), 0) << path;
   return path;
+}
+
+inline uint32_t crc32(const std::string& bytes) {
+  uint32_t crc = 0xFFFFFFFFu;
+  for (unsigned char byte : bytes) {
+    crc ^= byte;
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+inline std::string big_endian(uint32_t v) {
+  return {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+          static_cast<char>(v)};
+}
+
+inline std::string png_chunk(const std::string& type, const std::string& data) {
+  return big_endian(static_cast<uint32_t>(data.size())) + type + data +
+         big_endian(crc32(type + data));
 }
 
 inline std::string base64(const std::string& bytes) {
@@ -138,6 +161,53 @@ inline CommandResult aquarelle_within(int seconds, const std::string& arguments,
                                       const std::string& environment = "") {
   return run_command("timeout -s KILL " + std::to_string(seconds) + " env " + environment + " " +
                      AQ_APP_PATH + " " + arguments);
+}
+
+// `aquarelle ARGS` run as its own child, with what it cost: the peak resident memory of it and
+// its descendants (wait4's rusage) and the wall time. A hang ends as exit code 137.
+struct MeasuredRun {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+  long peak_kib = 0;
+  double seconds = 0;
+};
+
+inline MeasuredRun aquarelle_measured(int seconds, const std::string& arguments,
+                                      const std::string& environment = "") {
+  const std::string command = "exec timeout -s KILL " + std::to_string(seconds) + " env " +
+                              environment + " " + AQ_APP_PATH + " " + arguments;
+  MeasuredRun run;
+  int out[2];
+  if (::pipe(out) != 0) return run;
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::dup2(out[1], 1);
+    ::dup2(out[1], 2);
+    ::close(out[0]);
+    ::close(out[1]);
+    ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ::close(out[1]);
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(out[0], buffer, sizeof(buffer))) > 0;) run.output.append(buffer, n);
+  ::close(out[0]);
+  int status = 0;
+  struct rusage usage {};
+  if (child > 0 && ::wait4(child, &status, 0, &usage) == child) {
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    run.peak_kib = usage.ru_maxrss;
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
+}
+
+// The number of lines of a message (a refusal is one line).
+inline int line_count(const std::string& text) {
+  int lines = 0;
+  for (char c : text) lines += c == '\n';
+  return lines + (!text.empty() && text.back() != '\n');
 }
 
 }  // namespace aq::test::bad_input

@@ -28,25 +28,6 @@ const ColorConfig& config() {
   return *loaded;
 }
 
-uint32_t crc32(const std::string& bytes) {
-  uint32_t crc = 0xFFFFFFFFu;
-  for (unsigned char byte : bytes) {
-    crc ^= byte;
-    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
-  }
-  return ~crc;
-}
-
-std::string big_endian(uint32_t v) {
-  return {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
-          static_cast<char>(v)};
-}
-
-std::string png_chunk(const std::string& type, const std::string& data) {
-  return big_endian(static_cast<uint32_t>(data.size())) + type + data +
-         big_endian(crc32(type + data));
-}
-
 // Item 2.
 TEST(ImageDeclaredSizes, KilobytePngDeclaring16384SquaredIsRefusedBeforeAllocating) {
   const fs::path dir = scratch_dir("bad_input_png_huge");

@@ -13,7 +13,10 @@
 // Why welding by tolerance and not by hashing rounded coordinates: two copies of a corner that
 // differ by 1e-7 can round into different cells and would stay unwelded (a visible seam).
 // Here a vertex is compared against every vertex in the 27 surrounding cells of size
-// `tolerance`, and welds are transitive (union-find).
+// `tolerance`, and welds are transitive (union-find). Copies of one exact position are welded
+// to its first copy without that search (they have the same neighbours): a hostile file of
+// 150,000 triangles on the same three corners made every vertex compare against all earlier
+// ones (quadratic, over a minute; issue 40).
 //
 // Why the fallback: a double-sided part (two triangles with opposite windings on the same
 // positions: a leaf, a fin, a plane seen from both sides) sums to a zero vector; normalising it
@@ -27,6 +30,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <numeric>
 #include <unordered_map>
 #include <vector>
@@ -92,6 +96,26 @@ struct CellKeyHash {
   }
 };
 
+// A finite position's exact float bits.
+struct ExactKey {
+  uint32_t x, y, z;
+  bool operator==(const ExactKey&) const = default;
+};
+struct ExactKeyHash {
+  size_t operator()(const ExactKey& k) const {
+    uint64_t h = (static_cast<uint64_t>(k.x) << 32 | k.y) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<uint64_t>(k.z) * 0xC2B2AE3D27D4EB4Full + (h >> 29);
+    return static_cast<size_t>(h);
+  }
+};
+inline ExactKey exact_key(const std::vector<float>& v, size_t i) {
+  ExactKey key{};
+  std::memcpy(&key.x, &v[3 * i], 4);
+  std::memcpy(&key.y, &v[3 * i + 1], 4);
+  std::memcpy(&key.z, &v[3 * i + 2], 4);
+  return key;
+}
+
 }  // namespace detail
 
 // Group index per vertex: vertices closer than `absolute_tolerance` (transitively) share one
@@ -104,6 +128,8 @@ inline std::vector<uint32_t> weld_positions(const std::vector<float>& positions,
   UnionFind sets(n);
   std::unordered_map<CellKey, std::vector<uint32_t>, CellKeyHash> cells;
   cells.reserve(n);
+  std::unordered_map<ExactKey, uint32_t, ExactKeyHash> first_copy;
+  first_copy.reserve(n);
   auto cell_of = [&](const Vec3& p) {
     return CellKey{static_cast<int64_t>(std::floor(p[0] / tol)),
                    static_cast<int64_t>(std::floor(p[1] / tol)),
@@ -111,6 +137,13 @@ inline std::vector<uint32_t> weld_positions(const std::vector<float>& positions,
   };
   for (uint32_t i = 0; i < n; ++i) {
     Vec3 p = load(positions, i);
+    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) {
+      auto [copy, first] = first_copy.try_emplace(exact_key(positions, i), i);
+      if (!first) {
+        sets.unite(i, copy->second);
+        continue;
+      }
+    }
     CellKey c = cell_of(p);
     for (int64_t dx = -1; dx <= 1; ++dx)
       for (int64_t dy = -1; dy <= 1; ++dy)
