@@ -102,8 +102,8 @@ struct Bleed {
 
   // A program of `fragment` with bleed_inputs.glsl before it.
   static GLuint with_inputs(aq::Context& ctx, const aq_shader_source& fragment) {
-    const std::string text = std::string(shaders::bleed_inputs_glsl.text) + "\n#line 1\n" +
-                             fragment.text;
+    const std::string text =
+        std::string(shaders::bleed_inputs_glsl.text) + "\n#line 1\n" + fragment.text;
     return ctx.program(aq_shader_source{fragment.name, text.c_str(), nullptr});
   }
 
