@@ -1,7 +1,9 @@
 // graphs/deep_ocean.json (issue 38, seed 001's scene) and its watercolor sibling validate and
 // render animated frames (small, to keep CI short; the 1280x720 picture is in docs/), with the
 // parts the issue asks to see: terrain, ship and sails, jellyfish, the image environment behind
-// them and caustics that move; `aquarelle bench` sweeps the caustics' blend_count.
+// them and caustics that move; `aquarelle bench` sweeps every node and parameter the issue
+// added (blend_count, shift, blend_interval, environment, terrain_cells, swim_forward,
+// light_shafts), each against its reference.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -70,7 +72,7 @@ TEST(DeepOcean, EveryPartIsInViewAndTheFrameMoves) {
   EXPECT_TRUE(aq::test::all_finite(watercolor));
 }
 
-TEST(DeepOcean, BenchSweepsTheCausticBlend) {
+TEST(DeepOcean, BenchSweepsTheCausticBlendShiftAndInterval) {
   const auto dir = aq::test::scratch_dir("deep_ocean_bench");
   const std::string err_path = (dir / "stderr.txt").string();
   const auto result = aq::test::run_command(
@@ -90,6 +92,64 @@ TEST(DeepOcean, BenchSweepsTheCausticBlend) {
   ASSERT_FALSE((*blend)["points"].empty());
   EXPECT_EQ((*blend)["points"].back()["mean_abs"].get<double>(), 0.0);   // the reference again
   EXPECT_GT((*blend)["points"].front()["mean_abs"].get<double>(), 0.0);  // one image differs
+  // shift and blend_interval, each against the flux reference (CPU) with the same setting.
+  for (const char* series : {"caustics shift", "caustics blend_interval"}) {
+    const nlohmann::json* sweep = nullptr;
+    for (const auto& s : report["sweeps"]) {
+      if (s["series"] == series) sweep = &s;
+    }
+    ASSERT_NE(sweep, nullptr) << series << " missing from " << result.output;
+    EXPECT_EQ((*sweep)["kind"], "cpu_reference");
+    ASSERT_GE((*sweep)["points"].size(), 3u) << series;
+    for (const auto& point : (*sweep)["points"]) {
+      // The node on a 128 grid against the 512-grid flux: the estimator's error, not a
+      // misplaced shift (0.1) or a wrong blend (the intervals' images differ by far more).
+      EXPECT_LT(point["mean_abs"].get<double>(), 0.05) << series << " " << point;
+    }
+  }
+}
+
+// Every node and parameter issue 38 added is in the bench's speed-against-error report, each
+// point timed and compared with its reference, the errors where the maths says they are.
+TEST(DeepOcean, BenchSweepsEveryNewNodeAndParameter) {
+  const auto dir = aq::test::scratch_dir("deep_ocean_bench_all");
+  const std::string err_path = (dir / "stderr.txt").string();
+  const auto result = aq::test::run_command(
+      "{ " + std::string(AQ_APP_PATH) + " bench " +
+      aq::test::source_path("graphs/deep_ocean.json") +
+      " --node environment --node object --node light_shafts --size 64x36 --frames 1 "
+      "--warmup 0 -q --json 2>" +
+      err_path + "; }");
+  std::stringstream errors;
+  errors << std::ifstream(err_path).rdbuf();
+  ASSERT_EQ(result.exit_code, 0) << errors.str();
+  const auto report = nlohmann::json::parse(result.output, nullptr, false);
+  ASSERT_TRUE(report.is_object()) << errors.str();
+  std::map<std::string, nlohmann::json> sweeps;
+  for (const auto& s : report["sweeps"]) sweeps[s["series"].get<std::string>()] = s;
+  for (const char* series :
+       {"environment", "object terrain_cells", "object swim_forward", "light_shafts steps"}) {
+    ASSERT_TRUE(sweeps.count(series)) << series << " missing from " << result.output;
+    ASSERT_FALSE(sweeps[series]["points"].empty()) << series;
+    for (const auto& point : sweeps[series]["points"]) {
+      EXPECT_TRUE(point["mean_abs"].is_number()) << series << " " << point;
+      EXPECT_GT(point["time_ms"]["median"].get<double>(), 0.0) << series << " " << point;
+    }
+  }
+  // The environment within a few thousandths (llvmpipe's atan/asin) up to 512 texels across.
+  for (const auto& point : sweeps["environment"]["points"]) {
+    if (point["setting"] == "panorama 4096x2048") continue;
+    EXPECT_LT(point["max_abs"].get<double>(), 0.02) << point;
+  }
+  // A body built along any axis swims as the one built along +x.
+  for (const auto& point : sweeps["object swim_forward"]["points"])
+    EXPECT_LT(point["mean_abs"].get<double>(), 1e-4) << point;
+  // Finer terrain grids and more shaft segments come closer to their references.
+  const auto& terrain = sweeps["object terrain_cells"]["points"];
+  EXPECT_GT(terrain.front()["mean_abs"].get<double>(), terrain[terrain.size() - 2]["mean_abs"]);
+  EXPECT_EQ(terrain.back()["mean_abs"].get<double>(), 0.0);
+  const auto& shafts = sweeps["light_shafts steps"]["points"];
+  EXPECT_GT(shafts.front()["mean_abs"].get<double>(), shafts.back()["mean_abs"].get<double>());
 }
 
 }  // namespace
