@@ -1,9 +1,9 @@
 // The sweeps of `aquarelle bench` for seed 001's deep-ocean parts (issue 38), each timed with
 // its error against a reference:
 //
-//   environment          the panorama's size (1x1 .. 4096x2048) and precision against
-//                        reference::environment (the README's view ray and bilinear lookup,
-//                        double precision)
+//   environment          the panorama's size (1x1 .. 4096x2048) and precision, and a cube
+//                        map of six faces and of five, against reference::environment and
+//                        environment_cube (the README's view ray and lookups, double precision)
 //   caustics shift       the seed's blue shift (and none, and grey) against the converged flux
 //                        per texel plus the shift (reference::caustic_flux_by_coverage)
 //   caustics blend_interval  five images at successive times, several intervals, against the
@@ -97,6 +97,49 @@ ImageF sweep_ids(int w, int h) {
   return id;
 }
 
+// Cube map face f (0..5): gradients across, a level per face, and texel to texel steps.
+ImageF sweep_cube_face(int n, int f) {
+  ImageF face(n, n, 4, 1.0f);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      face.at(x, y, 0) = static_cast<float>(0.2 + 0.6 * (x + 0.5) / n);
+      face.at(x, y, 1) = static_cast<float>(0.2 + 0.6 * (y + 0.5) / n);
+      face.at(x, y, 2) = static_cast<float>(0.1 * f + ((x * 7 + y * 3) % 11) / 20.0);
+    }
+  return face;
+}
+
+// The environment from six cube faces (256 x 256), and from five (+x missing: looking that way
+// shows missing_face_color), against reference::environment_cube.
+Status environment_cube_points(GlContext& context, const Registry& registry, const SweepPlan& plan,
+                               const reference::EnvironmentParams& p, const ImageF& image,
+                               const ImageF& id, Sweep* sweep) {
+  const char* const names[6] = {"cube_px", "cube_nx", "cube_py", "cube_ny", "cube_pz", "cube_nz"};
+  std::map<std::string, ImageF> images{{"image", image}, {"id", id}};
+  for (int f = 0; f < 6; ++f) images[names[f]] = sweep_cube_face(256, f);
+  for (int first : {0, 1}) {  // all six faces; then without +x
+    const ImageF* faces[6];
+    std::map<std::string, std::string> inputs{{"image", "image"}, {"id", "id"}};
+    for (int f = 0; f < 6; ++f) {
+      faces[f] = f >= first ? &images.at(names[f]) : nullptr;
+      if (f >= first) inputs[names[f]] = names[f];
+    }
+    auto exact = timed_reference(&sweep->reference_ms, [&] {
+      return reference::environment_cube(image, id, faces, {0.0, 0.0, 0.0}, p);
+    });
+    const std::string setting = first == 0 ? "cube 6 x 256x256" : "cube, +x missing";
+    std::vector<ReferenceConfig> configs;
+    for (const char* precision : kPrecisions) configs.push_back({setting, {}, precision, exact});
+    if (auto s = run_configs(context, registry, plan, "environment", {{"intensity", p.intensity}},
+                             inputs, images, configs, plan.width, plan.height, sweep,
+                             with_camera(kSideEye, kSideTarget, kSideFov));
+        !s.ok()) {
+      return s;
+    }
+  }
+  return Ok{};
+}
+
 Result<Sweep> environment_sweep(GlContext& context, const Registry& registry, const Graph& graph,
                                 const SweepPlan& plan) {
   const int w = plan.width, h = plan.height;
@@ -136,6 +179,8 @@ Result<Sweep> environment_sweep(GlContext& context, const Registry& registry, co
       return s.error();
     }
   }
+  if (auto s = environment_cube_points(context, registry, plan, p, image, id, &sweep); !s.ok())
+    return s.error();
   return sweep;
 }
 
@@ -380,9 +425,11 @@ Graph terrain_graph(const Graph& graph, const std::string& floor_id, int cells,
   g.nodes["floor"] = floor;
   Node join;
   join.type = "scene_join";
+  // Narrow enough that the floor fills the frame at 16:9: no pixel at its edge, where a point
+  // on or off the floor would count as a height error.
   join.params["camera_position"] = json::array({0.0, 1.6, 0.9});
   join.params["camera_target"] = json::array({0.0, 0.0, 0.0});
-  join.params["fov"] = 40.0;
+  join.params["fov"] = 15.0;
   join.params["environment"] = "none";
   join.inputs["objects"] = PortRef{"floor", "object"};
   g.nodes["join"] = join;

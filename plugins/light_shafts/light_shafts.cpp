@@ -80,6 +80,7 @@ struct LightShafts {
     aq::set_vec3(program, "u_light_direction", light);
     aq::set_vec3(program, "u_light_color", color);
     aq::set_float(program, "u_water_height", scene->water_height);
+    aq::set_vec2(program, "u_caustic_size", caustics.width, caustics.height);
     aq::set_float(program, "u_tile", own_tile > 0.0 ? own_tile : aq::scene_caustic_tile(*scene));
     aq::set_float(program, "u_strength", ctx.param_float(kStrength));
     aq::set_float(program, "u_extinction", ctx.param_float(kExtinction));

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -70,6 +71,27 @@ TEST(DeepOcean, EveryPartIsInViewAndTheFrameMoves) {
   EXPECT_TRUE(aq::test::all_finite(first));
   const ImageF watercolor = render("graphs/deep_ocean_watercolor.json", "", 1);
   EXPECT_TRUE(aq::test::all_finite(watercolor));
+}
+
+// The god rays are in the picture: light_shafts adds light over the terrain's cliff and the
+// open water, never takes any away, and it varies (streaks, not a uniform haze).
+TEST(DeepOcean, LightShaftsAddStreaksOfLight) {
+  const ImageF before = render("graphs/deep_ocean.json", "environment.image", 1);
+  const ImageF after = render("graphs/deep_ocean.json", "shafts.image", 1);
+  const ImageF id = render("graphs/deep_ocean.json", "gbuf.id", 1);
+  ASSERT_EQ(before.pixels.size(), after.pixels.size());
+  ASSERT_EQ(id.width, before.width);
+  double least = 1e9, most = -1e9, on_terrain = 0.0;
+  int terrain = 0;
+  for (int i = 0; i < before.width * before.height; ++i) {
+    const double added = after.pixels[4 * i + 2] - before.pixels[4 * i + 2];  // blue
+    least = std::min(least, added), most = std::max(most, added);
+    if (id.pixels[i * id.channels] == 1.0f) on_terrain += added, ++terrain;
+  }
+  EXPECT_GE(least, -1e-3) << "the shafts only add light (half precision)";
+  EXPECT_GT(most - least, 0.05) << "streaks, not a uniform haze";
+  ASSERT_GT(terrain, 0);
+  EXPECT_GT(on_terrain / terrain, 0.005) << "light over the floor and the cliff";
 }
 
 TEST(DeepOcean, BenchSweepsTheCausticBlendShiftAndInterval) {

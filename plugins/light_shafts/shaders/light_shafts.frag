@@ -24,31 +24,29 @@ uniform int u_steps;
 
 layout(location = 0) out vec4 o_color;
 
-vec3 caustic_texel(ivec2 t, ivec2 size) {
-  return texelFetch(u_caustics, (t % size + size) % size, 0).rgb;
+uniform vec2 u_caustic_size;  // the caustic texture's width and height, texels
+
+// A column or row index wrapped into [0, n): float arithmetic (llvmpipe runs integer division
+// lane by lane), with the quotient's rounding corrected by one period either way.
+vec2 wrap_index(vec2 i, vec2 n) {
+  vec2 r = i - n * floor(i / n);
+  r -= n * vec2(greaterThanEqual(r, n));
+  r += n * vec2(lessThan(r, vec2(0.0)));
+  return r;
 }
 
 // The caustic texture at tile coordinates uv, wrapping: texel centres at (i + 1/2) / size.
 vec3 caustic(vec2 uv) {
-  ivec2 size = textureSize(u_caustics, 0);
-  vec2 a = uv * vec2(size) - 0.5;
+  vec2 a = uv * u_caustic_size - 0.5;
   vec2 cell = floor(a);
   vec2 f = a - cell;
-  // The cell index wraps before it becomes an integer: far from the origin a float's integer
-  // part is exact, and the period of the texture keeps indices small.
-  ivec2 i = ivec2(cell - vec2(size) * floor(cell / vec2(size)));
-  vec3 b = mix(caustic_texel(i, size), caustic_texel(i + ivec2(1, 0), size), f.x);
-  vec3 t = mix(caustic_texel(i + ivec2(0, 1), size), caustic_texel(i + ivec2(1, 1), size), f.x);
+  ivec2 i0 = ivec2(wrap_index(cell, u_caustic_size));
+  ivec2 i1 = ivec2(wrap_index(cell + 1.0, u_caustic_size));
+  vec3 b = mix(texelFetch(u_caustics, i0, 0).rgb, texelFetch(u_caustics, ivec2(i1.x, i0.y), 0).rgb,
+               f.x);
+  vec3 t = mix(texelFetch(u_caustics, ivec2(i0.x, i1.y), 0).rgb, texelFetch(u_caustics, i1, 0).rgb,
+               f.x);
   return mix(b, t, f.y);
-}
-
-// What the caustics add to the light at q: the texture where the light through q left the
-// water plane, over flat water's 1; nothing above the water.
-vec3 excess(vec3 q) {
-  if (q.y >= u_water_height) return vec3(0.0);
-  float up = (u_water_height - q.y) / -u_light_direction.y;
-  vec3 w = q - up * u_light_direction;
-  return max(caustic(w.xz / u_tile) - vec3(1.0), vec3(0.0));
 }
 
 void main() {
@@ -69,12 +67,22 @@ void main() {
   }
   vec3 light = vec3(0.0);
   if (u_light_direction.y < 0.0 && distance_to > 0.0) {
+    // Where the light through q = eye + t ray left the water plane is linear in t:
+    // w.xz = w0 + t wd (README), so each step adds wd * step_length to the tile coordinates.
+    float to_surface_per_unit = 1.0 / -u_light_direction.y;
+    vec2 w0 = u_eye.xz - (u_water_height - u_eye.y) * to_surface_per_unit * u_light_direction.xz;
+    vec2 wd = ray.xz + ray.y * to_surface_per_unit * u_light_direction.xz;
     float step_length = distance_to / float(u_steps);
-    float near_weight = 1.0;  // exp(-sigma t) at the segment's near end
+    // exp(-sigma t) at the segment's ends, by a constant ratio per segment.
+    float ratio = exp(-u_extinction * step_length);
+    float near_weight = 1.0;
     for (int k = 0; k < u_steps; ++k) {
-      float far_weight = exp(-u_extinction * step_length * float(k + 1));
-      vec3 q = u_eye + (float(k) + 0.5) * step_length * ray;
-      light += excess(q) * (near_weight - far_weight);
+      float t = (float(k) + 0.5) * step_length;
+      float far_weight = near_weight * ratio;
+      if (u_eye.y + t * ray.y < u_water_height) {  // only water scatters
+        vec3 excess = max(caustic((w0 + t * wd) / u_tile) - vec3(1.0), vec3(0.0));
+        light += excess * (near_weight - far_weight);
+      }
       near_weight = far_weight;
     }
   }

@@ -23,4 +23,9 @@ struct EnvironmentParams {
 ImageF environment(const ImageF& image, const ImageF& id, const ImageF& panorama,
                    const EnvironmentParams& params);
 
+// Cube map mode: faces in the order +x, -x, +y, -y, +z, -z (the README's table of right and up
+// directions); a null face shows `missing` (linear rgb).
+ImageF environment_cube(const ImageF& image, const ImageF& id, const ImageF* const faces[6],
+                        const std::array<double, 3>& missing, const EnvironmentParams& params);
+
 }  // namespace aq::reference
