@@ -185,7 +185,19 @@ float aq_morph_label(ivec2 pixel) {
 // of another region is left out (AQ_MORPH_CONFINE). The centre is in its own window, so the
 // result keeps the centre's label in alpha.
 vec4 aq_morph_confined(vec4 best, vec4 candidate, float centre) {
+#if AQ_MORPH_BLOCKED && AQ_MORPH_LUMINANCE == 0
+  // 8-bit values lie in [0, 1]: a tap of another region is pushed out of reach (+2 under min,
+  // -2 under max) instead of selecting four channels, and alpha (the label) is left alone.
+  // Fewer operations per tap on llvmpipe, the same bits.
+  float away = candidate.a == centre ? 0.0 : 2.0;
+#ifdef AQ_MORPH_DILATE
+  return vec4(max(best.rgb, candidate.rgb - away), best.a);
+#else
+  return vec4(min(best.rgb, candidate.rgb + away), best.a);
+#endif
+#else
   return candidate.a == centre ? aq_morph_combine(best, candidate) : best;
+#endif
 }
 
 // A node's last write: alpha 1 when confined and not handed on (the labels end with the chain).
@@ -286,8 +298,15 @@ void main() {
       // Only the taps of the centre's region (the labels the writer left in alpha).
       vec4 best = pixels[j + AQ_MORPH_PENDING_RADIUS];
       float centre = best.a;
-      for (int t = 0; t <= 2 * AQ_MORPH_PENDING_RADIUS; ++t)
-        best = pixels[j + t].a == centre ? aq_morph_pending_combine(best, pixels[j + t]) : best;
+      for (int t = 0; t <= 2 * AQ_MORPH_PENDING_RADIUS; ++t) {
+        // As aq_morph_confined: a tap of another region pushed out of reach of the extreme.
+        float away = pixels[j + t].a == centre ? 0.0 : 2.0;
+#if AQ_MORPH_PENDING_DILATE
+        best.rgb = max(best.rgb, pixels[j + t].rgb - away);
+#else
+        best.rgb = min(best.rgb, pixels[j + t].rgb + away);
+#endif
+      }
 #else
       vec4 best = pixels[j];
       for (int t = 1; t <= 2 * AQ_MORPH_PENDING_RADIUS; ++t)
