@@ -219,8 +219,13 @@ Status check_spec(const std::string& path, const OIIO::ImageSpec& spec) {
       return ok;
     }
   }
-  return check_declared_size(path, ext, file_bytes, spec.width, spec.height, spec.nchannels,
-                             shown.width, shown.height, static_cast<int>(spec.format.size()));
+  if (auto ok =
+          check_declared_size(path, ext, file_bytes, spec.width, spec.height, spec.nchannels,
+                              shown.width, shown.height, static_cast<int>(spec.format.size()));
+      !ok) {
+    return ok;
+  }
+  return check_tiff_strips(path);
 }
 
 }  // namespace
@@ -318,6 +323,13 @@ Result<ImageF> read_image_within_budget(const std::string& path, const ColorConf
       return make_error("cannot read the pixels of image " + path + ": " + reason +
                         " (the file is probably truncated or corrupt; re-export it)");
     }
+  }
+  // OIIO records a strip it could not decode (a truncated PackBits or LZW TIFF) and still
+  // returns true, with black where the strip was: that is an error, never a picture.
+  if (std::string late = trim(input->geterror()); !late.empty() && late != "no details") {
+    return make_error("cannot read the pixels of image " + path + ": " + late +
+                      " (the file is truncated or corrupt: its missing pixels would read as "
+                      "black; re-export it)");
   }
   const bool straight_alpha = spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
   input->close();

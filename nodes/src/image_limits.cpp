@@ -4,6 +4,7 @@
 
 #include <sys/stat.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
@@ -310,6 +311,164 @@ Status check_jpeg_iptc(const std::string& path) {
       }
     }
     at += 2 + length;
+  }
+  return Ok{};
+}
+
+namespace {
+
+// The tags of a classic TIFF's first directory that say where its pixels are.
+struct TiffLayout {
+  uint64_t width = 0, height = 0, bits = 1, samples = 1, compression = 1, planar = 1;
+  uint64_t photometric = 1, rows_per_strip = UINT32_MAX, tile_width = 0, tile_height = 0;
+  std::vector<uint64_t> offsets, byte_counts;
+};
+
+// Reads the first directory; false when the file is not a classic TIFF this walk understands.
+bool read_tiff_layout(const HeaderFile& file, TiffLayout* layout) {
+  unsigned char head[8] = {};
+  if (!file.read(head, 8, 0)) return false;
+  const bool little = head[0] == 'I' && head[1] == 'I';
+  if (!little && !(head[0] == 'M' && head[1] == 'M')) return false;
+  auto number = [little](const unsigned char* p, int n) {
+    uint64_t v = 0;
+    for (int i = 0; i < n; ++i) v = (v << 8) | p[little ? n - 1 - i : i];
+    return v;
+  };
+  if (number(head + 2, 2) != 42) return false;  // BigTIFF (43) and others: OIIO's own checks
+  const uint64_t directory = number(head + 4, 4);
+  unsigned char count_bytes[2] = {};
+  if (!file.read(count_bytes, 2, directory)) return false;
+  const uint64_t entries = number(count_bytes, 2);
+  for (uint64_t e = 0; e < entries; ++e) {
+    unsigned char entry[12] = {};
+    if (!file.read(entry, 12, directory + 2 + 12 * e)) return false;
+    const uint64_t tag = number(entry, 2), type = number(entry + 2, 2);
+    const uint64_t count = number(entry + 4, 4);
+    const int size = type == 3 ? 2 : type == 4 ? 4 : 0;  // SHORT or LONG; others not needed
+    if (size == 0) continue;
+    // Each value lies inside the file: a count past it cannot be right.
+    if (count == 0 || count > file.size() / static_cast<uint64_t>(size)) return false;
+    std::vector<unsigned char> raw(static_cast<size_t>(count) * size);
+    const uint64_t at = raw.size() <= 4 ? directory + 2 + 12 * e + 8 : number(entry + 8, 4);
+    if (!file.read(raw.data(), raw.size(), at)) return false;
+    std::vector<uint64_t> values(static_cast<size_t>(count));
+    for (size_t i = 0; i < values.size(); ++i) values[i] = number(raw.data() + i * size, size);
+    switch (tag) {
+      case 256:
+        layout->width = values[0];
+        break;
+      case 257:
+        layout->height = values[0];
+        break;
+      case 258:
+        layout->bits = values[0];
+        break;
+      case 259:
+        layout->compression = values[0];
+        break;
+      case 273:
+      case 324:
+        layout->offsets = std::move(values);
+        break;
+      case 262:
+        layout->photometric = values[0];
+        break;
+      case 277:
+        layout->samples = values[0];
+        break;
+      case 278:
+        layout->rows_per_strip = values[0];
+        break;
+      case 279:
+      case 325:
+        layout->byte_counts = std::move(values);
+        break;
+      case 284:
+        layout->planar = values[0];
+        break;
+      case 322:
+        layout->tile_width = values[0];
+        break;
+      case 323:
+        layout->tile_height = values[0];
+        break;
+      default:
+        break;
+    }
+  }
+  return layout->width > 0 && layout->height > 0 && layout->samples > 0 && layout->bits > 0;
+}
+
+// Bytes `data` inflates to, counting no further than `enough` (zlib or raw deflate stream).
+uint64_t inflated_bytes(const std::vector<unsigned char>& data, uint64_t enough) {
+  z_stream stream{};
+  if (inflateInit(&stream) != Z_OK) return 0;
+  stream.next_in = const_cast<unsigned char*>(data.data());
+  stream.avail_in = static_cast<uInt>(data.size());
+  std::vector<unsigned char> out(64 << 10);
+  uint64_t produced = 0;
+  int status = Z_OK;
+  while (status == Z_OK && produced < enough) {
+    stream.next_out = out.data();
+    stream.avail_out = static_cast<uInt>(out.size());
+    status = inflate(&stream, Z_NO_FLUSH);
+    produced += out.size() - stream.avail_out;
+    if (status == Z_OK && stream.avail_in == 0 && stream.avail_out != 0) break;  // input ended
+  }
+  inflateEnd(&stream);
+  return produced;
+}
+
+}  // namespace
+
+Status check_tiff_strips(const std::string& path) {
+  auto opened = open_header(path);
+  if (!opened.ok()) return opened.error();
+  const HeaderFile& file = **opened;
+  TiffLayout t;
+  if (!read_tiff_layout(file, &t)) return Ok{};
+  auto refuse = [&](const std::string& what) -> Status {
+    return make_error("cannot read image " + path + ": " + what +
+                      " (the file is truncated or corrupt: its missing pixels would read as "
+                      "black; re-export it)");
+  };
+  const bool tiled = t.tile_width > 0 && t.tile_height > 0;
+  const uint64_t planes = t.planar == 2 ? t.samples : 1;
+  const uint64_t per_pixel = t.bits * (t.planar == 2 ? 1 : t.samples);
+  const uint64_t chunk_width = tiled ? t.tile_width : t.width;
+  const uint64_t chunk_rows = tiled ? t.tile_height : std::min(t.rows_per_strip, t.height);
+  if (chunk_rows == 0) return refuse("it declares strips of 0 rows");
+  const uint64_t across = tiled ? (t.width + t.tile_width - 1) / t.tile_width : 1;
+  const uint64_t down = (t.height + chunk_rows - 1) / chunk_rows;
+  const uint64_t needed = across * down * planes;
+  const char* kind = tiled ? "tiles" : "strips";
+  if (t.offsets.size() < needed || t.byte_counts.size() < t.offsets.size()) {
+    return refuse("its " + std::to_string(t.width) + "x" + std::to_string(t.height) +
+                  " pixels need " + std::to_string(needed) + " " + kind + " but it lists " +
+                  std::to_string(std::min(t.offsets.size(), t.byte_counts.size())));
+  }
+  // Subsampled YCbCr rows are shorter than samples x width: only the listing is checked.
+  const bool deflated = (t.compression == 8 || t.compression == 32946) && t.photometric != 6;
+  const uint64_t row_bytes = (chunk_width * per_pixel + 7) / 8;
+  for (uint64_t i = 0; i < needed; ++i) {
+    const uint64_t at = t.offsets[i], bytes = t.byte_counts[i];
+    if (at > file.size() || bytes > file.size() - at) {
+      return refuse("its " + std::string(kind, tiled ? 4 : 5) + " " + std::to_string(i) +
+                    " lies past the end of the file");
+    }
+    if (!deflated) continue;
+    // A strip holds its rows; the last strip of a plane only those left.
+    const uint64_t row = (i % (across * down)) / across * chunk_rows;
+    const uint64_t rows = tiled ? chunk_rows : std::min(chunk_rows, t.height - row);
+    const uint64_t expected = rows * row_bytes;
+    std::vector<unsigned char> data(static_cast<size_t>(bytes));
+    if (!file.read(data.data(), data.size(), at)) return refuse("it cannot be read whole");
+    if (const uint64_t got = inflated_bytes(data, expected); got < expected) {
+      return refuse("its " + std::string(kind, tiled ? 4 : 5) + " " + std::to_string(i) +
+                    " inflates to " + std::to_string(got) + " of its " + std::to_string(expected) +
+                    " bytes");
+    }
   }
   return Ok{};
 }

@@ -30,6 +30,13 @@ Status check_declared_size(const std::string& path, const std::string& ext, uint
 Status check_tiff_length(const std::string& path, const std::string& compression,
                          uint64_t file_bytes, int w, int h, int n, int bits_per_sample);
 
+// OpenImageIO 2.4 fills the pixels of a TIFF strip or tile that is missing, cut short or
+// decompresses to less than its rows with black and reports success (deflate) or only a
+// late error (other codecs). Walks the first image's strips or tiles (classic TIFF, found by
+// its byte-order mark, whatever its extension): every one the size needs must be listed and
+// lie inside the file, and a deflated one must inflate to its rows. Other files pass.
+Status check_tiff_strips(const std::string& path);
+
 // OpenEXR reads header attributes by their declared size before OIIO sees the file (a 28-byte
 // file declaring a 1.8 GB attribute made it allocate 1.8 GB): walks the attributes of an EXR
 // file (found by its magic number, whatever its extension) and refuses sizes larger than the

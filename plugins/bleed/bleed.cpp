@@ -80,31 +80,40 @@ struct Bleed {
     const int asked =
         std::max(1, static_cast<int>(std::lround(ctx.param_int(kResolution) * ctx.render_scale())));
     const int cell = std::clamp(static_cast<int>(std::floor(sigma / 2.0)), 1, asked);
-    aq_image out, key;
-    if (!ctx.output_like(0, in, &out) ||
-        !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &key) || !make_key(ctx, key)) {
-      return AQ_ERROR;
-    }
-    const bool drawn =
-        cell == 1 ? exact(ctx, in, key, sigma, out) : on_cells(ctx, in, key, sigma, cell, out);
-    aq::unbind_textures(4);
+    aq_image out;
+    if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+    const bool drawn = cell == 1 ? exact(ctx, in, sigma, out) : on_cells(ctx, in, sigma, cell, out);
+    aq::unbind_textures(7);
     return drawn ? AQ_OK : AQ_ERROR;
   }
 
  private:
-  // (bleed · amount, depth, id) per pixel, so each tap reads two textures instead of four.
-  static bool make_key(aq::Context& ctx, const aq_image& key) {
-    const GLuint program = ctx.program(shaders::bleed_key_frag);
-    if (program == 0) return false;
-    glUseProgram(program);
+  // The node's inputs as bleed_inputs.glsl reads them (units 4 to 6).
+  static void bind_inputs(aq::Context& ctx, GLuint program) {
     const aq_image control = ctx.input_image(kControl);
-    aq::bind_texture(program, "u_control", 0, control);
-    aq::bind_texture(program, "u_depth", 1,
+    aq::bind_texture(program, "u_control", 4, control);
+    aq::bind_texture(program, "u_depth", 5,
                      ctx.connected(kDepth) ? ctx.input_image(kDepth) : control);
-    aq::bind_texture(program, "u_id", 2, ctx.connected(kId) ? ctx.input_image(kId) : control);
+    aq::bind_texture(program, "u_id", 6, ctx.connected(kId) ? ctx.input_image(kId) : control);
     aq::set_int(program, "u_has_depth", ctx.connected(kDepth) ? 1 : 0);
     aq::set_int(program, "u_has_id", ctx.connected(kId) ? 1 : 0);
     aq::set_float(program, "u_amount", ctx.param_float(kAmount));
+  }
+
+  // A program of `fragment` with bleed_inputs.glsl before it.
+  static GLuint with_inputs(aq::Context& ctx, const aq_shader_source& fragment) {
+    const std::string text =
+        std::string(shaders::bleed_inputs_glsl.text) + "\n#line 1\n" + fragment.text;
+    return ctx.program(aq_shader_source{fragment.name, text.c_str(), nullptr});
+  }
+
+  // (bleed · amount, depth, id) per pixel, so each tap of the exact passes reads two textures
+  // instead of four.
+  static bool make_key(aq::Context& ctx, const aq_image& key) {
+    const GLuint program = with_inputs(ctx, shaders::bleed_key_frag);
+    if (program == 0) return false;
+    glUseProgram(program);
+    bind_inputs(ctx, program);
     return ctx.draw(key);
   }
 
@@ -121,10 +130,10 @@ struct Bleed {
   }
 
   // The definition itself, every pixel a tap (reference/bleed.h).
-  static bool exact(aq::Context& ctx, const aq_image& in, const aq_image& key, double sigma,
-                    const aq_image& out) {
-    aq_image colour_h, key_h;
-    if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &colour_h) ||
+  static bool exact(aq::Context& ctx, const aq_image& in, double sigma, const aq_image& out) {
+    aq_image key, colour_h, key_h;
+    if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &key) || !make_key(ctx, key) ||
+        !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &colour_h) ||
         !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &key_h)) {
       return false;
     }
@@ -134,21 +143,22 @@ struct Bleed {
   }
 
   // The same passes on cells of cell² pixels (σ / cell), then the cells brought back by the
-  // gate (bleed_down.frag, bleed_up.frag): a wide Gaussian is smooth at the cell's scale.
-  static bool on_cells(aq::Context& ctx, const aq_image& in, const aq_image& key, double sigma,
-                       int cell, const aq_image& out) {
+  // gate (bleed_down.frag, bleed_up.frag): a wide Gaussian is smooth at the cell's scale. Both
+  // read the node's inputs directly: no full-size key.
+  static bool on_cells(aq::Context& ctx, const aq_image& in, double sigma, int cell,
+                       const aq_image& out) {
     const int w = (in.width + cell - 1) / cell, h = (in.height + cell - 1) / cell;
     aq_image cells[2], horizontal[2], blurred[2];
     for (aq_image* pair : {cells, horizontal, blurred})
       for (int k = 0; k < 2; ++k)
         if (!ctx.scratch(w, h, AQ_FORMAT_RGBA32F, &pair[k])) return false;
-    const GLuint down = ctx.program(shaders::bleed_down_frag);
-    const GLuint up = ctx.program(shaders::bleed_up_frag);
+    const GLuint down = with_inputs(ctx, shaders::bleed_down_frag);
+    const GLuint up = with_inputs(ctx, shaders::bleed_up_frag);
     if (down == 0 || up == 0) return false;
     const float bias = static_cast<float>(ctx.param_float(kDepthBias));
     glUseProgram(down);
     aq::bind_texture(down, "u_color", 0, in);
-    aq::bind_texture(down, "u_key", 1, key);
+    bind_inputs(ctx, down);
     aq::set_int(down, "u_cell", cell);
     aq::set_float(down, "u_depth_bias", bias);
     if (!ctx.bind_targets(cells, 2)) return false;
@@ -160,7 +170,7 @@ struct Bleed {
     }
     glUseProgram(up);
     aq::bind_texture(up, "u_original", 0, in);
-    aq::bind_texture(up, "u_key", 1, key);
+    bind_inputs(ctx, up);
     aq::bind_texture(up, "u_cell_color", 2, blurred[0]);
     aq::bind_texture(up, "u_cell_key", 3, blurred[1]);
     aq::set_int(up, "u_cell", cell);

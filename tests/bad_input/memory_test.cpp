@@ -6,7 +6,12 @@
 // context alone takes about 200 MB.
 #include <zlib.h>
 
+#include <aquarelle/core/color.h>
+#include <aquarelle/core/image_io.h>
+
+#include <cmath>
 #include <cstring>
+#include <utility>
 
 #include "bad_input/bad_input_support.h"
 
@@ -105,6 +110,41 @@ TEST(SmallFilesLargeMemory, TinyTiffDeclaring8000SquaredIsRefused) {
   write_bytes(dir / "huge.tif", tiff_one_strip(8000, 8000, 8, deflate(std::string(8000, '\x80'))));
   ASSERT_LT(fs::file_size(dir / "huge.tif"), 200u);
   expect_refused_quickly(dir, read_graph("huge.tif"), "huge.tif", "8000x8000");
+}
+
+// A 1000x1000 TIFF whose only strip holds one row (deflate, then PackBits), or that lists no
+// strip for its last rows: OpenImageIO read the missing rows as black and reported success.
+TEST(TruncatedImages, TiffStripsShorterThanTheirRowsAreAnErrorNamingTheFile) {
+  std::string packbits_row;  // 1000 bytes of 0x80: seven runs of 128, one of 104
+  for (int i = 0; i < 7; ++i) packbits_row += std::string{'\x81', '\x80'};
+  packbits_row += std::string{static_cast<char>(256 - 103), '\x80'};
+  const std::pair<const char*, std::string> files[] = {
+      {"deflate.tif", tiff_one_strip(1000, 1000, 8, deflate(std::string(1000, '\x80')))},
+      {"packbits.tif", tiff_one_strip(1000, 1000, 32773, packbits_row)}};
+  for (const auto& [name, bytes] : files) {
+    const fs::path dir = scratch_dir(std::string("bad_input_truncated_") + name);
+    write_bytes(dir / name, bytes);
+    expect_refused_quickly(dir, read_graph(name), name, "truncated");
+  }
+}
+
+// The same strip holding all its rows reads, with the right value (0x80 in sRGB).
+TEST(TruncatedImages, CompleteDeflatedTiffReads) {
+  const fs::path dir = scratch_dir("bad_input_truncated_complete");
+  write_bytes(
+      dir / "whole.tif",
+      tiff_one_strip(64, 64, 8, deflate(std::string(64, '\x80') + std::string(64 * 63, '\x80'))));
+  write_bytes(dir / "g.json", read_graph("whole.tif"));
+  const MeasuredRun run = aquarelle_measured(
+      60, "render " + (dir / "g.json").string() + " -q -o " + (dir / "out.exr").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  auto config = ColorConfig::load();
+  ASSERT_TRUE(config.ok()) << config.message();
+  auto image = read_image((dir / "out.exr").string(), *config);
+  ASSERT_TRUE(image.ok()) << image.message();
+  const double linear = std::pow((128.0 / 255.0 + 0.055) / 1.055, 2.4);
+  EXPECT_NEAR(image->at(10, 50, 0), linear, 2e-3);
+  EXPECT_NEAR(image->at(63, 0, 1), linear, 2e-3) << "the last row is not black";
 }
 
 // 220 bytes: one face declaring 268 M indices (binary), 2.2 GB before.
