@@ -4,7 +4,8 @@
 // amount A; out = A > 0 ? mix(C, B, A) : C (the texel unchanged). No cell may run in: C.
 // Where the four cells all hold the pixel's id (the cells' key says so in w) every one may run
 // in and the weights sum to 1: two bilinear reads give B and A, the same sums. bleed_inputs.glsl
-// is prepended: the pixel's depth and id are read from the node's inputs.
+// is prepended: the pixel's depth and id are read from the node's inputs. With extrusion, a
+// pixel whose own cell the extruded geometry covers takes that geometry's colour, id and depth.
 in vec2 v_uv;
 out vec4 o_color;
 
@@ -13,6 +14,9 @@ uniform sampler2D u_cell_color;   // blurred cells
 uniform sampler2D u_cell_key;     // (amount, depth, id, 1 where the 2×2 block shares the id)
 uniform int u_cell;
 uniform float u_depth_bias;
+uniform int u_extruded;               // 1: the cells were extruded (bleed_extrude.frag)
+uniform sampler2D u_cell_source;      // the extruded cells' colour, before the blur
+uniform sampler2D u_cell_source_key;  // their key; w = 1 where extruded geometry covers the cell
 
 void main() {
   ivec2 x = ivec2(gl_FragCoord.xy);
@@ -21,6 +25,20 @@ void main() {
   vec2 f = (vec2(x) + 0.5) / float(u_cell) - 0.5;
   ivec2 base = ivec2(floor(f));
   float id = bleed_id(x);
+  // A pixel whose own cell extruded geometry covers (of another id, in front of it) is that
+  // geometry: its colour, id and depth.
+  bool covered = false;
+  float covered_depth = 0.0;
+  if (u_extruded != 0) {
+    ivec2 own = min(x / u_cell, cells - 1);
+    vec4 source_key = texelFetch(u_cell_source_key, own, 0);
+    if (source_key.w > 0.5 && source_key.z != id && source_key.y < bleed_depth(x)) {
+      covered = true;
+      original = texelFetch(u_cell_source, own, 0);
+      id = source_key.z;
+      covered_depth = source_key.y;
+    }
+  }
   vec4 block = texelFetch(u_cell_key, clamp(base, ivec2(0), cells - 1), 0);
   if (block.w > 0.5 && block.z == id) {
     vec2 uv = (f + 0.5) / vec2(cells);
@@ -29,7 +47,7 @@ void main() {
                                   : original;
     return;
   }
-  float depth = bleed_depth(x);
+  float depth = covered ? covered_depth : bleed_depth(x);
   vec2 frac = f - vec2(base);
   vec4 sum = vec4(0.0);
   float weights = 0.0, amount = 0.0;
