@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "fast_layers.h"
 #include "layer_packing.h"
 #include "layer_table.h"
 #include "layered_params.h"
@@ -119,7 +120,11 @@ constexpr aq_param_desc kParams[] = {
     aq::float_param("shadow_band", 0.05, 0.0, 1000.0,
                     "depth (scene units) behind its occluder over which a surface passes from "
                     "semi-visible to fully shadowed"),
-    aq::color_param("shadow_color", 0.35, 0.4, 0.6, "pigment of the shadow glaze (cool)")};
+    aq::color_param("shadow_color", 0.35, 0.4, 0.6, "pigment of the shadow glaze (cool)"),
+    aq::enum_param("method", "exact|fast", kExact,
+                   "exact: every layer at full size, as the CPU reference; fast: all layers at "
+                   "once at half resolution with a short list of the four nearest layers per "
+                   "texel (README: Fast method)")};
 
 constexpr int kLayersPerRange = 4;
 
@@ -156,6 +161,7 @@ struct Layered {
   std::string segment_text, edges_text, paper_text, composite_text, peak_text, colours_text,
       shadow_text;
   aq::view_bounds::MeshBoxes mesh_boxes;  // the scene's mesh boxes, for the shadow map's fit
+  layered::FastLayers fast;
   std::vector<float> id_pixels, depth_pixels, albedo_pixels, owner_pixels, table_pixels;
 
   // What the passes of one frame share.
@@ -170,6 +176,8 @@ struct Layered {
     bool thin = false;
     bool whole = false, run_edges = false, has_paper = false, has_shadow = false;
     int64_t wet_edges = kWetToDry;
+    std::vector<layered::PaletteEntry> palette;
+    std::vector<float> wet_ids;
     GLuint segment = 0, edge = 0, paper = 0, composite = 0, peak_program = 0, colours_program = 0,
            shadow_program = 0;
     aq_image intensity{}, diffuse{}, depth{}, blur_intensity{}, blur_diffuse{}, blur_depth{},
@@ -200,9 +208,14 @@ struct Layered {
 
   int process(aq::Context& ctx) {
     Frame f;
-    if (!check_sizes(ctx) || !shadow_inputs(ctx, f) || !build_layers(ctx, f)) return AQ_ERROR;
+    if (!check_sizes(ctx) || !shadow_inputs(ctx, f) || !parse_settings(ctx, f)) return AQ_ERROR;
     light_and_view(ctx, f);
-    plan_ranges(ctx, f);
+    if (ctx.param_enum(kMethod) == kFast && ctx.param_enum(kView) == 0 &&
+        layered::FastLayers::applies(f.sigma, f.edge_sigma)) {
+      return run_fast(ctx, f) ? AQ_OK : AQ_ERROR;
+    }
+    if (!build_layers(ctx, f)) return AQ_ERROR;
+    plan_ranges(f);
     if (!allocate(ctx, f) || !compile(ctx, f)) return AQ_ERROR;
     bool ok = paint_paper(ctx, f);
     // The ping-pong textures agree everywhere but in the box the last range painted, which is
@@ -215,6 +228,49 @@ struct Layered {
     glDisable(GL_SCISSOR_TEST);
     aq::unbind_textures(15);
     return ok ? AQ_OK : AQ_ERROR;
+  }
+
+  // The fast method (fast_layers.h): no readback, a fixed number of passes; the shadow layer
+  // as the exact method makes it.
+  bool run_fast(aq::Context& ctx, Frame& f) {
+    f.has_paper = ctx.connected(kPaper);
+    if (!ctx.output_like(0, ctx.input_image(kId), &f.out)) return false;
+    if (f.has_shadow) {
+      const uint32_t f32 = AQ_FORMAT_RGBA32F;
+      if (!ctx.scratch(f.w, f.h, f32, &f.shadow_raw) ||
+          !ctx.scratch(f.w, f.h, f32, &f.shadow_blur) ||
+          !ctx.scratch(f.w, f.h, f32, &f.horizontal) || !compile_shadow(ctx, f) ||
+          !shadow_layer(ctx, f)) {
+        return false;
+      }
+    }
+    layered::FastFrame ff;
+    ff.w = f.w;
+    ff.h = f.h;
+    std::copy(f.light, f.light + 3, ff.light);
+    std::copy(f.half, f.half + 3, ff.half);
+    ff.sigma = f.sigma;
+    ff.edge_sigma = f.edge_sigma;
+    ff.run_edges = f.run_edges;
+    ff.thin = f.thin;
+    ff.has_paper = f.has_paper;
+    ff.has_shadow = f.has_shadow;
+    ff.wet_default = f.wet_edges == kWetInWet;
+    ff.palette = f.palette;
+    ff.wet_ids = f.wet_ids;
+    ff.shadow_raw = f.shadow_raw;
+    ff.shadow_blur = f.shadow_blur;
+    ff.out = f.out;
+    return fast.run(ctx, ff);
+  }
+
+  bool compile_shadow(aq::Context& ctx, Frame& f) {
+    const std::string defines =
+        define("AQ_HAS_PAPER", f.has_paper ? 1 : 0) + define("AQ_HAS_SHADOW", 1) +
+        define("AQ_MIX_MODE", ctx.param_enum(kMixing)) + define("AQ_VIEW", ctx.param_enum(kView));
+    shadow_text = compose(defines, shaders::layered_shadow_frag, "");
+    f.shadow_program = ctx.program({"layered_shadow.frag", shadow_text.c_str(), nullptr});
+    return f.shadow_program != 0;
   }
 
   static bool check_sizes(aq::Context& ctx) {
@@ -257,22 +313,35 @@ struct Layered {
   }
 
   // The per-object table: ids present far to near, their colours and boxes (one readback).
-  bool build_layers(aq::Context& ctx, Frame& f) {
-    const aq_image id = ctx.input_image(0);
+  // The size, the per-id lists of the parameters and which passes run.
+  static bool parse_settings(aq::Context& ctx, Frame& f) {
+    const aq_image id = ctx.input_image(kId);
     f.w = id.width;
     f.h = id.height;
-    std::vector<layered::PaletteEntry> palette;
-    std::vector<float> wet_ids;
     for (const auto& [param, error] :
-         {std::pair{"palette", layered::parse_palette(ctx.param_string(kPalette), &palette)},
+         {std::pair{"palette", layered::parse_palette(ctx.param_string(kPalette), &f.palette)},
           std::pair{"wet_in_wet_ids",
-                    layered::parse_id_list(ctx.param_string(kWetInWetIds), &wet_ids)}}) {
+                    layered::parse_id_list(ctx.param_string(kWetInWetIds), &f.wet_ids)}}) {
       if (!error.empty()) {
         ctx.fail(std::string("layered '") + ctx.node_id() + "': parameter '" + param +
                  "': " + error);
         return false;
       }
     }
+    f.wet_edges = ctx.param_enum(kWetEdges);
+    const int64_t view_mode = ctx.param_enum(kView);
+    f.run_edges =
+        (f.wet_edges != kNoWetEdges || !f.wet_ids.empty()) && (view_mode == 0 || view_mode == 4);
+    const double scale = ctx.render_scale();
+    f.sigma = ctx.param_float(kAbstractionSigma) * scale;
+    f.edge_sigma = ctx.param_float(kEdgeWidth) * scale;
+    f.thin = ctx.param_float(kThinShapes) > 0.0 && f.sigma > 0.0;
+    return true;
+  }
+
+  // The per-object table: ids present far to near, their colours and boxes (one readback).
+  bool build_layers(aq::Context& ctx, Frame& f) {
+    const aq_image id = ctx.input_image(kId);
     if (!read_back(id, GL_RED, 1, id_pixels) ||
         !read_back(ctx.input_image(3), GL_RED, 1, depth_pixels) ||
         !read_back(ctx.input_image(2), GL_RGBA, 4, albedo_pixels)) {
@@ -286,12 +355,8 @@ struct Layered {
     layered::ColourSettings colours;
     colours.light_density = ctx.param_float(kLightDensity);
     colours.dark_density = ctx.param_float(kDarkDensity);
-    f.wet_edges = ctx.param_enum(kWetEdges);
     colours.wet_in_wet_default = f.wet_edges == kWetInWet;
-    layered::assign_colours(f.layers, colours, palette, wet_ids);
-    const int64_t view_mode = ctx.param_enum(kView);
-    f.run_edges =
-        (f.wet_edges != kNoWetEdges || !wet_ids.empty()) && (view_mode == 0 || view_mode == 4);
+    layered::assign_colours(f.layers, colours, f.palette, f.wet_ids);
     return true;
   }
 
@@ -316,16 +381,12 @@ struct Layered {
 
   // Reaches of the kernels and the channel of every layer (layer_packing.h): objects far
   // enough apart share a channel, so the range count follows the overlap, not the objects.
-  static void plan_ranges(aq::Context& ctx, Frame& f) {
-    const double scale = ctx.render_scale();
-    f.sigma = ctx.param_float(kAbstractionSigma) * scale;
-    f.edge_sigma = ctx.param_float(kEdgeWidth) * scale;
+  static void plan_ranges(Frame& f) {
     f.reach_a = static_cast<int>(std::ceil(aq::gaussian::kTruncationSigmas * f.sigma)) + 1;
     f.reach_e =
         f.run_edges
             ? static_cast<int>(std::ceil(aq::gaussian::kTruncationSigmas * f.edge_sigma)) + 1
             : 0;
-    f.thin = ctx.param_float(kThinShapes) > 0.0 && f.sigma > 0.0;
     f.reach_peak = f.thin ? static_cast<int>(std::ceil(f.sigma)) + 1 : 0;
     f.whole = 2 * std::max({f.reach_a, f.reach_e, f.reach_peak}) >= std::min(f.w, f.h) - 1;
     f.channel = layered::assign_channels(
@@ -395,11 +456,7 @@ struct Layered {
         compose(defines, shaders::layered_colours_frag, "#include \"aquarelle/pigment.glsl\"\n");
     f.colours_program = ctx.program({"layered_colours.frag", colours_text.c_str(), nullptr});
     if (f.colours_program == 0) return false;
-    if (f.has_shadow) {
-      shadow_text = compose(defines, shaders::layered_shadow_frag, "");
-      f.shadow_program = ctx.program({"layered_shadow.frag", shadow_text.c_str(), nullptr});
-      if (f.shadow_program == 0) return false;
-    }
+    if (f.has_shadow && !compile_shadow(ctx, f)) return false;
     return f.segment != 0 && f.edge != 0 && f.paper != 0 && f.composite != 0 && f.peak_program != 0;
   }
 

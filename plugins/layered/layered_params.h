@@ -40,8 +40,10 @@ enum Param {
   kShadows,
   kShadowSoftness,
   kShadowBand,
-  kShadowColor
+  kShadowColor,
+  kMethod
 };
 enum WetEdges { kWetToDry = 0, kWetInWet = 1, kNoWetEdges = 2 };
+enum Method { kExact = 0, kFast = 1 };
 
 }  // namespace layered
