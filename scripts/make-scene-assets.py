@@ -271,27 +271,76 @@ def panorama(x, y, w=512, h=256):
     return (clamp(r), clamp(g), clamp(b), 255)
 
 
+def planks(x, y, w=64, h=64):
+    # Hull planking: horizontal strakes (dark seams every 8 rows), butt joints staggered
+    # along each strake, and a little grain.
+    r = random.Random(x * 131 + y * 7)
+    strake = y // 8
+    seam = y % 8 == 0
+    butt = (x + 23 * strake) % 40 == 0
+    grain = 10 * math.sin(x * 0.7 + strake * 1.9) + r.uniform(-5, 5)
+    if seam or butt:
+        return (70, 44, 26, 255)
+    return (clamp(150 + grain), clamp(104 + grain * 0.8), clamp(64 + grain * 0.5), 255)
+
+
+def hull_section(x):
+    """Half-beam, keel depth and deck height of the hull at station x (bow at +0.5, transom
+    at -0.5): a full midship section fining to a pointed stem, a sheer that rises fore and aft,
+    and a transom narrower than the midship beam."""
+    beam = 0.17 * (1 - ((x + 0.05) / 0.55) ** 2) ** 0.5 if x > -0.05 else 0.17 - 0.05 * ((-0.05 - x) / 0.45) ** 2
+    keel = -0.02 - 0.11 * max(1 - ((x + 0.02) / 0.52) ** 4, 0.0) ** 0.5
+    deck = 0.16 + 0.07 * ((x + 0.02) / 0.52) ** 2 + (0.04 if x < -0.3 else 0.0) * ((-0.3 - x) / 0.2)
+    return max(beam, 0.0), keel, deck
+
+
 def obj_ship():
-    # A small sailing ship along +x (bow at +0.5): a hull lofted through U-shaped sections, a
-    # mast, and two square sails (planes across the hull, uvs 0..1) with the cut-out canvas.
-    lines = ["# ship (made by scripts/make-scene-assets.py)", "mtllib ship.mtl", "usemtl wood"]
-    stations = [-0.5, -0.4, -0.25, -0.1, 0.05, 0.2, 0.32, 0.42, 0.5]
-    section = [(-1.0, 1.0), (-0.85, 0.45), (0.0, 0.0), (0.85, 0.45), (1.0, 1.0)]
+    # A small sailing ship along +x (bow at +0.5), seen in the deep ocean as a wreck: a hull
+    # lofted through round-bilged sections (a keel, a sheer rising fore and aft, a pointed stem,
+    # a transom), planked (uvs along the hull and round the girth), a deck, a raised stern
+    # castle, a bowsprit, two masts, and two square sails (planes across the hull, uvs 0..1)
+    # with the cut-out canvas.
+    lines = ["# ship (made by scripts/make-scene-assets.py)", "mtllib ship.mtl", "usemtl hull"]
+    stations = [-0.5 + i / 20 for i in range(21)]
+    # Girth from the port deck edge (-1) down round the keel (0) to the starboard deck edge
+    # (+1): (side across, 0 at the keel .. 1 at the deck).
+    girth = [-1.0, -0.9, -0.75, -0.55, -0.3, 0.0, 0.3, 0.55, 0.75, 0.9, 1.0]
+    n = len(girth)
     for x in stations:
-        t = (x + 0.05) / 0.55
-        width = 0.16 * max(1 - t * t, 0.04) ** 0.5 if x > -0.05 else 0.16 * (1 - 0.35 * (-x - 0.05) / 0.45)
-        depth = 0.16
-        for sx, sy in section:
-            lines.append("v %.4f %.4f %.4f" % (x, 0.04 + depth * sy, width * sx))
-    n = len(section)
+        beam, keel, deck = hull_section(x)
+        for g in girth:
+            a = abs(g)
+            # Round bilge: the side is vertical near the deck, turning into a V at the keel;
+            # a slight tumblehome (narrower at the deck than at the widest point).
+            across = beam * math.sin(a * math.pi / 2) ** 0.6 * (1 - 0.08 * a ** 6)
+            up = keel + (deck - keel) * (1 - math.cos(a * math.pi / 2))
+            lines.append("v %.4f %.4f %.4f" % (x, up, math.copysign(across, g)))
+    for i, x in enumerate(stations):
+        for g in girth:
+            lines.append("vt %.4f %.4f" % ((x + 0.5) * 4, (g + 1) * 2))
     for i in range(len(stations) - 1):
         for j in range(n - 1):
             a = i * n + j + 1
-            lines.append("f %d %d %d" % (a, a + n, a + n + 1))
-            lines.append("f %d %d %d" % (a, a + n + 1, a + 1))
-    deck = [i * n + 1 for i in range(len(stations))] + [i * n + n for i in reversed(range(len(stations)))]
-    lines.append("f " + " ".join(str(v) for v in deck))
+            lines.append("f %d/%d %d/%d %d/%d" % (a, a, a + n, a + n, a + n + 1, a + n + 1))
+            lines.append("f %d/%d %d/%d %d/%d" % (a, a, a + n + 1, a + n + 1, a + 1, a + 1))
+    # The transom closes the stern (a fan from the keel).
+    transom = list(range(1, n + 1))
+    for j in range(1, n - 1):
+        lines.append("f %d/%d %d/%d %d/%d" % (transom[0], transom[0], transom[j + 1], transom[j + 1],
+                                              transom[j], transom[j]))
     count = len(stations) * n
+    uvs = count
+    lines.append("usemtl wood")
+    # The deck: a strip between the port and starboard deck edges, a little below them.
+    for x in stations:
+        beam, keel, deck = hull_section(x)
+        lines.append("v %.4f %.4f %.4f" % (x, deck - 0.015, -beam * 0.92))
+        lines.append("v %.4f %.4f %.4f" % (x, deck - 0.015, beam * 0.92))
+    for i in range(len(stations) - 1):
+        a = count + 2 * i + 1
+        lines.append("f %d %d %d" % (a, a + 1, a + 3))
+        lines.append("f %d %d %d" % (a, a + 3, a + 2))
+    count += 2 * len(stations)
 
     def box(lo, hi):
         nonlocal count
@@ -302,11 +351,30 @@ def obj_ship():
             lines.append("f " + " ".join(str(count + v) for v in f))
         count += 8
 
+    def spar(a, b, r):
+        # A square spar from point a to point b (thickness 2r), as eight vertices.
+        nonlocal count
+        dx, dy = b[0] - a[0], b[1] - a[1]
+        length = math.hypot(dx, dy)
+        nx, ny = -dy / length * r, dx / length * r
+        for k in range(8):
+            end = b if k & 1 else a
+            side = 1 if k & 2 else -1
+            lines.append("v %.4f %.4f %.4f" % (end[0] + side * nx, end[1] + side * ny, r if k & 4 else -r))
+        for f in ((1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)):
+            lines.append("f " + " ".join(str(count + v) for v in f))
+        count += 8
+
+    box((-0.5, 0.2, -0.14), (-0.3, 0.3, 0.14))       # stern castle
+    box((-0.49, 0.3, -0.13), (-0.31, 0.315, 0.13))   # its rail
     box((0.03, 0.15, -0.012), (0.055, 1.0, 0.012))   # main mast
     box((0.31, 0.15, -0.01), (0.33, 0.8, 0.01))      # fore mast
+    box((-0.005, 0.93, -0.29), (0.015, 0.955, 0.29))  # main yard
+    box((0.325, 0.74, -0.21), (0.34, 0.76, 0.21))     # fore yard
+    spar((0.46, 0.2), (0.72, 0.33), 0.01)             # bowsprit
     lines.append("usemtl canvas")
-    uv = 0
-    for x, y0, y1, half in ((0.07, 0.38, 0.95, 0.26), (0.345, 0.36, 0.76, 0.19)):
+    uv = uvs
+    for x, y0, y1, half in ((0.07, 0.38, 0.92, 0.26), (0.345, 0.36, 0.73, 0.19)):
         for yy, zz in ((y0, -half), (y0, half), (y1, half), (y1, -half)):
             lines.append("v %.4f %.4f %.4f" % (x, yy, zz))
         lines += ["vt 0 0", "vt 1 0", "vt 1 1", "vt 0 1"]
@@ -315,8 +383,10 @@ def obj_ship():
         count += 4
         uv += 4
     write("ship.obj", "\n".join(lines) + "\n")
-    write("ship.mtl", "newmtl wood\nKd 0.62 0.42 0.24\n\nnewmtl canvas\nKd 1 1 1\nmap_Kd sail.png\n")
+    write("ship.mtl", "newmtl hull\nKd 1 1 1\nmap_Kd hull.png\n\nnewmtl wood\nKd 0.55 0.38 0.22\n\n"
+          "newmtl canvas\nKd 1 1 1\nmap_Kd sail.png\n")
     png("sail.png", 64, 64, sail)
+    png("hull.png", 64, 64, planks)
 
 
 def obj_jellyfish():

@@ -282,6 +282,9 @@ Result<std::vector<Sweep>> run_graph_sweeps(GlContext& context, const Registry& 
     if (!sweep.ok()) return sweep.error();
     sweeps.push_back(*sweep);
   }
+  auto deep_ocean = run_deep_ocean_sweeps(context, registry, graph, plan, types);
+  if (!deep_ocean.ok()) return deep_ocean.error();
+  sweeps.insert(sweeps.end(), deep_ocean->begin(), deep_ocean->end());
   if (plan.pipeline) {
     auto sweep = preset_sweep(context, registry, graph, plan);
     if (!sweep.ok()) return sweep.error();

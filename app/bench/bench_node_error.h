@@ -28,12 +28,16 @@ struct NodeError {
   std::string against;  // the exact setting in words, e.g. "resolution=1"
   bool exact = false;   // the node already runs at its exact setting (error 0, not measured)
   ErrorStats error;     // its output against the exact node's (colour channels)
+  // What the reader must know: the outputs' sizes differed (the node's output was resampled to
+  // the exact one's), or why no error could be measured (then error holds NaN).
+  std::string note;
 };
 
 // For every node of `graph` with an exact setting: evaluates the graph at the node's first
 // output as it is and with that node alone at its exact setting, at the graph's size, quality
-// and first frame, and compares the two. Keyed by node id.
-Result<std::map<std::string, NodeError>> node_errors(GlContext& context, const Registry& registry,
-                                                     const Graph& graph);
+// and first frame, and compares the two. Keyed by node id. A node whose error cannot be measured
+// (its exact setting fails to run) gets a note and NaN, never failing the bench.
+std::map<std::string, NodeError> node_errors(GlContext& context, const Registry& registry,
+                                             const Graph& graph);
 
 }  // namespace aq::app

@@ -41,7 +41,8 @@ json node_error_json(const std::map<std::string, NodeError>& errors, const std::
           {"exact", e.exact},
           {"max_abs", number(e.error.max_abs)},
           {"mean_abs", number(e.error.mean_abs)},
-          {"psnr", number(e.error.psnr)}};
+          {"psnr", number(e.error.psnr)},
+          {"note", e.note}};
 }
 
 json pipeline_json(const PipelineTiming& timing, double copy_ms,
@@ -81,7 +82,10 @@ void print_error_legend(const std::map<std::string, NodeError>& errors, std::FIL
   std::fprintf(out,
                "error: the node's output against the same node at its exact setting, same inputs, "
                "first frame:");
-  for (const auto& [id, e] : errors) std::fprintf(out, " %s (%s);", id.c_str(), e.against.c_str());
+  for (const auto& [id, e] : errors) {
+    std::fprintf(out, " %s (%s%s%s);", id.c_str(), e.against.c_str(), e.note.empty() ? "" : ": ",
+                 e.note.c_str());
+  }
   std::fprintf(out, "\n");
 }
 

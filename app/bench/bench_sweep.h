@@ -7,6 +7,8 @@
 //   highest_quality      where no CPU reference exists: the graph's output with the node at the
 //                        highest quality of the sweep, in float precision;
 //   analytic_reference   known exact values (normal smoothing: the sphere a bumpy mesh stands for);
+//   equivalence_reference  a configuration the swept one must equal exactly (swim_forward: the
+//                        same body built along +x);
 //   pipeline_reference   the whole graph at quality `final`, float precision, exact blur taps
 //                        and a converged caustic grid.
 #pragma once
@@ -84,5 +86,13 @@ Result<Sweep> smoothing_sweep(const SweepPlan& plan, int graph_iterations);
 Result<std::vector<Sweep>> run_layered_sweeps(GlContext& context, const Registry& registry,
                                               const Graph& graph, const SweepPlan& plan,
                                               const std::set<std::string>& types);
+
+// Seed 001's deep-ocean parts (bench_deep_ocean_sweeps.cpp): `environment` against
+// reference::environment, caustics `shift` and `blend_interval` against the flux reference (both
+// need the CPU references), the terrain's grid (`object` terrain_cells, when the graph has a
+// terrain) and `swim_forward` (when an object swims), when `types` holds the node type.
+Result<std::vector<Sweep>> run_deep_ocean_sweeps(GlContext& context, const Registry& registry,
+                                                 const Graph& graph, const SweepPlan& plan,
+                                                 const std::set<std::string>& types);
 
 }  // namespace aq::app

@@ -3,6 +3,7 @@
 
 #include "canvas_gestures.h"
 #include "editor_actions.h"
+#include "item_rects.h"
 #include "param_widgets.h"
 #include "script.h"
 
@@ -14,6 +15,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
+#include <imgui_internal.h>  // the tooltip windows, for what the scripted mode checks
 
 #include <algorithm>
 #include <cctype>
@@ -303,8 +305,20 @@ ScriptHooks EditorApp::script_hooks() {
   };
   hooks.shown_frame = [this] { return viewer_->settled() ? viewer_->shown_frame() : -1; };
   hooks.gesture = [this](const nlohmann::json& action) {
+    if (auto aimed = plan_item_gesture(action)) return std::move(*aimed);
     return plan_gesture(action, canvas_.layouts(), canvas_.origin(), canvas_.size());
   };
+  hooks.drop = [this](const std::vector<std::string>& paths) -> Status {
+    // Exactly what GLFW calls when files are dropped on the window: the registered callback.
+    GLFWdropfun registered = glfwSetDropCallback(window_, nullptr);
+    glfwSetDropCallback(window_, registered);
+    if (registered == nullptr) return make_error("the window has no drop callback");
+    std::vector<const char*> names;
+    for (const std::string& path : paths) names.push_back(path.c_str());
+    registered(window_, static_cast<int>(names.size()), names.data());
+    return Ok{};
+  };
+  hooks.expect_view = [this](const nlohmann::json& action) { return check_view(action); };
   hooks.playback_fps = [this] { return playback_rate_.fps(); };
   return hooks;
 }
@@ -494,20 +508,8 @@ void EditorApp::frame() {
   std::optional<Press> press;
   for (const RawPress& raw : press_queue()) press = press_tracker_.press(raw.time, raw.x, raw.y);
   press_queue().clear();
-  if (!mouse_frames_.empty()) {
-    // A scripted gesture stands in for the real mouse this frame.
-    ImGuiIO& io = ImGui::GetIO();
-    const MouseFrame& input = mouse_frames_.front();
-    io.MousePos = ImVec2(input.x, input.y);
-    io.MouseDown[0] = input.left_down;
-    io.MouseDown[1] = io.MouseDown[2] = false;
-    io.MouseWheel = input.wheel;
-    if (input.press_after >= 0) {  // a press as it happened, on the script's own clock
-      scripted_press_clock_ += input.press_after;
-      press = press_tracker_.press(scripted_press_clock_, input.press_x, input.press_y);
-    }
-    mouse_frames_.erase(mouse_frames_.begin());
-  }
+  play_scripted_mouse(&press);
+  begin_item_frame();  // widgets are noted anew as this frame draws them
   canvas_.set_press(press);
   if (!drop_queue().empty()) {  // dropped image files become read nodes at the canvas centre
     const Vec2 centre{canvas_.origin().x + canvas_.size().x * 0.5f,
@@ -553,6 +555,7 @@ void EditorApp::frame() {
   ImGui::EndChild();
   ImGui::SameLine(0, 0);
   ImGui::InvisibleButton("##split", ImVec2(kSplitter, body_height));
+  note_item("##split");
   if (ImGui::IsItemHovered() || ImGui::IsItemActive()) {
     ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
   }
@@ -577,6 +580,7 @@ void EditorApp::frame() {
   ImGui::End();
 
   draw_modals();
+  track_tooltips();
   ImGui::Render();
   int width = 0;
   int height = 0;
@@ -586,6 +590,58 @@ void EditorApp::frame() {
   glClearColor(0.1f, 0.1f, 0.11f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+// A scripted gesture stands in for the real mouse this frame. A frame aimed at a named widget
+// is placed where that widget was drawn last frame; one not drawn yet (a sub-menu opening) is
+// waited for, then the gesture is refused.
+void EditorApp::play_scripted_mouse(std::optional<Press>* press) {
+  if (mouse_frames_.empty()) return;
+  ImGuiIO& io = ImGui::GetIO();
+  MouseFrame input = mouse_frames_.front();
+  if (!input.item.empty()) {
+    ImVec2 base = gesture_press_at_;
+    if (!input.from_press) {
+      const std::optional<ItemRect> rect = find_item(input.item);
+      if (!rect) {
+        io.MousePos = last_scripted_mouse_;  // the hand waits where it is
+        io.MouseDown[0] = io.MouseDown[1] = io.MouseDown[2] = false;
+        if (++unresolved_frames_ < 30) return;
+        state_.status = "the widget '" + input.item + "' is not on screen";
+        ++state_.refused_count;
+        mouse_frames_.clear();
+        unresolved_frames_ = 0;
+        return;
+      }
+      base = ImVec2((rect->x0 + rect->x1) * 0.5f, (rect->y0 + rect->y1) * 0.5f);
+      if (input.left_down) gesture_press_at_ = base;
+    }
+    unresolved_frames_ = 0;
+    input.x += base.x;
+    input.y += base.y;
+  }
+  io.MousePos = ImVec2(input.x, input.y);
+  last_scripted_mouse_ = io.MousePos;
+  io.MouseDown[0] = input.left_down;
+  io.MouseDown[1] = io.MouseDown[2] = false;
+  io.MouseWheel = input.wheel;
+  if (input.press_after >= 0) {  // a press as it happened, on the script's own clock
+    scripted_press_clock_ += input.press_after;
+    *press = press_tracker_.press(scripted_press_clock_, input.press_x, input.press_y);
+  }
+  mouse_frames_.erase(mouse_frames_.begin());
+}
+
+// Counts, for the scripted mode's checks, the frames on which a tooltip is up, apart while a
+// widget is being dragged (the value under the mouse must stay visible).
+void EditorApp::track_tooltips() {
+  bool tooltip = false;
+  for (ImGuiWindow* window : ImGui::GetCurrentContext()->Windows) {
+    if ((window->Flags & ImGuiWindowFlags_Tooltip) != 0 && window->Active) tooltip = true;
+  }
+  const bool dragging = ImGui::IsAnyItemActive() && ImGui::GetIO().MouseDown[0];
+  if (dragging) ++view_counts_.drag_frames;
+  if (tooltip) ++(dragging ? view_counts_.tooltips_dragging : view_counts_.tooltips_hovering);
 }
 
 void EditorApp::handle_shortcuts() {
@@ -644,12 +700,18 @@ void EditorApp::save_or_save_as() {
 
 void EditorApp::draw_menu_bar() {
   if (!ImGui::BeginMainMenuBar()) return;
-  if (ImGui::BeginMenu("File")) {
+  const bool file_menu = ImGui::BeginMenu("File");
+  note_item("File");
+  if (file_menu) {
     if (ImGui::MenuItem("New", "Ctrl+N")) request(Pending::kNew);
     if (ImGui::MenuItem("Open...", "Ctrl+O")) request(Pending::kOpen);
-    if (ImGui::BeginMenu("Open Recent", !recent_.paths().empty())) {
+    const bool recent_menu = ImGui::BeginMenu("Open Recent", !recent_.paths().empty());
+    note_item("Open Recent");
+    if (recent_menu) {
       for (const std::string& path : recent_.paths()) {
-        if (ImGui::MenuItem(path.c_str())) open_recent(path);
+        const bool chosen = ImGui::MenuItem(path.c_str());
+        note_item(path);
+        if (chosen) open_recent(path);
       }
       ImGui::EndMenu();
     }

@@ -25,6 +25,8 @@
 #include <aquarelle/core/registry.h>
 #include <aquarelle/core/result.h>
 
+#include <imgui.h>
+
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -72,6 +74,10 @@ class EditorApp {
   // Feeds the reached playback rate the graph frame on screen (every UI frame).
   void track_playback(double now);
   ScriptHooks script_hooks();
+  void play_scripted_mouse(std::optional<Press>* press);
+  void track_tooltips();
+  // The scripted "expect_view" check (editor_view_check.cpp).
+  Status check_view(const nlohmann::json& action);
   void update_feedback();
   void poll_hot_reload();
   // Runs `pending` now, or asks first when there are unsaved changes.
@@ -101,6 +107,14 @@ class EditorApp {
   NodeFeedback feedback_;
   std::unique_ptr<ScriptRunner> runner_;
   std::vector<MouseFrame> mouse_frames_;  // scripted input still to play, one per frame
+  ImVec2 gesture_press_at_{0, 0};         // where the scripted gesture pressed its widget
+  ImVec2 last_scripted_mouse_{0, 0};
+  int unresolved_frames_ = 0;  // frames a gesture waited for its widget to be drawn
+  struct ViewCounts {          // UI frames seen since the scripted mode last checked them
+    int drag_frames = 0;
+    int tooltips_dragging = 0;
+    int tooltips_hovering = 0;
+  } view_counts_;
 
   Pending pending_ = Pending::kNone;
   bool ask_unsaved_ = false;

@@ -2,6 +2,7 @@
 #include "param_panel.h"
 
 #include "editor_actions.h"
+#include "item_rects.h"
 #include "node_advice.h"
 #include "param_widgets.h"
 
@@ -145,7 +146,9 @@ void ParamPanel::draw_params(EditorState& state, const std::string& id, const No
       }
       ImGui::SameLine();
     }
-    if (auto edit = draw_param_widget(param, value)) {
+    auto edit = draw_param_widget(param, value);
+    note_item("param:" + param.name);  // scripted gestures aim at it by this name
+    if (edit) {
       (void)actions::set_param(state, id, param.name, edit->value, edit->continuous);
     }
     end_gesture_after_edit(state);

@@ -202,6 +202,20 @@ Status run_other_action(EditorState& state, const std::string& kind, const nlohm
   if (kind == "collapse" || kind == "expand") {
     return actions::set_group_collapsed(state, text_field(action, "group"), kind == "collapse");
   }
+  if (kind == "drop") {
+    if (!hooks.drop) throw std::invalid_argument("dropping files needs the editor window");
+    std::vector<std::string> paths;
+    for (const auto& path : action.value("paths", nlohmann::json::array())) {
+      if (!path.is_string()) throw std::invalid_argument("\"paths\" must hold file paths");
+      paths.push_back(path.get<std::string>());
+    }
+    if (paths.empty()) throw std::invalid_argument("needs \"paths\": [files]");
+    return hooks.drop(paths);
+  }
+  if (kind == "expect_view") {
+    if (!hooks.expect_view) throw std::invalid_argument("expect_view needs the editor window");
+    return hooks.expect_view(action);
+  }
   if (kind == "fit") {
     if (hooks.fit) hooks.fit(action.value("whole", false));
     return Ok{};
@@ -211,7 +225,8 @@ Status run_other_action(EditorState& state, const std::string& kind, const nlohm
       "' (add_node, link, unlink, set_param, move, select_output, "
       "set_output, delete, duplicate, select, undo, redo, save, frame, fit, add_menu, play, key, "
       "copy, paste, rename, bypass, auto_layout, insert, backdrop, wait, view, dot, group, "
-      "ungroup, collapse, expand, compare, open, recover, expect_status)");
+      "ungroup, collapse, expand, compare, open, recover, expect_status, drop, expect_view, click, "
+      "hover, drag)");
 }
 
 Status run_action(EditorState& state, const nlohmann::json& action, const ScriptHooks& hooks) {
@@ -242,7 +257,7 @@ namespace {
 bool is_mouse_action(const nlohmann::json& action) {
   std::string kind = action.value("do", std::string());
   return kind == "drag_link" || kind == "drag_node" || kind == "click_output" || kind == "wheel" ||
-         kind == "double_click_link";
+         kind == "double_click_link" || kind == "click" || kind == "hover" || kind == "drag";
 }
 
 std::string describe(size_t index, const nlohmann::json& action) {
@@ -350,8 +365,9 @@ Status ScriptRunner::step(EditorState& state, const ScriptHooks& hooks,
     ++next_;
     laid_out_ = false;
     if (Status judged = judge(state, outcome); !judged) return judged;
-    // A key press is handled by the next frame: the following actions wait for it.
-    if (action.value("do", std::string()) == "key") return Ok{};
+    // A key press or a drop is handled by the next frame: the following actions wait for it.
+    const std::string done = action.value("do", std::string());
+    if (done == "key" || done == "drop") return Ok{};
   }
   return Ok{};
 }

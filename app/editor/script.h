@@ -18,6 +18,9 @@
 //   {"do": "drag_node", "node": "soft", "by": [120, 40]}            screen pixels
 //   {"do": "click_output", "output": "gbuf.depth"}                  views that output
 //   {"do": "wheel", "steps": 2}                                     zoom at the canvas centre
+//   {"do": "click", "items": ["File", "Open Recent", "/abs/g.json"]} widgets by name, in turn
+//   {"do": "drag", "item": "##split", "by": [200, 0]}               press, move, release
+//   {"do": "hover", "item": "param:sigma", "frames": 10}            (item_rects.h for names)
 //   {"do": "drag_link", ..., "quick": true}   the press seen by the UI only after the mouse left
 //                                            the port (a hand faster than a frame)
 //   {"do": "double_click_link", "from": "light.image", "to": "tint.image", "slow_frames": 30}
@@ -61,6 +64,11 @@ struct MouseFrame {
   float press_after = -1;
   float press_x = 0;
   float press_y = 0;
+  // Aimed at a named widget (item_rects.h) rather than the canvas: x, y are then offsets from
+  // the widget's centre as drawn in the last frame, or, with from_press, from where this
+  // gesture pressed.
+  std::string item{};  // (braced: canvas gestures list only the first fields)
+  bool from_press = false;
 };
 
 struct ScriptHooks {
@@ -78,6 +86,11 @@ struct ScriptHooks {
   // View options: {"backdrop": bool} shows the viewer's image behind the nodes,
   // {"hold_a": true} keeps the viewer's picture as A of the wipe compare.
   std::function<Status(const nlohmann::json&)> view;
+  // Files dropped on the window: calls the drop callback GLFW has registered for the window.
+  std::function<Status(const std::vector<std::string>&)> drop;
+  // Checks what the window shows ({"split", "histogram", "tooltips", "document"}); the status
+  // line reports what was found.
+  std::function<Status(const nlohmann::json&)> expect_view;
   // Turns a mouse action into input frames from the canvas's current layout; an error when a
   // node or port it names is not on the canvas.
   std::function<Result<std::vector<MouseFrame>>(const nlohmann::json&)> gesture;

@@ -4,6 +4,7 @@
 #include "editor_actions.h"
 #include "eval_policy.h"
 #include "image_stats.h"
+#include "item_rects.h"
 
 #include <glad/gl.h>
 #include <imgui.h>
@@ -423,6 +424,7 @@ void Viewer::draw(EditorState& state) {
   }
   if (display_stale_) render_display_texture();
   if (!display_) return;
+  histogram_plotted_ = false;
   if (show_histogram_) draw_histogram();
 
   draw_image_area(state);
@@ -505,6 +507,7 @@ void Viewer::draw_toolbar(EditorState& state) {
     }
     ImGui::SameLine();
     if (ImGui::Checkbox("histogram", &show_histogram_)) stats_stale_ = true;
+    note_item("viewer:histogram");
   }
 }
 
@@ -708,6 +711,7 @@ void Viewer::draw_histogram() {
   std::snprintf(label, sizeof label, "min %.4g  max %.4g", stats_.min, stats_.max);
   ImGui::PlotHistogram("##histogram", stats_.bins.data(), static_cast<int>(stats_.bins.size()), 0,
                        label, 0.0f, FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 48.0f));
+  histogram_plotted_ = true;
 }
 
 }  // namespace aq::editor

@@ -98,6 +98,9 @@ class Viewer {
   unsigned display_texture() const { return display_ ? display_.get() : 0; }
   int display_width() const { return display_width_; }
   int display_height() const { return display_height_; }
+  // Whether the last frame drew the histogram plot, and what it showed.
+  bool histogram_plotted() const { return histogram_plotted_; }
+  const ImageStats& histogram_stats() const { return stats_; }
 
  private:
   void draw_toolbar(EditorState& state);
@@ -105,6 +108,7 @@ class Viewer {
   void draw_image_area(EditorState& state);
   void draw_probe(bool hovered, ImVec2 area_at, unsigned compared, float split_x);
   void draw_histogram();
+
   enum class Mapping { kColor = 0, kDepth = 1, kId = 2 };
   Mapping current_mapping() const;
   void render_display_texture();
@@ -150,6 +154,7 @@ class Viewer {
   bool stats_stale_ = true;
   unsigned stats_image_ = 0;  // the texture stats_ were read from
   ImageStats stats_;
+  bool histogram_plotted_ = false;
   double last_preview_ms_ = 0;  // the last "preview" proxy's evaluation time
   double gesture_budget_ms_ = kGestureBudgetMs;
 

@@ -69,6 +69,20 @@
 #ifndef AQ_MORPH_OUT_BLOCKS
 #define AQ_MORPH_OUT_BLOCKS 0
 #endif
+// Confinement to regions (the node's `regions` input connected): the window of a pixel holds
+// only the pixels of its own region, whose label rides in the alpha channel between passes.
+//   AQ_MORPH_CONFINE  1: a tap counts only when its alpha (label) equals the centre pixel's
+//   AQ_MORPH_LABEL    1: this pass (a node's first) takes every tap's label from u_regions
+//   AQ_MORPH_OPAQUE   1: this pass (a node's last, not handed on) writes alpha 1
+#ifndef AQ_MORPH_CONFINE
+#define AQ_MORPH_CONFINE 0
+#endif
+#ifndef AQ_MORPH_LABEL
+#define AQ_MORPH_LABEL 0
+#endif
+#ifndef AQ_MORPH_OPAQUE
+#define AQ_MORPH_OPAQUE 0
+#endif
 
 #include "aquarelle/hdr8.glsl"
 
@@ -145,6 +159,53 @@ vec4 aq_morph_output(vec4 best) {
   return aq_hdr8_encode(best);
 #else
   return best;
+#endif
+}
+
+#if AQ_MORPH_LABEL
+uniform sampler2D u_regions;
+
+// The 8-bit label of the region at `pixel`: a hash of the region colour's three bytes, so equal
+// colours share a label; two different colours share one with probability 1/256 (where two
+// such regions touch, they are then filtered as one). reference/morphology.cpp: region_label.
+float aq_morph_label(ivec2 pixel) {
+  ivec2 last = textureSize(u_regions, 0) - 1;
+  vec3 c = texelFetch(u_regions, clamp(pixel, ivec2(0), last), 0).rgb;
+  uint h = packUnorm4x8(vec4(c, 0.0));
+  h ^= h >> 15;
+  h *= 0x2C1B3C6Du;
+  h ^= h >> 12;
+  h *= 0x297A2D39u;
+  h ^= h >> 15;
+  return float(h >> 24) * (1.0 / 255.0);
+}
+#endif
+
+// The running extreme of a window centred on a pixel labelled `centre` with one more tap: a tap
+// of another region is left out (AQ_MORPH_CONFINE). The centre is in its own window, so the
+// result keeps the centre's label in alpha.
+vec4 aq_morph_confined(vec4 best, vec4 candidate, float centre) {
+#if AQ_MORPH_BLOCKED && AQ_MORPH_LUMINANCE == 0
+  // 8-bit values lie in [0, 1]: a tap of another region is pushed out of reach (+2 under min,
+  // -2 under max) instead of selecting four channels, and alpha (the label) is left alone.
+  // Fewer operations per tap on llvmpipe, the same bits.
+  float away = candidate.a == centre ? 0.0 : 2.0;
+#ifdef AQ_MORPH_DILATE
+  return vec4(max(best.rgb, candidate.rgb - away), best.a);
+#else
+  return vec4(min(best.rgb, candidate.rgb + away), best.a);
+#endif
+#else
+  return candidate.a == centre ? aq_morph_combine(best, candidate) : best;
+#endif
+}
+
+// A node's last write: alpha 1 when confined and not handed on (the labels end with the chain).
+vec4 aq_morph_finish(vec4 c) {
+#if AQ_MORPH_OPAQUE
+  return vec4(c.rgb, 1.0);
+#else
+  return c;
 #endif
 }
 
@@ -233,9 +294,24 @@ void main() {
     // node's extreme, which leaves them out of its window.
     vec4 first[2 * AQ_MORPH_RADIUS + 2];
     for (int j = 0; j < 2 * AQ_MORPH_RADIUS + 2; ++j) {
+#if AQ_MORPH_CONFINE
+      // Only the taps of the centre's region (the labels the writer left in alpha).
+      vec4 best = pixels[j + AQ_MORPH_PENDING_RADIUS];
+      float centre = best.a;
+      for (int t = 0; t <= 2 * AQ_MORPH_PENDING_RADIUS; ++t) {
+        // As aq_morph_confined: a tap of another region pushed out of reach of the extreme.
+        float away = pixels[j + t].a == centre ? 0.0 : 2.0;
+#if AQ_MORPH_PENDING_DILATE
+        best.rgb = max(best.rgb, pixels[j + t].rgb - away);
+#else
+        best.rgb = min(best.rgb, pixels[j + t].rgb + away);
+#endif
+      }
+#else
       vec4 best = pixels[j];
       for (int t = 1; t <= 2 * AQ_MORPH_PENDING_RADIUS; ++t)
         best = aq_morph_pending_combine(best, pixels[j + t]);
+#endif
       int pixel = 2 * b + j - AQ_MORPH_RADIUS;
 #ifdef AQ_MORPH_DILATE
       first[j] = pixel >= 0 && pixel < extent ? best : vec4(0.0);
@@ -244,9 +320,17 @@ void main() {
 #endif
     }
     for (int along = 0; along < 2; ++along) {
+#if AQ_MORPH_CONFINE
+      vec4 best = first[along + AQ_MORPH_RADIUS];
+      float centre = best.a;
+      for (int s = 0; s <= 2 * AQ_MORPH_RADIUS; ++s)
+        best = aq_morph_confined(best, first[along + s], centre);
+      results[2 * across + along] = packUnorm4x8(aq_morph_finish(best));
+#else
       vec4 best = first[along];
       for (int s = 1; s <= 2 * AQ_MORPH_RADIUS; ++s) best = aq_morph_combine(best, first[along + s]);
       results[2 * across + along] = packUnorm4x8(best);
+#endif
     }
   }
   o_block = aq_morph_block_out(results);
@@ -258,6 +342,41 @@ void main() {
 // as everywhere in this file). A columns pass from blocks into pixels (the last node of a
 // handed-over chain, when nothing reads blocks after it) is the plain blocked columns pass below.
 
+#if AQ_MORPH_CONFINE
+// Confined: each line's 2r + 2 pixels unpacked once (labels from u_regions in a node's first
+// pass), then each of the block's two pixels takes the taps of its own region.
+void main() {
+  int b, extent;
+  uvec4 words[kSpan];
+  aq_morph_axis_blocks(b, extent, words);
+  ivec2 block = ivec2(gl_FragCoord.xy);
+  uint results[4];
+  for (int across = 0; across < 2; ++across) {
+    vec4 pixels[2 * AQ_MORPH_RADIUS + 2];
+    bool inside[2 * AQ_MORPH_RADIUS + 2];
+    for (int i = 0; i < 2 * AQ_MORPH_RADIUS + 2; ++i) {
+      int d = i - AQ_MORPH_RADIUS;
+      int pixel = 2 * b + d;
+      vec4 v = unpackUnorm4x8(aq_morph_word(words[((d - 2 * kLo) >> 1)], (d - 2 * kLo) & 1,
+                                            across));
+#if AQ_MORPH_LABEL
+      v.a = aq_morph_label(AQ_MORPH_PASS == 0 ? ivec2(pixel, 2 * block.y + across)
+                                              : ivec2(2 * block.x + across, pixel));
+#endif
+      pixels[i] = v;
+      inside[i] = pixel >= 0 && pixel < extent;
+    }
+    for (int along = 0; along < 2; ++along) {
+      vec4 best = pixels[along + AQ_MORPH_RADIUS];
+      float centre = best.a;
+      for (int t = 0; t <= 2 * AQ_MORPH_RADIUS; ++t)
+        best = inside[along + t] ? aq_morph_confined(best, pixels[along + t], centre) : best;
+      results[2 * across + along] = packUnorm4x8(aq_morph_finish(aq_morph_output(best)));
+    }
+  }
+  o_block = aq_morph_block_out(results);
+}
+#else
 void main() {
   int b, extent;
   uvec4 words[kSpan];
@@ -283,6 +402,41 @@ void main() {
     }
   }
   o_block = aq_morph_block_out(results);
+}
+#endif
+#elif AQ_MORPH_BLOCKED && AQ_MORPH_PASS == 0 && AQ_MORPH_CONFINE
+// Confined rows from pixels: the 2r + 2 pixels of each of the block's rows read once (labels
+// from u_regions), then each of its two pixels takes the taps of its own region.
+void main() {
+  ivec2 block = ivec2(gl_FragCoord.xy);
+  ivec2 last = textureSize(u_image, 0) - 1;
+  int x0 = 2 * block.x;
+  uvec4 words;
+  for (int half_row = 0; half_row < 2; ++half_row) {
+    int y = min(2 * block.y + half_row, last.y);
+    vec4 pixels[2 * AQ_MORPH_RADIUS + 2];
+    for (int i = 0; i < 2 * AQ_MORPH_RADIUS + 2; ++i) {
+      ivec2 at = ivec2(clamp(x0 - AQ_MORPH_RADIUS + i, 0, last.x), y);
+      pixels[i] = texelFetch(u_image, at, 0);
+#if AQ_MORPH_LABEL
+      pixels[i].a = aq_morph_label(at);
+#endif
+    }
+    uint results[2];
+    for (int k = 0; k < 2; ++k) {
+      vec4 best = pixels[k + AQ_MORPH_RADIUS];
+      float centre = best.a;
+      for (int t = 0; t <= 2 * AQ_MORPH_RADIUS; ++t)
+        best = aq_morph_confined(best, pixels[k + t], centre);
+      results[k] = packUnorm4x8(best);
+    }
+    if (half_row == 0) {
+      words.xy = uvec2(results[0], results[1]);
+    } else {
+      words.zw = uvec2(results[0], results[1]);
+    }
+  }
+  o_block = words;
 }
 #elif AQ_MORPH_BLOCKED && AQ_MORPH_PASS == 0
 void main() {
@@ -329,6 +483,11 @@ void main() {
 #else
   vec4 best = vec4(1.0);  // the identity of min on unorm values
 #endif
+#if AQ_MORPH_CONFINE
+  uvec4 own = texelFetch(u_blocks, p >> 1, 0);
+  uvec2 own_column = odd_column ? own.yw : own.xz;
+  float centre = unpackUnorm4x8((p.y & 1) == 0 ? own_column.x : own_column.y).a;
+#endif
   for (int k = 0; k <= AQ_MORPH_RADIUS; ++k) {
     int b = clamp(b0 + k, 0, last_block);
     uvec4 words = texelFetch(u_blocks, ivec2(p.x >> 1, b), 0);
@@ -336,10 +495,15 @@ void main() {
     // The block's two rows, each only when inside the window (clamped to the image).
     int top = 2 * b, bottom = 2 * b + 1;
     vec4 upper = unpackUnorm4x8(column.x), lower = unpackUnorm4x8(column.y);
+#if AQ_MORPH_CONFINE
+    best = top >= first && top <= last ? aq_morph_confined(best, upper, centre) : best;
+    best = bottom >= first && bottom <= last ? aq_morph_confined(best, lower, centre) : best;
+#else
     best = top >= first && top <= last ? aq_morph_combine(best, upper) : best;
     best = bottom >= first && bottom <= last ? aq_morph_combine(best, lower) : best;
+#endif
   }
-  o_color = aq_morph_output(best);
+  o_color = aq_morph_finish(aq_morph_output(best));
 }
 #elif AQ_MORPH_PASS == 0
 void main() {
@@ -347,11 +511,25 @@ void main() {
   int last = textureSize(u_image, 0).x - 1;
   vec4 spans[5];
   vec4 best = texelFetch(u_image, p, 0);
+#if AQ_MORPH_LABEL
+  best.a = aq_morph_label(p);
+#endif
+  float centre = best.a;
   // Grow the span outwards one step at a time and record it when it reaches each half-width.
   for (int t = 0; t <= AQ_MORPH_RADIUS; ++t) {
     if (t > 0) {
+#if AQ_MORPH_CONFINE
+      ivec2 right = ivec2(min(p.x + t, last), p.y), left = ivec2(max(p.x - t, 0), p.y);
+      vec4 r = texelFetch(u_image, right, 0), l = texelFetch(u_image, left, 0);
+#if AQ_MORPH_LABEL
+      r.a = aq_morph_label(right);
+      l.a = aq_morph_label(left);
+#endif
+      best = aq_morph_confined(aq_morph_confined(best, r, centre), l, centre);
+#else
       best = aq_morph_combine(best, texelFetch(u_image, ivec2(min(p.x + t, last), p.y), 0));
       best = aq_morph_combine(best, texelFetch(u_image, ivec2(max(p.x - t, 0), p.y), 0));
+#endif
     }
     for (int i = 0; i < AQ_MORPH_SPAN_COUNT; ++i) {
       if (kHalfWidths[i] == t) spans[i] = best;
@@ -376,13 +554,18 @@ void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   int last = textureSize(u_spans[0], 0).y - 1;
   vec4 best = texelFetch(u_spans[kRowSpans[AQ_MORPH_RADIUS]], p, 0);
+  float centre = best.a;
   for (int dy = 1; dy <= AQ_MORPH_RADIUS; ++dy) {
     ivec2 up = ivec2(p.x, min(p.y + dy, last));
     ivec2 down = ivec2(p.x, max(p.y - dy, 0));
     vec4 above = texelFetch(u_spans[kRowSpans[AQ_MORPH_RADIUS + dy]], up, 0);
     vec4 below = texelFetch(u_spans[kRowSpans[AQ_MORPH_RADIUS - dy]], down, 0);
+#if AQ_MORPH_CONFINE
+    best = aq_morph_confined(aq_morph_confined(best, above, centre), below, centre);
+#else
     best = aq_morph_combine(aq_morph_combine(best, above), below);
+#endif
   }
-  o_color = aq_morph_output(best);
+  o_color = aq_morph_finish(aq_morph_output(best));
 }
 #endif

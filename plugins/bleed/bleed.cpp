@@ -33,7 +33,7 @@ constexpr aq_port_desc kInputs[] = {
                             "linear view depth (gbuffer.depth); unconnected: no depth test"),
     aq::optional_image_port("id", "object id (gbuffer.id); unconnected: one object")};
 constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "colour with bleeding")};
-enum Param : uint32_t { kSigma, kReach, kAmount, kDepthBias, kResolution };
+enum Param : uint32_t { kSigma, kReach, kAmount, kDepthBias, kResolution, kExtrude };
 constexpr aq_param_desc kParams[] = {
     aq::float_param("sigma", 20.0, 0.0, 200.0,
                     "Gaussian sigma in output pixels (the seed's 20); 0 passes the image through"),
@@ -47,7 +47,10 @@ constexpr aq_param_desc kParams[] = {
                     "world units a tap may lie behind the pixel and still run into it"),
     aq::int_param("resolution", 4, 1, 16,
                   "largest cell (output pixels per side) the blur runs on; the cell keeps "
-                  "sigma at 2 cells or more; 1: every pixel, exact")};
+                  "sigma at 2 cells or more; 1: every pixel, exact"),
+    aq::float_param("extrude", 0.0, 0.0, 32.0,
+                    "bleed extrusion: output pixels the bleeding geometry is pushed past its "
+                    "silhouette at bleed 1 (times the bleed), before the blur; 0: none")};
 
 // The gated 1D passes: horizontal into (colour_h, key_h), vertical into `targets` (the output
 // with `final`, else a colour and key pair). Program and uniforms are set by the caller.
@@ -80,32 +83,64 @@ struct Bleed {
     const int asked =
         std::max(1, static_cast<int>(std::lround(ctx.param_int(kResolution) * ctx.render_scale())));
     const int cell = std::clamp(static_cast<int>(std::floor(sigma / 2.0)), 1, asked);
-    aq_image out, key;
-    if (!ctx.output_like(0, in, &out) ||
-        !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &key) || !make_key(ctx, key)) {
-      return AQ_ERROR;
-    }
-    const bool drawn =
-        cell == 1 ? exact(ctx, in, key, sigma, out) : on_cells(ctx, in, key, sigma, cell, out);
-    aq::unbind_textures(4);
+    aq_image out;
+    if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+    const bool drawn = cell == 1 ? exact(ctx, in, sigma, out) : on_cells(ctx, in, sigma, cell, out);
+    aq::unbind_textures(9);
     return drawn ? AQ_OK : AQ_ERROR;
   }
 
  private:
-  // (bleed · amount, depth, id) per pixel, so each tap reads two textures instead of four.
-  static bool make_key(aq::Context& ctx, const aq_image& key) {
-    const GLuint program = ctx.program(shaders::bleed_key_frag);
-    if (program == 0) return false;
-    glUseProgram(program);
+  // The node's inputs as bleed_inputs.glsl reads them (units 4 to 6).
+  static void bind_inputs(aq::Context& ctx, GLuint program) {
     const aq_image control = ctx.input_image(kControl);
-    aq::bind_texture(program, "u_control", 0, control);
-    aq::bind_texture(program, "u_depth", 1,
+    aq::bind_texture(program, "u_control", 4, control);
+    aq::bind_texture(program, "u_depth", 5,
                      ctx.connected(kDepth) ? ctx.input_image(kDepth) : control);
-    aq::bind_texture(program, "u_id", 2, ctx.connected(kId) ? ctx.input_image(kId) : control);
+    aq::bind_texture(program, "u_id", 6, ctx.connected(kId) ? ctx.input_image(kId) : control);
     aq::set_int(program, "u_has_depth", ctx.connected(kDepth) ? 1 : 0);
     aq::set_int(program, "u_has_id", ctx.connected(kId) ? 1 : 0);
     aq::set_float(program, "u_amount", ctx.param_float(kAmount));
+  }
+
+  // A program of `fragment` with bleed_inputs.glsl before it.
+  static GLuint with_inputs(aq::Context& ctx, const aq_shader_source& fragment) {
+    const std::string text =
+        std::string(shaders::bleed_inputs_glsl.text) + "\n#line 1\n" + fragment.text;
+    return ctx.program(aq_shader_source{fragment.name, text.c_str(), nullptr});
+  }
+
+  // (bleed · amount, depth, id) per pixel, so each tap of the exact passes reads two textures
+  // instead of four.
+  static bool make_key(aq::Context& ctx, const aq_image& key) {
+    const GLuint program = with_inputs(ctx, shaders::bleed_key_frag);
+    if (program == 0) return false;
+    glUseProgram(program);
+    bind_inputs(ctx, program);
     return ctx.draw(key);
+  }
+
+  // The extrusion's reach at bleed 1, in working pixels.
+  static double extrude_pixels(aq::Context& ctx) {
+    return std::max(ctx.param_float(kExtrude), 0.0) * ctx.render_scale();
+  }
+
+  // Pushes the bleeding geometry out (bleed_extrude.frag) on texels of `spacing` pixels:
+  // (colour, key) into targets[0..1].
+  static bool extrude(aq::Context& ctx, const aq_image& colour, const aq_image& key, int spacing,
+                      const aq_image (&targets)[2]) {
+    const GLuint program = ctx.program(shaders::bleed_extrude_frag);
+    if (program == 0) return false;
+    const double pixels = extrude_pixels(ctx);
+    glUseProgram(program);
+    aq::bind_texture(program, "u_color", 0, colour);
+    aq::bind_texture(program, "u_key", 1, key);
+    aq::set_float(program, "u_spacing", spacing);
+    aq::set_float(program, "u_extrude", pixels);
+    aq::set_int(program, "u_radius", static_cast<int>(std::ceil(pixels / spacing)));
+    if (!ctx.bind_targets(targets, 2)) return false;
+    ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+    return true;
   }
 
   static GLuint pass_program(aq::Context& ctx, double sigma, int length) {
@@ -121,50 +156,70 @@ struct Bleed {
   }
 
   // The definition itself, every pixel a tap (reference/bleed.h).
-  static bool exact(aq::Context& ctx, const aq_image& in, const aq_image& key, double sigma,
-                    const aq_image& out) {
-    aq_image colour_h, key_h;
-    if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &colour_h) ||
+  static bool exact(aq::Context& ctx, const aq_image& in, double sigma, const aq_image& out) {
+    aq_image key, colour_h, key_h;  // key: the packed inputs, then extruded when asked
+    if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &key) || !make_key(ctx, key) ||
+        !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &colour_h) ||
         !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &key_h)) {
       return false;
     }
+    aq_image colour = in;
+    if (extrude_pixels(ctx) > 0.0) {
+      aq_image extruded[2];
+      for (aq_image& image : extruded)
+        if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &image)) return false;
+      if (!extrude(ctx, in, key, 1, extruded)) return false;
+      colour = extruded[0];
+      key = extruded[1];
+    }
     const GLuint program = pass_program(ctx, sigma, std::max(in.width, in.height));
-    return program != 0 &&
-           gated_passes(ctx, program, in, key, in, {colour_h, key_h}, &out, 1, /*final=*/true);
+    return program != 0 && gated_passes(ctx, program, colour, key, colour, {colour_h, key_h}, &out,
+                                        1, /*final=*/true);
   }
 
   // The same passes on cells of cell² pixels (σ / cell), then the cells brought back by the
-  // gate (bleed_down.frag, bleed_up.frag): a wide Gaussian is smooth at the cell's scale.
-  static bool on_cells(aq::Context& ctx, const aq_image& in, const aq_image& key, double sigma,
-                       int cell, const aq_image& out) {
+  // gate (bleed_down.frag, bleed_up.frag): a wide Gaussian is smooth at the cell's scale. Both
+  // read the node's inputs directly: no full-size key.
+  static bool on_cells(aq::Context& ctx, const aq_image& in, double sigma, int cell,
+                       const aq_image& out) {
     const int w = (in.width + cell - 1) / cell, h = (in.height + cell - 1) / cell;
     aq_image cells[2], horizontal[2], blurred[2];
     for (aq_image* pair : {cells, horizontal, blurred})
       for (int k = 0; k < 2; ++k)
         if (!ctx.scratch(w, h, AQ_FORMAT_RGBA32F, &pair[k])) return false;
-    const GLuint down = ctx.program(shaders::bleed_down_frag);
-    const GLuint up = ctx.program(shaders::bleed_up_frag);
+    const GLuint down = with_inputs(ctx, shaders::bleed_down_frag);
+    const GLuint up = with_inputs(ctx, shaders::bleed_up_frag);
     if (down == 0 || up == 0) return false;
     const float bias = static_cast<float>(ctx.param_float(kDepthBias));
     glUseProgram(down);
     aq::bind_texture(down, "u_color", 0, in);
-    aq::bind_texture(down, "u_key", 1, key);
+    bind_inputs(ctx, down);
     aq::set_int(down, "u_cell", cell);
     aq::set_float(down, "u_depth_bias", bias);
     if (!ctx.bind_targets(cells, 2)) return false;
     ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+    const bool extruding = extrude_pixels(ctx) > 0.0;
+    aq_image extruded[2] = {cells[0], cells[1]};
+    if (extruding) {
+      for (aq_image& image : extruded)
+        if (!ctx.scratch(w, h, AQ_FORMAT_RGBA32F, &image)) return false;
+      if (!extrude(ctx, cells[0], cells[1], cell, extruded)) return false;
+    }
     const GLuint program = pass_program(ctx, sigma / cell, std::max(w, h));
-    if (program == 0 || !gated_passes(ctx, program, cells[0], cells[1], cells[0],
+    if (program == 0 || !gated_passes(ctx, program, extruded[0], extruded[1], extruded[0],
                                       {horizontal[0], horizontal[1]}, blurred, 2, false)) {
       return false;
     }
     glUseProgram(up);
     aq::bind_texture(up, "u_original", 0, in);
-    aq::bind_texture(up, "u_key", 1, key);
+    bind_inputs(ctx, up);
     aq::bind_texture(up, "u_cell_color", 2, blurred[0]);
     aq::bind_texture(up, "u_cell_key", 3, blurred[1]);
     aq::set_int(up, "u_cell", cell);
     aq::set_float(up, "u_depth_bias", bias);
+    aq::set_int(up, "u_extruded", extruding ? 1 : 0);
+    aq::bind_texture(up, "u_cell_source", 7, extruded[0]);
+    aq::bind_texture(up, "u_cell_source_key", 8, extruded[1]);
     return ctx.draw(out);
   }
 };

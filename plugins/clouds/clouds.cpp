@@ -157,5 +157,5 @@ struct Clouds {
 AQ_NODE(kCloudsNode, Clouds, "clouds", "Watercolor",
         "Seed 002 volumetric clouds / spray: raymarched 3D FBM density (stepped threshold, height "
         "or distance falloff, drift, light colour), depth-tested against the g-buffer.",
-        AQ_NODE_TIME_DEPENDENT, kInputs, kOutputs, kParams);
+        AQ_NODE_TIME_DEPENDENT | AQ_NODE_EPILOGUE, kInputs, kOutputs, kParams);
 AQ_PLUGIN("clouds", "1.0", &kCloudsNode)

@@ -20,17 +20,24 @@
 // per pass but every later pass reads at most 4 channels per texture fetch anyway.
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/sdk/gaussian_blur.hpp>
+#include <aquarelle/sdk/scene_math.hpp>
+#include <aquarelle/sdk/view_bounds.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "fast_layers.h"
 #include "layer_packing.h"
 #include "layer_table.h"
+#include "layered_params.h"
 #include "layered_shaders.h"
 
 namespace {
+
+using namespace layered;  // the Input and Param indices (layered_params.h)
 
 constexpr aq_port_desc kInputs[] = {
     aq::image_port("id", "object id per pixel (gbuffer.id, R32F); 0 on the background"),
@@ -38,42 +45,12 @@ constexpr aq_port_desc kInputs[] = {
     aq::image_port("albedo", "base colour (gbuffer.albedo): each object's mean is its pigment"),
     aq::image_port("depth", "linear view depth (gbuffer.depth); 0 on the background"),
     aq::optional_image_port("paper", "paper height in r (mean 0.5), e.g. the paper node"),
-    aq::optional_scene_port("scene", "light and camera (else the light/view parameters)")};
+    aq::optional_scene_port("scene", "light and camera (else the light/view parameters)"),
+    aq::optional_image_port("position", "world position (gbuffer.position): for `shadow`"),
+    aq::optional_image_port("shadow",
+                            "light-space depth (shadowmap.depth): soft shadows, with `position` "
+                            "and `scene`")};
 constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "the painting")};
-
-enum Param {
-  kMixing,
-  kView,
-  kLightDirection,
-  kViewDirection,
-  kShininess,
-  kSpecularThreshold,
-  kLightDensity,
-  kDarkDensity,
-  kPalette,
-  kGooch,
-  kWarm,
-  kCool,
-  kAbstractionSigma,
-  kThreshold,
-  kSoftness,
-  kWetEdges,
-  kWetInWetIds,
-  kEdgeThreshold,
-  kEdgeWidth,
-  kEdgeDarkness,
-  kWetSpread,
-  kEdgeDarkening,
-  kEdgeNoise,
-  kNoiseScale,
-  kGranulation,
-  kPaperColor,
-  kPaperRelief,
-  kDepthBand,
-  kDensity,
-  kThinShapes
-};
-enum WetEdges { kWetToDry = 0, kWetInWet = 1, kNoWetEdges = 2 };
 
 constexpr aq_param_desc kParams[] = {
     aq::enum_param("mixing", "rgb|cmyk|kubelka_munk", 2,
@@ -134,7 +111,20 @@ constexpr aq_param_desc kParams[] = {
     aq::float_param("density", 1.0, 0.0, 4.0, "pigment thickness of every wash"),
     aq::float_param("thin_shapes", 1.0, 0.0, 1.0,
                     "keeps shapes thinner than the abstraction blur (a blade, a stem) that the "
-                    "threshold would erase: 1 keeps them whole, 0 lets them vanish")};
+                    "threshold would erase: 1 keeps them whole, 0 lets them vanish"),
+    aq::float_param("shadows", 0.8, 0.0, 4.0,
+                    "pigment of the soft shadow layer (blurred depth test against the `shadow` "
+                    "input; 0: none)"),
+    aq::float_param("shadow_softness", 4.0, 0.0, 64.0,
+                    "Gaussian sigma (output pixels) of the shadow layer: the penumbra"),
+    aq::float_param("shadow_band", 0.05, 0.0, 1000.0,
+                    "depth (scene units) behind its occluder over which a surface passes from "
+                    "semi-visible to fully shadowed"),
+    aq::color_param("shadow_color", 0.35, 0.4, 0.6, "pigment of the shadow glaze (cool)"),
+    aq::enum_param("method", "exact|fast", kExact,
+                   "exact: every layer at full size, as the CPU reference; fast: all layers at "
+                   "once at half resolution with a short list of the four nearest layers per "
+                   "texel (README: Fast method)")};
 
 constexpr int kLayersPerRange = 4;
 
@@ -168,7 +158,10 @@ void normalise(double v[3], const double fallback[3]) {
 
 struct Layered {
   // Composed shader texts (the host compiles them at once and caches by text).
-  std::string segment_text, edges_text, paper_text, composite_text, peak_text, colours_text;
+  std::string segment_text, edges_text, paper_text, composite_text, peak_text, colours_text,
+      shadow_text;
+  aq::view_bounds::MeshBoxes mesh_boxes;  // the scene's mesh boxes, for the shadow map's fit
+  layered::FastLayers fast;
   std::vector<float> id_pixels, depth_pixels, albedo_pixels, owner_pixels, table_pixels;
 
   // What the passes of one frame share.
@@ -181,11 +174,15 @@ struct Layered {
     double sigma = 0.0, edge_sigma = 0.0;
     int reach_a = 0, reach_e = 0, reach_peak = 0;
     bool thin = false;
-    bool whole = false, run_edges = false, has_paper = false;
+    bool whole = false, run_edges = false, has_paper = false, has_shadow = false;
     int64_t wet_edges = kWetToDry;
-    GLuint segment = 0, edge = 0, paper = 0, composite = 0, peak_program = 0, colours_program = 0;
+    std::vector<layered::PaletteEntry> palette;
+    std::vector<float> wet_ids;
+    GLuint segment = 0, edge = 0, paper = 0, composite = 0, peak_program = 0, colours_program = 0,
+           shadow_program = 0;
     aq_image intensity{}, diffuse{}, depth{}, blur_intensity{}, blur_diffuse{}, blur_depth{},
-        edges{}, blur_edges{}, horizontal{}, under[2]{}, out{}, owner{}, table{}, peak{}, colours{};
+        edges{}, blur_edges{}, horizontal{}, under[2]{}, out{}, owner{}, table{}, peak{}, colours{},
+        shadow_raw{}, shadow_blur{};
   };
 
   // The boxes each pass of a range fills around one of its layers (see range_rects).
@@ -211,9 +208,14 @@ struct Layered {
 
   int process(aq::Context& ctx) {
     Frame f;
-    if (!check_sizes(ctx) || !build_layers(ctx, f)) return AQ_ERROR;
+    if (!check_sizes(ctx) || !shadow_inputs(ctx, f) || !parse_settings(ctx, f)) return AQ_ERROR;
     light_and_view(ctx, f);
-    plan_ranges(ctx, f);
+    if (ctx.param_enum(kMethod) == kFast && ctx.param_enum(kView) == 0 &&
+        layered::FastLayers::applies(f.sigma, f.edge_sigma)) {
+      return run_fast(ctx, f) ? AQ_OK : AQ_ERROR;
+    }
+    if (!build_layers(ctx, f)) return AQ_ERROR;
+    plan_ranges(f);
     if (!allocate(ctx, f) || !compile(ctx, f)) return AQ_ERROR;
     bool ok = paint_paper(ctx, f);
     // The ping-pong textures agree everywhere but in the box the last range painted, which is
@@ -221,10 +223,54 @@ struct Layered {
     // covers the whole image).
     std::vector<Rect> last_paint;
     if (f.range_count > 0) ok = ok && gooch_colours(ctx, f);
+    if (f.range_count > 0 && f.has_shadow) ok = ok && shadow_layer(ctx, f);
     for (size_t r = 0; ok && r < f.range_count; ++r) ok = run_range(ctx, f, r, last_paint);
     glDisable(GL_SCISSOR_TEST);
-    aq::unbind_textures(13);
+    aq::unbind_textures(15);
     return ok ? AQ_OK : AQ_ERROR;
+  }
+
+  // The fast method (fast_layers.h): no readback, a fixed number of passes; the shadow layer
+  // as the exact method makes it.
+  bool run_fast(aq::Context& ctx, Frame& f) {
+    f.has_paper = ctx.connected(kPaper);
+    if (!ctx.output_like(0, ctx.input_image(kId), &f.out)) return false;
+    if (f.has_shadow) {
+      const uint32_t f32 = AQ_FORMAT_RGBA32F;
+      if (!ctx.scratch(f.w, f.h, f32, &f.shadow_raw) ||
+          !ctx.scratch(f.w, f.h, f32, &f.shadow_blur) ||
+          !ctx.scratch(f.w, f.h, f32, &f.horizontal) || !compile_shadow(ctx, f) ||
+          !shadow_layer(ctx, f)) {
+        return false;
+      }
+    }
+    layered::FastFrame ff;
+    ff.w = f.w;
+    ff.h = f.h;
+    std::copy(f.light, f.light + 3, ff.light);
+    std::copy(f.half, f.half + 3, ff.half);
+    ff.sigma = f.sigma;
+    ff.edge_sigma = f.edge_sigma;
+    ff.run_edges = f.run_edges;
+    ff.thin = f.thin;
+    ff.has_paper = f.has_paper;
+    ff.has_shadow = f.has_shadow;
+    ff.wet_default = f.wet_edges == kWetInWet;
+    ff.palette = f.palette;
+    ff.wet_ids = f.wet_ids;
+    ff.shadow_raw = f.shadow_raw;
+    ff.shadow_blur = f.shadow_blur;
+    ff.out = f.out;
+    return fast.run(ctx, ff);
+  }
+
+  bool compile_shadow(aq::Context& ctx, Frame& f) {
+    const std::string defines =
+        define("AQ_HAS_PAPER", f.has_paper ? 1 : 0) + define("AQ_HAS_SHADOW", 1) +
+        define("AQ_MIX_MODE", ctx.param_enum(kMixing)) + define("AQ_VIEW", ctx.param_enum(kView));
+    shadow_text = compose(defines, shaders::layered_shadow_frag, "");
+    f.shadow_program = ctx.program({"layered_shadow.frag", shadow_text.c_str(), nullptr});
+    return f.shadow_program != 0;
   }
 
   static bool check_sizes(aq::Context& ctx) {
@@ -243,23 +289,59 @@ struct Layered {
     return true;
   }
 
+  // Soft shadows need the map, the positions it is looked up at and the scene's light matrix.
+  static bool shadow_inputs(aq::Context& ctx, Frame& f) {
+    f.has_shadow = false;
+    if (!ctx.connected(kShadow) || !(ctx.param_float(kShadows) > 0.0)) return true;
+    if (!ctx.connected(kPosition) || ctx.input_scene(kScene) == nullptr) {
+      ctx.fail(std::string("layered '") + ctx.node_id() +
+               "': input 'shadow' is connected but 'position' or 'scene' is not: the shadow "
+               "map is looked up at the gbuffer's world positions with the scene's light; "
+               "connect gbuffer.position and the scene (or disconnect 'shadow')");
+      return false;
+    }
+    const aq_image id = ctx.input_image(kId), position = ctx.input_image(kPosition);
+    if (position.width != id.width || position.height != id.height) {
+      ctx.fail(std::string("layered '") + ctx.node_id() + "': input 'position' is " +
+               std::to_string(position.width) + "x" + std::to_string(position.height) +
+               " but 'id' is " + std::to_string(id.width) + "x" + std::to_string(id.height) +
+               ": connect the position of the same gbuffer");
+      return false;
+    }
+    f.has_shadow = true;
+    return true;
+  }
+
   // The per-object table: ids present far to near, their colours and boxes (one readback).
-  bool build_layers(aq::Context& ctx, Frame& f) {
-    const aq_image id = ctx.input_image(0);
+  // The size, the per-id lists of the parameters and which passes run.
+  static bool parse_settings(aq::Context& ctx, Frame& f) {
+    const aq_image id = ctx.input_image(kId);
     f.w = id.width;
     f.h = id.height;
-    std::vector<layered::PaletteEntry> palette;
-    std::vector<float> wet_ids;
     for (const auto& [param, error] :
-         {std::pair{"palette", layered::parse_palette(ctx.param_string(kPalette), &palette)},
+         {std::pair{"palette", layered::parse_palette(ctx.param_string(kPalette), &f.palette)},
           std::pair{"wet_in_wet_ids",
-                    layered::parse_id_list(ctx.param_string(kWetInWetIds), &wet_ids)}}) {
+                    layered::parse_id_list(ctx.param_string(kWetInWetIds), &f.wet_ids)}}) {
       if (!error.empty()) {
         ctx.fail(std::string("layered '") + ctx.node_id() + "': parameter '" + param +
                  "': " + error);
         return false;
       }
     }
+    f.wet_edges = ctx.param_enum(kWetEdges);
+    const int64_t view_mode = ctx.param_enum(kView);
+    f.run_edges =
+        (f.wet_edges != kNoWetEdges || !f.wet_ids.empty()) && (view_mode == 0 || view_mode == 4);
+    const double scale = ctx.render_scale();
+    f.sigma = ctx.param_float(kAbstractionSigma) * scale;
+    f.edge_sigma = ctx.param_float(kEdgeWidth) * scale;
+    f.thin = ctx.param_float(kThinShapes) > 0.0 && f.sigma > 0.0;
+    return true;
+  }
+
+  // The per-object table: ids present far to near, their colours and boxes (one readback).
+  bool build_layers(aq::Context& ctx, Frame& f) {
+    const aq_image id = ctx.input_image(kId);
     if (!read_back(id, GL_RED, 1, id_pixels) ||
         !read_back(ctx.input_image(3), GL_RED, 1, depth_pixels) ||
         !read_back(ctx.input_image(2), GL_RGBA, 4, albedo_pixels)) {
@@ -273,12 +355,8 @@ struct Layered {
     layered::ColourSettings colours;
     colours.light_density = ctx.param_float(kLightDensity);
     colours.dark_density = ctx.param_float(kDarkDensity);
-    f.wet_edges = ctx.param_enum(kWetEdges);
     colours.wet_in_wet_default = f.wet_edges == kWetInWet;
-    layered::assign_colours(f.layers, colours, palette, wet_ids);
-    const int64_t view_mode = ctx.param_enum(kView);
-    f.run_edges =
-        (f.wet_edges != kNoWetEdges || !wet_ids.empty()) && (view_mode == 0 || view_mode == 4);
+    layered::assign_colours(f.layers, colours, f.palette, f.wet_ids);
     return true;
   }
 
@@ -303,16 +381,12 @@ struct Layered {
 
   // Reaches of the kernels and the channel of every layer (layer_packing.h): objects far
   // enough apart share a channel, so the range count follows the overlap, not the objects.
-  static void plan_ranges(aq::Context& ctx, Frame& f) {
-    const double scale = ctx.render_scale();
-    f.sigma = ctx.param_float(kAbstractionSigma) * scale;
-    f.edge_sigma = ctx.param_float(kEdgeWidth) * scale;
+  static void plan_ranges(Frame& f) {
     f.reach_a = static_cast<int>(std::ceil(aq::gaussian::kTruncationSigmas * f.sigma)) + 1;
     f.reach_e =
         f.run_edges
             ? static_cast<int>(std::ceil(aq::gaussian::kTruncationSigmas * f.edge_sigma)) + 1
             : 0;
-    f.thin = ctx.param_float(kThinShapes) > 0.0 && f.sigma > 0.0;
     f.reach_peak = f.thin ? static_cast<int>(std::ceil(f.sigma)) + 1 : 0;
     f.whole = 2 * std::max({f.reach_a, f.reach_e, f.reach_peak}) >= std::min(f.w, f.h) - 1;
     f.channel = layered::assign_channels(
@@ -331,6 +405,10 @@ struct Layered {
          {&f.intensity, &f.diffuse, &f.depth, &f.blur_intensity, &f.blur_diffuse, &f.blur_depth,
           &f.edges, &f.blur_edges, &f.horizontal, &f.under[0], &f.under[1], &f.owner, &f.peak}) {
       if (!ctx.scratch(f.w, f.h, f32, t)) return false;
+    }
+    if (f.has_shadow && (!ctx.scratch(f.w, f.h, f32, &f.shadow_raw) ||
+                         !ctx.scratch(f.w, f.h, f32, &f.shadow_blur))) {
+      return false;
     }
     const int n = static_cast<int>(f.layers.size());
     if (!ctx.scratch(n, 3, f32, &f.table) || !ctx.scratch(n, 2, f32, &f.colours)) return false;
@@ -357,8 +435,9 @@ struct Layered {
   }
 
   bool compile(aq::Context& ctx, Frame& f) {
-    f.has_paper = ctx.connected(4);
+    f.has_paper = ctx.connected(kPaper);
     const std::string defines = define("AQ_HAS_PAPER", f.has_paper ? 1 : 0) +
+                                define("AQ_HAS_SHADOW", f.has_shadow ? 1 : 0) +
                                 define("AQ_MIX_MODE", ctx.param_enum(kMixing)) +
                                 define("AQ_VIEW", ctx.param_enum(kView));
     segment_text = compose(defines, shaders::layered_segment_frag, "");
@@ -377,6 +456,7 @@ struct Layered {
         compose(defines, shaders::layered_colours_frag, "#include \"aquarelle/pigment.glsl\"\n");
     f.colours_program = ctx.program({"layered_colours.frag", colours_text.c_str(), nullptr});
     if (f.colours_program == 0) return false;
+    if (f.has_shadow && !compile_shadow(ctx, f)) return false;
     return f.segment != 0 && f.edge != 0 && f.paper != 0 && f.composite != 0 && f.peak_program != 0;
   }
 
@@ -617,12 +697,49 @@ struct Layered {
     // The last range draws the whole image, where the owner image may still hold earlier
     // ranges' layers: the composite skips layers of other ranges.
     aq::set_float(p, "u_range", static_cast<double>(r));
+    if (f.has_shadow) {
+      aq::bind_texture(p, "u_shadow_layer", 13, f.shadow_blur);
+      aq::bind_texture(p, "u_shadow_raw", 14, f.shadow_raw);
+      aq::set_int(p, "u_last", last ? 1 : 0);
+      aq::set_float(p, "u_shadows", ctx.param_float(kShadows));
+      aq::set_vec3(p, "u_shadow_color", ctx.param_vec3(kShadowColor));
+    }
     if (last) return ctx.draw(target);
     if (!ctx.bind_targets(&target, 1)) return false;
     return each(rects, &RangeRects::paint, [&] {
       ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
       return true;
     });
+  }
+
+  // Soft shadows (README): the binary visibility and the smooth step over the gap behind the
+  // occluder per receiver pixel (layered_shadow.frag), then the shared Gaussian of the
+  // (shadow, receivers) pair; the last composite glazes it.
+  bool shadow_layer(aq::Context& ctx, const Frame& f) {
+    const aq_scene* scene = ctx.input_scene(kScene);
+    const aq_image shadow = ctx.input_image(kShadow);
+    // The matrix the shadow map was drawn with (as cel_light finds it): fitted to the
+    // receivers in view, for the map's size.
+    const aq::scene_math::ViewFit fit = aq::scene_math::fit_to_view(
+        *scene, mesh_boxes.world_boxes(*scene),
+        static_cast<float>(ctx.width()) / static_cast<float>(ctx.height()));
+    const glm::mat4 light = aq::scene_math::light_view_projection(*scene, fit, shadow.width);
+    // Orthographic: window depth 0.5 · ndc_z + 0.5 grows by half the z row's length per unit.
+    const double per_unit = 0.5 * glm::length(glm::dvec3(light[0][2], light[1][2], light[2][2]));
+    glDisable(GL_SCISSOR_TEST);
+    const GLuint p = f.shadow_program;
+    glUseProgram(p);
+    aq::bind_texture(p, "u_id", 0, ctx.input_image(kId));
+    aq::bind_texture(p, "u_position", 1, ctx.input_image(kPosition));
+    aq::bind_texture(p, "u_shadow", 2, shadow);
+    aq::set_mat4(p, "u_light_view_projection", glm::value_ptr(light));
+    aq::set_float(p, "u_depth_per_unit", per_unit);
+    aq::set_float(p, "u_shadow_band", ctx.param_float(kShadowBand));
+    if (!ctx.draw(f.shadow_raw)) return false;
+    aq::unbind_textures(3);
+    const double sigma = ctx.param_float(kShadowSoftness) * ctx.render_scale();
+    return aq::gaussian::blur_pass(ctx, f.shadow_raw, f.horizontal, sigma, 0) &&
+           aq::gaussian::blur_pass(ctx, f.horizontal, f.shadow_blur, sigma, 1);
   }
 
   // The Gooch-mixed light and dark colour of every layer, once per frame (layered_colours).
@@ -656,6 +773,6 @@ AQ_NODE(kLayeredNode, Layered, "layered", "Watercolor",
         "Luft & Deussen's layered watercolor: a layer per object (segmentation), Blinn-Phong "
         "washes with paper-white highlights, Gaussian abstraction, wet-in-wet / wet-to-dry "
         "edges, edge darkening, granulation, pigment mixing and a blurred depth test, glazed far "
-        "to near.",
+        "to near; soft shadows from a shadow map as a translucent layer.",
         0, kInputs, kOutputs, kParams);
 AQ_PLUGIN("layered", "1.0", &kLayeredNode)

@@ -66,7 +66,8 @@ enum Param {
   kTerrainSwellFrequency,
   kTerrainBumps,
   kTerrainBumpsFrequency,
-  kTerrainCliff
+  kTerrainCliff,
+  kTerrainCells
 };
 enum Animation { kAnimationNone, kAnimationFile, kAnimationSwim, kAnimationSpin };
 enum Forward { kForwardPlusX, kForwardMinusX, kForwardPlusZ, kForwardMinusZ };
@@ -139,7 +140,10 @@ constexpr aq_param_desc kParams[] = {
                     "source `terrain`: bump noise cells per object unit"),
     aq::float_param("terrain_cliff", 0.0, -10.0, 10.0,
                     "source `terrain`: height of a rock cliff rising along the back (-z) edge "
-                    "(0: none)")};
+                    "(0: none)"),
+    aq::int_param("terrain_cells", 128, 1, 1024,
+                  "source `terrain`: grid cells per side (2 triangles each); the heights "
+                  "between vertices are linear, so finer grids follow the bumps closer")};
 
 constexpr int kSourceFile = 0;
 constexpr double kTwoPi = 6.283185307179586;
@@ -182,14 +186,18 @@ glm::mat4 spin_frame(const aq::Context& ctx, const glm::vec3& centre, double tim
 }
 
 // The model's forward axis (swim_forward) as a component of its positions (0: x, 2: z) and a
-// sign; the side the body wave bends to is the other horizontal component.
+// sign; the body wave bends along the other horizontal component, towards `side_sign`: the
+// model axis that forward_to_x turns onto world +z (+z for +x, -x for +z, -z for -x, +x for
+// -z), so a model built along any axis swims exactly as the same model built along +x.
 struct ForwardAxis {
   int component = 0;
   float sign = 1.0f;
+  float side_sign = 1.0f;
 };
 ForwardAxis forward_axis(int64_t forward) {
   return {forward == kForwardPlusZ || forward == kForwardMinusZ ? 2 : 0,
-          forward == kForwardMinusX || forward == kForwardMinusZ ? -1.0f : 1.0f};
+          forward == kForwardMinusX || forward == kForwardMinusZ ? -1.0f : 1.0f,
+          forward == kForwardMinusX || forward == kForwardPlusZ ? -1.0f : 1.0f};
 }
 
 // Turns the model's forward axis onto +x (about y), so the swim loop, which heads +x along
@@ -220,7 +228,7 @@ void body_wave(scene::MeshData& mesh, double time, double amplitude, ForwardAxis
     const float s = (hi - x) / length;  // 0 at the nose, 1 at the tail
     const float phase = static_cast<float>(kTwoPi * 1.4 * (x - hi) / length - 8.0 * time);
     mesh.positions[3 * v + side] +=
-        static_cast<float>(amplitude) * length * s * s * std::sin(phase);
+        axis.side_sign * static_cast<float>(amplitude) * length * s * s * std::sin(phase);
   }
 }
 
@@ -269,7 +277,7 @@ class ObjectNode {
     bool operator==(const LoadKey& o) const {
       const auto same_terrain = [](const scene::TerrainShape& a, const scene::TerrainShape& b) {
         return a.swell == b.swell && a.swell_frequency == b.swell_frequency && a.bumps == b.bumps &&
-               a.bumps_frequency == b.bumps_frequency && a.cliff == b.cliff;
+               a.bumps_frequency == b.bumps_frequency && a.cliff == b.cliff && a.cells == b.cells;
       };
       return source == o.source && path == o.path && texture == o.texture &&
              smoothing == o.smoothing && seed == o.seed && color_override == o.color_override &&
@@ -296,6 +304,7 @@ class ObjectNode {
     key.terrain.bumps = ctx.param_float(kTerrainBumps);
     key.terrain.bumps_frequency = ctx.param_float(kTerrainBumpsFrequency);
     key.terrain.cliff = ctx.param_float(kTerrainCliff);
+    key.terrain.cells = static_cast<int>(ctx.param_int(kTerrainCells));
     if (loaded_ && key == key_) return true;
     model_ = scene::Model{};
     if (key.source == kSourceFile) {

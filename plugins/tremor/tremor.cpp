@@ -55,7 +55,7 @@ struct Tremor {
 AQ_NODE(kTremorNode, Tremor, "tremor", "Watercolor",
         "Screen-space hand tremor: lookups displaced by time-coherent noise where the control "
         "map's alpha asks.",
-        AQ_NODE_TIME_DEPENDENT, kInputs, kOutputs, kParams);
+        AQ_NODE_TIME_DEPENDENT | AQ_NODE_EPILOGUE, kInputs, kOutputs, kParams);
 
 const aq_node_desc* hand_tremor_node_desc();
 

@@ -74,6 +74,32 @@ Rgb glaze(const Rgb& under, const Rgb& colour, double thickness, MixMode mode) {
   return mix(under, c, std::min(thickness, 1.0), mode);
 }
 
+// The soft shadow layer (README "Soft shadows"): the binary shadow times a smooth step over
+// the gap behind the occluder, blurred over the receivers (a normalised convolution), glazed
+// over the painting on the receivers.
+void glaze_shadow(const ImageF& id, const ImageF& shadow, const LayeredParams& p,
+                  std::vector<Rgb>& under) {
+  const int w = id.width, h = id.height;
+  const size_t n = static_cast<size_t>(w) * h;
+  Plane shadowed(n, 0.0), receiver(n, 0.0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!is_id(id.at(x, y, 0))) continue;
+      const size_t i = static_cast<size_t>(y) * w + x;
+      receiver[i] = 1.0;
+      if (shadow.at(x, y, 0) < 0.5) {
+        shadowed[i] = smoothstep(0.0, std::max(p.shadow_band, 1e-6), shadow.at(x, y, 1));
+      }
+    }
+  const Plane s = blur(shadowed, w, h, p.shadow_softness);
+  const Plane r = blur(receiver, w, h, p.shadow_softness);
+  for (size_t i = 0; i < n; ++i) {
+    if (receiver[i] < 0.5) continue;
+    const double amount = r[i] > 1e-6 ? std::clamp(s[i] / r[i], 0.0, 1.0) : 0.0;
+    under[i] = glaze(under[i], p.shadow_color, p.shadows * amount, p.mixing);
+  }
+}
+
 }  // namespace
 
 std::vector<LayeredObject> layered_objects(const ImageF& id, const ImageF& depth,
@@ -114,7 +140,7 @@ std::vector<LayeredObject> layered_objects(const ImageF& id, const ImageF& depth
 }
 
 ImageF layered(const ImageF& id, const ImageF& normal, const ImageF& albedo, const ImageF& depth,
-               const ImageF* paper, const LayeredParams& p) {
+               const ImageF* paper, const LayeredParams& p, const ImageF* shadow) {
   const int w = id.width, h = id.height;
   const size_t n = static_cast<size_t>(w) * h;
   const auto light = normalised(
@@ -249,6 +275,8 @@ ImageF layered(const ImageF& id, const ImageF& normal, const ImageF& albedo, con
       under[i] = glaze(under[i], colour, thickness, p.mixing);
     }
   }
+
+  if (shadow != nullptr) glaze_shadow(id, *shadow, p, under);
 
   ImageF out(w, h, 4, 1.0f);
   for (int y = 0; y < h; ++y)

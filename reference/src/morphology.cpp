@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace aq::reference {
 
@@ -55,6 +57,68 @@ ImageF morphology(const ImageF& image, const MorphologyParams& params) {
         }
       }
       for (int c = 0; c < 4; ++c) out.at(x, y, c) = static_cast<float>(best[c]);
+    }
+  }
+  return out;
+}
+
+int region_label(double r, double g, double b) {
+  auto byte = [](double c) {
+    return static_cast<uint32_t>(std::lround(std::clamp(c, 0.0, 1.0) * 255.0));
+  };
+  uint32_t h = byte(r) | byte(g) << 8 | byte(b) << 16;
+  h ^= h >> 15;
+  h *= 0x2C1B3C6Du;
+  h ^= h >> 12;
+  h *= 0x297A2D39u;
+  h ^= h >> 15;
+  return static_cast<int>(h >> 24);
+}
+
+ImageF confined_morphology(const ImageF& image, const ImageF& regions,
+                           const MorphologyParams& params, MorphologyAxes axes) {
+  const int w = image.width, h = image.height;
+  std::vector<int> labels(static_cast<size_t>(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      labels[static_cast<size_t>(y) * w + x] =
+          region_label(regions.at(x, y, 0), regions.at(x, y, 1), regions.at(x, y, 2));
+  auto label = [&](int x, int y) {
+    return labels[static_cast<size_t>(std::clamp(y, 0, h - 1)) * w + std::clamp(x, 0, w - 1)];
+  };
+  ImageF out(w, h, 4, 1.0f);
+  const int radius = params.size / 2;
+  const bool dilate = params.op == MorphologyOp::kDilate;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const int own = label(x, y);
+      double best[3] = {0, 0, 0};
+      bool first = true;
+      for (int dy = -radius; dy <= radius; ++dy) {
+        for (int dx = -radius; dx <= radius; ++dx) {
+          if (!in_footprint(dx, dy, params.size, params.footprint)) continue;
+          const bool rows_first = axes == MorphologyAxes::kRowsFirst;
+          if (label(x + dx, y + dy) != own ||
+              label(rows_first ? x : x + dx, rows_first ? y + dy : y) != own)
+            continue;
+          const int sx = std::clamp(x + dx, 0, w - 1), sy = std::clamp(y + dy, 0, h - 1);
+          double candidate[4] = {0, 0, 0, static_cast<double>(own)};
+          for (int c = 0; c < 3; ++c) candidate[c] = image.at(sx, sy, c);
+          if (first) {
+            std::copy(candidate, candidate + 3, best);
+            first = false;
+          } else if (params.order == MorphologyOrder::kLuminance) {
+            double current[4] = {best[0], best[1], best[2], static_cast<double>(own)};
+            const bool replace =
+                dilate ? luminance_less(current, candidate) : luminance_less(candidate, current);
+            if (replace) std::copy(candidate, candidate + 3, best);
+          } else {
+            for (int c = 0; c < 3; ++c)
+              best[c] = dilate ? std::max(best[c], candidate[c]) : std::min(best[c], candidate[c]);
+          }
+        }
+      }
+      for (int c = 0; c < 3; ++c) out.at(x, y, c) = static_cast<float>(best[c]);
     }
   }
   return out;

@@ -4,7 +4,9 @@
 // NaN stays where it is; the separable passes against the 2D gate (printed, bounded).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "aquarelle/reference/bleed.h"
@@ -18,7 +20,7 @@ using aq::reference::BleedParams;
 // resolution 1: every pixel a tap, the operator reference::bleed defines.
 aq::Result<ImageF> run(const ImageF& image, const ImageF& control, const ImageF* depth,
                        const ImageF* id, const BleedParams& p, const char* precision = "float",
-                       int resolution = 1) {
+                       int resolution = 1, double extrude = 0.0) {
   std::map<std::string, ImageF> inputs{{"image", image}, {"control", control}};
   if (depth) inputs["depth"] = *depth;
   if (id) inputs["id"] = *id;
@@ -31,7 +33,8 @@ aq::Result<ImageF> run(const ImageF& image, const ImageF& control, const ImageF*
                              {"reach", p.reach},
                              {"amount", p.amount},
                              {"depth_bias", p.depth_bias},
-                             {"resolution", resolution}},
+                             {"resolution", resolution},
+                             {"extrude", extrude}},
                             options);
 }
 
@@ -195,6 +198,77 @@ TEST(Bleed, CellsKeepTheGateAndStayCloseToTheExactOperator) {
   // runs up to a cell further onto the background than the exact operator lets it.
   EXPECT_LE(mean, 0.015);
   EXPECT_LE(max, 0.5);
+}
+
+// Bleed extrusion from its definition (plugins/bleed/README.md), in double: a pixel x is covered
+// by the nearest pixel y (least depth; the first in row order on a tie) of another id with bleed
+// b(y) > 0, in front of it (depth(y) < depth(x)), within extrude · b(y) pixels (Euclidean); a
+// covered pixel takes y's colour, bleed, depth and id. Amount 1 (b = clamp(control.r, 0, 1)).
+Scene extruded(const Scene& s, double extrude) {
+  Scene out = s;
+  const int w = s.image.width, h = s.image.height;
+  const int radius = static_cast<int>(std::ceil(extrude));
+  auto bleed_at = [&](int x, int y) { return std::clamp(double(s.control.at(x, y, 0)), 0.0, 1.0); };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      int best_x = -1, best_y = -1;
+      double best_depth = s.depth.at(x, y, 0);
+      for (int yy = std::max(0, y - radius); yy <= std::min(h - 1, y + radius); ++yy)
+        for (int xx = std::max(0, x - radius); xx <= std::min(w - 1, x + radius); ++xx) {
+          const double b = bleed_at(xx, yy);
+          if (!(b > 0.0) || s.id.at(xx, yy, 0) == s.id.at(x, y, 0)) continue;
+          if (!(s.depth.at(xx, yy, 0) < best_depth)) continue;
+          if (std::hypot(double(xx - x), double(yy - y)) > extrude * b) continue;
+          best_x = xx;
+          best_y = yy;
+          best_depth = s.depth.at(xx, yy, 0);
+        }
+      if (best_x < 0) continue;
+      for (int c = 0; c < 4; ++c) {
+        out.image.at(x, y, c) = s.image.at(best_x, best_y, c);
+        out.control.at(x, y, c) = s.control.at(best_x, best_y, c);
+      }
+      out.depth.at(x, y, 0) = s.depth.at(best_x, best_y, 0);
+      out.id.at(x, y, 0) = s.id.at(best_x, best_y, 0);
+    }
+  return out;
+}
+
+// Seed 002's bleed extrusion: where the bleed is high the geometry is pushed out past its
+// silhouette before the blur, so colour runs further than the kernel alone carries it. A near
+// object bleeding 0.8 over the background below it, extrude 6 (4.8 px at its bleed), a narrow
+// kernel (sigma 1, reach 1: one pixel): the background 3 px below the object takes its colour,
+// which it keeps without extrusion; against reference::bleed on the extruded inputs.
+TEST(Bleed, ExtrusionPushesTheBleedingColourPastTheSilhouette) {
+  const Scene s = two_objects(64, 48, 0.0, 0.8);
+  const BleedParams p{1.0, 1.0, 1.0, 0.05};
+  auto got = run(s.image, s.control, &s.depth, &s.id, p, "float", 1, 6.0);
+  ASSERT_TRUE(got.ok()) << got.message();
+  const Scene pushed = extruded(s, 6.0);
+  const ImageF expected =
+      aq::reference::bleed(pushed.image, pushed.control, &pushed.depth, &pushed.id, p);
+  EXPECT_LE(aq::test::max_abs_diff(*got, expected), 2e-5);
+  // The object's bottom row is y = 35; 3 px below it, on the background, the near object's green.
+  const int below = 48 * 3 / 4 + 2;
+  EXPECT_NEAR(got->at(50, below, 1), s.image.at(50, 20, 1), 1e-4);
+  EXPECT_GT(got->at(50, below, 1), s.image.at(50, below, 1) + 0.3f);
+  // Past 4.8 px the background stays as it was; a farther object is never pushed over a nearer one.
+  EXPECT_EQ(got->at(50, 48 * 3 / 4 + 6, 1), s.image.at(50, 48 * 3 / 4 + 6, 1));
+  auto still = run(s.image, s.control, &s.depth, &s.id, p, "float", 1, 0.0);
+  ASSERT_TRUE(still.ok()) << still.message();
+  EXPECT_EQ(still->at(50, below, 1), s.image.at(50, below, 1));  // the kernel alone stops short
+
+  // On 4x4 cells (sigma 8) the extrusion moves the colour as far, a cell at a time.
+  const BleedParams wide{8.0, 3.0, 1.0, 0.05};
+  auto cells = run(s.image, s.control, &s.depth, &s.id, wide, "float", 4, 6.0);
+  auto exact = run(s.image, s.control, &s.depth, &s.id, wide, "float", 1, 6.0);
+  auto cells_still = run(s.image, s.control, &s.depth, &s.id, wide, "float", 4, 0.0);
+  ASSERT_TRUE(cells.ok() && exact.ok() && cells_still.ok());
+  EXPECT_GT(cells->at(50, below, 1), cells_still->at(50, below, 1) + 0.05f);
+  const double mean = aq::test::mean_abs_diff(*cells, *exact);
+  const double max = aq::test::max_abs_diff(*cells, *exact);
+  std::printf("[bleed] extrusion, 4x4 cells against every pixel: max %.3g, mean %.3g\n", max, mean);
+  EXPECT_LE(mean, 0.03);
 }
 
 }  // namespace

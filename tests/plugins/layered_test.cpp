@@ -89,11 +89,12 @@ nlohmann::json to_json(const LayeredParams& p) {
           {"paper_relief", p.paper_relief},
           {"depth_band", p.depth_band},
           {"density", p.density},
-          {"thin_shapes", p.thin_shapes}};
+          {"thin_shapes", p.thin_shapes},
+          {"method", "exact"}};
 }
 
 ImageF run(const GBuffer& g, const LayeredParams& p, const ImageF* paper = nullptr,
-           const char* precision = "float") {
+           const char* precision = "float", const char* method = "exact") {
   std::map<std::string, ImageF> inputs{
       {"id", g.id}, {"normal", g.normal}, {"albedo", g.albedo}, {"depth", g.depth}};
   if (paper != nullptr) inputs.emplace("paper", *paper);
@@ -101,7 +102,9 @@ ImageF run(const GBuffer& g, const LayeredParams& p, const ImageF* paper = nullp
   options.width = g.id.width;
   options.height = g.id.height;
   options.precision = precision;
-  auto out = aq::test::run_node("layered", inputs, to_json(p), options);
+  nlohmann::json params = to_json(p);
+  params["method"] = method;
+  auto out = aq::test::run_node("layered", inputs, params, options);
   EXPECT_TRUE(out.ok()) << (out.ok() ? "" : out.message());
   return out.ok() ? *out : ImageF();
 }
@@ -495,3 +498,22 @@ TEST(Layered, ManyRangesOverAFloorMatchTheReference) {
   ASSERT_TRUE(aq::test::all_finite(out));
   EXPECT_LT(aq::test::max_abs_diff(out, reference(g, p), 3), 5e-3);
 }
+
+namespace {
+
+// The fast method (README "Fast method"): every layer at half resolution with four layers per
+// texel, no readback. An approximation: close to the reference, not equal to it (measured
+// 46.6 dB, mean 1.1e-3, max 0.067 here; rgb mixing 44.0 dB).
+TEST(Layered, FastMethodStaysNearTheReference) {
+  const GBuffer g = scene(128, 128);
+  const ImageF paper = paper_image(128, 128);
+  const LayeredParams p = comparable();
+  const ImageF fast = run(g, p, &paper, "float", "fast");
+  const ImageF cpu = reference(g, p, &paper);
+  EXPECT_GT(aq::test::psnr(fast, cpu, 1.0, 3), 42.0);
+  EXPECT_LT(aq::test::mean_abs_diff(fast, cpu, 3), 2.5e-3);
+  EXPECT_LT(aq::test::max_abs_diff(fast, cpu, 3), 0.15);
+  EXPECT_GT(aq::test::max_abs_diff(fast, run(g, p, &paper), 3), 1e-3) << "fast is not exact";
+}
+
+}  // namespace

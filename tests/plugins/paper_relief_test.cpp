@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
+#include <string>
 
 #include "aquarelle/reference/paper_relief.h"
 #include "support/harness.h"
@@ -97,6 +99,41 @@ TEST(PaperRelief, OnePixelAndNaN) {
     for (int x = 0; x < 16; ++x)
       for (int c = 0; c < 4; ++c) non_finite += std::isfinite(nan->at(x, y, c)) ? 0 : 1;
   EXPECT_EQ(non_finite, 1);
+}
+
+// The node is pointwise (issue 35's speed): the host runs it as the epilogue of the tremor's pass
+// and fused with the tint after it. That must be the function its own pass computes: the chain
+// rendered fused and node by node agrees (float precision, so no store rounds between them).
+TEST(PaperRelief, FusedIntoTheTremorAndTintItIsTheSameFunction) {
+  const std::string graph = R"({
+  "aquarelle": 1,
+  "nodes": {
+    "input": {"type": "image_input", "params": {"name": "image"}},
+    "paper": {"type": "image_input", "params": {"name": "paper"}},
+    "mask": {"type": "image_input", "params": {"name": "mask"}},
+    "wobble": {"type": "tremor", "params": {"amplitude": 2.0, "wavelength": 8.0},
+               "inputs": {"image": "input.image"}},
+    "relief": {"type": "paper_relief", "params": {"bump": 3.0, "relief": 0.8, "show": 0.6},
+               "inputs": {"image": "wobble.image", "paper": "paper.image", "mask": "mask.image"}},
+    "tint": {"type": "tint", "params": {"amount": 0.2}, "inputs": {"image": "relief.image"}}
+  },
+  "output": "tint.image"
+})";
+  const std::map<std::string, ImageF> images{{"image", aq::test::random_image(80, 48, 3)},
+                                             {"paper", aq::test::random_image(80, 48, 4)},
+                                             {"mask", aq::test::random_image(80, 48, 5)}};
+  aq::test::RenderOptions fused;
+  fused.width = 80;
+  fused.height = 48;
+  aq::test::RenderOptions apart = fused;
+  apart.fuse_pointwise = false;
+  auto one_pass = aq::test::render_graph(graph, fused, images);
+  auto node_by_node = aq::test::render_graph(graph, apart, images);
+  ASSERT_TRUE(one_pass.ok()) << one_pass.message();
+  ASSERT_TRUE(node_by_node.ok()) << node_by_node.message();
+  EXPECT_LE(aq::test::max_abs_diff(*one_pass, *node_by_node), 1e-5);
+  // The relief did something: the paper's relief is visible against the tremor alone.
+  EXPECT_GT(aq::test::mean_abs_diff(*one_pass, images.at("image")), 0.01);
 }
 
 }  // namespace

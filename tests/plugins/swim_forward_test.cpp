@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include <unistd.h>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -86,6 +88,72 @@ TEST(SwimForward, AModelAlongZSwimsNoseFirst) {
   const auto [bent_x, bent_y] = extent(render(graph(path, "+z", 0.3)));
   EXPECT_GT(bent_x, wide_x + 1);
   EXPECT_LE(bent_y, long_y + 1);
+  fs::remove_all(dir);
+}
+
+// A tapered body 1 long with its nose at +0.5 along x, turned so the nose points along
+// `forward`: exact coordinate swaps, so the four files hold the same body.
+std::string body_along(const std::string& forward) {
+  std::string text;
+  const int rings = 10, sides = 6;
+  for (int i = 0; i <= rings; ++i) {
+    const double x = -0.5 + double(i) / rings, r = 0.02 + 0.08 * (1.0 - std::abs(x - 0.2));
+    for (int j = 0; j < sides; ++j) {
+      const double a = 6.283185307179586 * j / sides;
+      double v[3] = {x, r * std::cos(a), 0.6 * r * std::sin(a)};
+      const double z = v[2];
+      if (forward == "-x") v[0] = -x, v[2] = -z;
+      if (forward == "+z") v[0] = -z, v[2] = x;
+      if (forward == "-z") v[0] = z, v[2] = -x;
+      char line[96];
+      std::snprintf(line, sizeof(line), "v %.9g %.9g %.9g\n", v[0], v[1], v[2]);
+      text += line;
+    }
+  }
+  for (int i = 0; i < rings; ++i) {
+    for (int j = 0; j < sides; ++j) {
+      const int a = i * sides + j + 1, b = i * sides + (j + 1) % sides + 1;
+      text += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(b + sides) +
+              "\nf " + std::to_string(a) + " " + std::to_string(b + sides) + " " +
+              std::to_string(a + sides) + "\n";
+    }
+  }
+  return text;
+}
+
+// The body built along any axis, with that swim_forward, swims exactly as the body built along
+// +x with +x: same place, same heading, and the body wave bent to the same side at the same
+// time (it bent to the mirrored side for -x and +z).
+TEST(SwimForward, EveryAxisSwimsAsTheSameBodyBuiltAlongX) {
+  const fs::path dir = fs::temp_directory_path() / ("aq_swim_axes_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  auto positions = [&](const std::string& forward) {
+    const fs::path path = dir / ("body" + std::to_string(forward[0] == '+') + forward[1] + ".obj");
+    std::ofstream(path) << body_along(forward);
+    nlohmann::json g = graph(path.string(), forward, 0.3);
+    g["output"] = "gbuf.position";
+    aq::test::RenderOptions options;
+    options.width = options.height = 96;
+    options.frame = 5;
+    options.output = "gbuf.position";
+    auto image = aq::test::render_graph(g.dump(), options);
+    EXPECT_TRUE(image.ok()) << (image.ok() ? "" : image.message());
+    return image.ok() ? *image : ImageF();
+  };
+  const ImageF along_x = positions("+x");
+  ASSERT_EQ(along_x.width, 96);
+  int covered = 0;
+  for (int i = 0; i < 96 * 96; ++i) covered += along_x.pixels[4 * i + 3] == 1.0f;
+  ASSERT_GT(covered, 100);
+  for (const char* forward : {"-x", "+z", "-z"}) {
+    const ImageF other = positions(forward);
+    ASSERT_EQ(other.width, 96);
+    int differing = 0;
+    for (int i = 0; i < 96 * 96 * 4; ++i) {
+      differing += std::abs(other.pixels[i] - along_x.pixels[i]) > 1e-4f;
+    }
+    EXPECT_EQ(differing, 0) << "swim_forward " << forward;
+  }
   fs::remove_all(dir);
 }
 

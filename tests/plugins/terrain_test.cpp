@@ -5,7 +5,12 @@
 // non-finite terrain parameter (the command line's `--set` can give one) is an error naming it.
 #include <gtest/gtest.h>
 
+#include <aquarelle/core/evaluator.h>
+#include <aquarelle/core/gl_context.h>
+
 #include <nlohmann/json.hpp>
+
+#include <limits>
 
 #include <algorithm>
 #include <cmath>
@@ -146,6 +151,52 @@ TEST(Terrain, ANonFiniteParameterIsAnErrorNamingIt) {
                           (dir / "out.exr").string() + " --set floor.terrain_swell=nan");
   EXPECT_NE(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("terrain_swell"), std::string::npos) << result.output;
+}
+
+// The graph reader refuses a NaN before any node sees it; a parameter set in memory (the
+// editor, the Python module, a host of our library) reaches the node itself, which must refuse
+// it by name rather than build a mesh of NaNs.
+TEST(Terrain, ANonFiniteParameterReachingTheNodeIsRefusedByTheNode) {
+  auto context = aq::create_headless_context(aq::GlBackend::kAuto);
+  ASSERT_TRUE(context.ok()) << context.message();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const char* name : {"terrain_swell", "terrain_swell_frequency", "terrain_bumps",
+                           "terrain_bumps_frequency", "terrain_cliff"}) {
+    for (double bad : {nan, inf}) {
+      aq::Evaluator evaluator(**context, aq::test::registry());
+      auto image =
+          aq::test::evaluate_text(evaluator, graph(Terrain{}).dump(), 1,
+                                  [&](aq::Graph& g) { g.nodes["floor"].params[name] = bad; });
+      ASSERT_FALSE(image.ok()) << name << " = " << bad << " rendered";
+      EXPECT_NE(image.message().find(name), std::string::npos) << image.message();
+      EXPECT_NE(image.message().find("floor"), std::string::npos) << image.message();
+    }
+  }
+  // The same evaluator renders again once the parameter is a number.
+  aq::Evaluator evaluator(**context, aq::test::registry());
+  auto image = aq::test::evaluate_text(evaluator, graph(Terrain{}).dump(), 1);
+  EXPECT_TRUE(image.ok()) << image.message();
+}
+
+// `terrain_cells` sets the grid: the floor's positions lie on the grid of that many cells
+// (checked against the README formula's interpolant at 32 cells, far from the 128 default).
+TEST(Terrain, TheGridHasTerrainCellsCells) {
+  Terrain t;
+  t.cells = 32;
+  nlohmann::json g = graph(t);
+  g["nodes"]["floor"]["params"]["terrain_cells"] = 32;
+  aq::test::RenderOptions options;
+  options.width = options.height = 96;
+  options.output = "gbuf.position";
+  auto p = aq::test::render_graph(g.dump(), options);
+  ASSERT_TRUE(p.ok()) << p.message();
+  const auto [error, covered] = off_the_grid(t, *p);
+  EXPECT_GT(covered, 96 * 96 / 4);
+  EXPECT_LT(error, 2e-4);
+  Terrain fine = t;
+  fine.cells = 128;
+  EXPECT_GT(off_the_grid(fine, *p).first, 1e-3) << "a 32-cell grid is not the 128 one";
 }
 
 }  // namespace

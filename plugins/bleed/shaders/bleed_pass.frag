@@ -4,6 +4,8 @@
 // and its colour is finite. Gaussian weights of the taps that take part are renormalised; the
 // amount is the largest bleed among them. The second pass (u_final = 1) mixes the original
 // colour with the blurred one by that amount; amount 0 returns the original texel unchanged.
+// The key's w says whether a cell's 2×2 block holds one id (for bleed_up.frag; ids do not move
+// in the passes, so the vertical pass's answer is the cells').
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_key;
@@ -40,8 +42,15 @@ void main() {
   }
   vec4 blurred = weights > 0.0 ? sum / weights : texelFetch(u_color, x, 0);
   if (u_final == 0) {
+    // w: 1 where this cell and its neighbours at +x, +y and +xy (clamped) hold one id, so the
+    // upsampling (bleed_up.frag) may read the four by bilinear filtering.
+    float same = 1.0;
+    for (int k = 1; k < 4; ++k) {
+      ivec2 n = min(x + ivec2(k & 1, k >> 1), size - 1);
+      if (texelFetch(u_key, n, 0).z != centre_key.z) same = 0.0;
+    }
     o_color = blurred;
-    o_key = vec4(amount, centre_key.yzw);
+    o_key = vec4(amount, centre_key.yz, same);
     return;
   }
   vec4 original = texelFetch(u_original, x, 0);

@@ -2,6 +2,8 @@
 // (joint bilateral: the four nearest cells' bilinear weights times how close the depth their
 // ray ended at is to this pixel's), then C · T + light · (1 − T), T = exp(−τ). τ = 0 returns C
 // unchanged. With one pixel per cell the pixel's own cell has weight 1: the exact march.
+// aq_epilogue: the pointwise nodes after the clouds (paper relief, tint) when the host fuses
+// them into this pass (AQ_NODE_EPILOGUE), else the identity.
 in vec2 v_uv;
 out vec4 o_color;
 
@@ -53,9 +55,9 @@ void main() {
     tau = weights > 1e-4 ? sum / weights : nearest_tau;
   }
   if (!(tau > 0.0)) {
-    o_color = c;
+    o_color = aq_epilogue(c);
     return;
   }
   float transmittance = exp(-tau);
-  o_color = vec4(c.rgb * transmittance + u_light_color * (1.0 - transmittance), c.a);
+  o_color = aq_epilogue(vec4(c.rgb * transmittance + u_light_color * (1.0 - transmittance), c.a));
 }

@@ -9,6 +9,8 @@
 //   v     = 1 − smoothstep(0, depth_band, z_layer − z_front)           blurred depth test
 //   g     = mix(1, 2 (1 − paper), granulation)                         granulation
 //   thickness = density · cover · v · g · (1 + extra);  under = glaze(under, C, thickness)
+// and, after the last range's layers, the soft shadow as its own translucent layer:
+//   S = (G_σs * shadow) / (G_σs * receivers);  under = glaze(under, shadow_color, shadows · S · R)
 layout(location = 0) out vec4 o_color;
 
 uniform sampler2D u_under;
@@ -37,6 +39,13 @@ uniform float u_depth_band;
 uniform float u_granulation;
 uniform float u_density;
 uniform sampler2D u_colours;  // per layer: Gooch light (row 0) and dark (row 1), see layered_colours
+#if AQ_HAS_SHADOW
+uniform sampler2D u_shadow_layer;  // blurred (shadow, receivers), see layered_shadow.frag
+uniform sampler2D u_shadow_raw;    // unblurred: g = 1 on receivers
+uniform bool u_last;               // the last range glazes the shadow layer over everything
+uniform float u_shadows;
+uniform vec3 u_shadow_color;
+#endif
 
 vec3 pigment_mix(vec3 a, vec3 b, float t) {
 #if AQ_MIX_MODE == 0
@@ -58,14 +67,8 @@ vec3 glaze(vec3 under, vec3 colour, float thickness) {
 #endif
 }
 
-void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
-  vec3 under = texelFetch(u_under, p, 0).rgb;
-  vec4 owner = texelFetch(u_owner, p, 0);
-  if (all(lessThan(owner, vec4(0.5)))) {  // no layer of the range paints here
-    o_color = vec4(under, 1.0);
-    return;
-  }
+// The range's layers glazed over `under` at p, far to near.
+vec3 paint_layers(ivec2 p, vec4 owner, vec3 under) {
   vec4 b = texelFetch(u_blur_intensity, p, 0);
   vec4 bd = texelFetch(u_blur_diffuse, p, 0);
   vec4 bz = texelFetch(u_blur_depth, p, 0);
@@ -131,5 +134,21 @@ void main() {
 #endif
 #endif
   }
+  return under;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec3 under = texelFetch(u_under, p, 0).rgb;
+  vec4 owner = texelFetch(u_owner, p, 0);
+  // Pixels where no layer of the range paints keep what lies under them.
+  if (any(greaterThan(owner, vec4(0.5)))) under = paint_layers(p, owner, under);
+#if AQ_HAS_SHADOW && AQ_VIEW == 0
+  if (u_last && texelFetch(u_shadow_raw, p, 0).g > 0.5) {
+    vec2 s = texelFetch(u_shadow_layer, p, 0).rg;
+    float shadow = s.y > 1.0e-6 ? clamp(s.x / s.y, 0.0, 1.0) : 0.0;
+    under = glaze(under, u_shadow_color, u_shadows * shadow);
+  }
+#endif
   o_color = vec4(under, 1.0);
 }

@@ -2,6 +2,8 @@
 //   offset = amplitude · m · (perlin3(p / size_px, t·speed, 0), perlin3(p / size_px, t·speed, 7.31))
 // pixels, m = the control map's alpha (1 when unconnected). Time is the noise's third axis, so
 // the wobble moves smoothly from frame to frame. A zero offset reads the texel itself.
+// aq_epilogue: the pointwise nodes after the tremor (paper relief, tint) when the host fuses
+// them into this pass (AQ_NODE_EPILOGUE), else the identity.
 #include "aquarelle/noise.glsl"
 
 in vec2 v_uv;
@@ -24,12 +26,12 @@ void main() {
     if (!(m > 0.0) || isinf(m)) m = 0.0;
   }
   if (m == 0.0) {
-    o_color = texelFetch(u_image, p, 0);
+    o_color = aq_epilogue(texelFetch(u_image, p, 0));
     return;
   }
   vec2 q = gl_FragCoord.xy / u_wavelength;
   vec2 offset = u_amplitude * m *
                 vec2(aq_perlin3(vec3(q, u_phase), vec3(0.0)),
                      aq_perlin3(vec3(q + vec2(7.31, 3.17), u_phase + 11.7), vec3(0.0)));
-  o_color = texture(u_image, (gl_FragCoord.xy + offset) / vec2(size));
+  o_color = aq_epilogue(texture(u_image, (gl_FragCoord.xy + offset) / vec2(size)));
 }

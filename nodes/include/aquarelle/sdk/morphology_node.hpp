@@ -37,8 +37,15 @@ constexpr int kMaxSpans = kMaxRadius + 1;
 // And AQ_FORMAT_RGBA8_HDR_BLOCKS: between two of these nodes (erode -> dilate -> erode) the
 // image stays in the blocks the blocked path computes in, so each pass works on a quarter of
 // the fragments and reads whole blocks.
-inline constexpr aq_port_desc kInputs[] = {aq::image_port(
-    "image", "colour to filter", AQ_PORT_HDR8 | AQ_PORT_BLOCKS | AQ_PORT_DEFER_AXIS)};
+// `regions` (optional): a flat colour per region (cel_light's `plain` = regions); connected, each
+// pixel's window holds only the pixels of its own region, so no colour crosses an object's
+// silhouette and an object thinner than the window survives (see Confine below).
+inline constexpr aq_port_desc kInputs[] = {
+    aq::image_port("image", "colour to filter", AQ_PORT_HDR8 | AQ_PORT_BLOCKS | AQ_PORT_DEFER_AXIS),
+    aq_port_desc{"regions", AQ_PORT_IMAGE, AQ_PORT_OPTIONAL | AQ_PORT_8BIT_ENOUGH,
+                 "flat colour per region (cel_light.plain with plain = regions); connected, "
+                 "each window keeps to the pixel's own region"}};
+enum Input : uint32_t { kImage = 0, kRegions = 1 };
 inline constexpr aq_port_desc kOutputs[] = {
     aq::image_port("image", "filtered colour", AQ_PORT_HDR8 | AQ_PORT_BLOCKS | AQ_PORT_DEFER_AXIS)};
 inline constexpr aq_param_desc kParams[] = {
@@ -110,6 +117,28 @@ inline std::string variant_text(const aq_shader_source& shader, int pass, const 
          (blocked ? "1" : "0") + "\n" + shader.text;
 }
 
+// Confinement to regions (the `regions` input connected). Each pass takes only the taps whose
+// region label equals its centre pixel's; the label rides in alpha between the passes of a node
+// and across a handed-on pass (AQ_PORT_DEFER_AXIS), so only a node's first pass reads `regions`
+// (AQ_MORPH_LABEL) and its last one, when not handed on, writes alpha 1 (AQ_MORPH_OPAQUE).
+struct Confine {
+  bool on = false;
+  aq_image regions{};
+};
+
+// The defines of a pass of a confined node: `first` takes the labels from `regions`, `last`
+// writes alpha 1. Empty when not confined.
+inline std::string confine_defines(const Confine& confine, bool first, bool last) {
+  if (!confine.on) return "";
+  return std::string("#define AQ_MORPH_CONFINE 1\n") + (first ? "#define AQ_MORPH_LABEL 1\n" : "") +
+         (last ? "#define AQ_MORPH_OPAQUE 1\n" : "");
+}
+
+// Binds `regions` to texture unit `unit` of `program` when the pass reads labels.
+inline void bind_regions(GLuint program, const Confine& confine, bool first, GLuint unit) {
+  if (confine.on && first) aq::bind_texture(program, "u_regions", unit, confine.regions);
+}
+
 // Whether the blocked fast path applies: a square window, per channel, on 8-bit values (where
 // packUnorm4x8 holds a texel exactly). AQUARELLE_MORPH_BLOCKED=0 turns it off (the lever table).
 inline bool blocked_path(const aq_image& in, Footprint footprint, bool luminance) {
@@ -151,18 +180,20 @@ inline void bind_blocks(GLuint program, const aq_image& blocks, const aq_image& 
 // blocks of the rows the columns pass reads, pass 1 over `drawn`. Either end may be in blocks
 // itself (AQ_FORMAT_RGBA8_HDR_BLOCKS): pass 0 then reads blocks, pass 1 writes whole blocks.
 inline bool run_blocked(aq::Context& ctx, const aq_shader_source& shader, const aq_image& in,
-                        const aq_image& out, const SpanPlan& plan, const Region& drawn) {
+                        const aq_image& out, const SpanPlan& plan, const Region& drawn,
+                        const Confine& confine = {}) {
   const bool in_hdr8 = in.format == AQ_FORMAT_RGBA8_HDR || in_blocks(in);
   const bool out_hdr8 = out.format == AQ_FORMAT_RGBA8_HDR || in_blocks(out);
   // The row extremes keep the input's values: encoded, or plain 8 bits from an RGBA8 input (the
   // scratch's format only gives it the blocks' layout; nobody else reads it).
   aq_image block_image;
   if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA8_HDR_BLOCKS, &block_image)) return false;
-  const std::string rows_text = std::string(in_blocks(in) ? "#define AQ_MORPH_IN_BLOCKS 1\n" : "") +
+  const std::string rows_text = confine_defines(confine, true, false) +
+                                (in_blocks(in) ? "#define AQ_MORPH_IN_BLOCKS 1\n" : "") +
                                 variant_text(shader, 0, plan, false, in_hdr8, in_hdr8, true);
-  const std::string columns_text =
-      std::string(in_blocks(out) ? "#define AQ_MORPH_OUT_BLOCKS 1\n" : "") +
-      variant_text(shader, 1, plan, false, in_hdr8, out_hdr8, true);
+  const std::string columns_text = confine_defines(confine, false, true) +
+                                   (in_blocks(out) ? "#define AQ_MORPH_OUT_BLOCKS 1\n" : "") +
+                                   variant_text(shader, 1, plan, false, in_hdr8, out_hdr8, true);
   const GLuint rows = ctx.program(aq_shader_source{shader.name, rows_text.c_str(), nullptr});
   const GLuint columns = ctx.program(aq_shader_source{shader.name, columns_text.c_str(), nullptr});
   if (rows == 0 || columns == 0) return false;
@@ -178,9 +209,10 @@ inline bool run_blocked(aq::Context& ctx, const aq_shader_source& shader, const 
   } else {
     aq::bind_texture(rows, "u_image", 0, in);
   }
+  bind_regions(rows, confine, true, 1);
   ctx.set_draw_region(rows_region.for_drawing());
   if (!ctx.bind_targets(&block_image, 1)) {
-    aq::unbind_textures(1);
+    aq::unbind_textures(2);
     return false;
   }
   ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
@@ -189,7 +221,7 @@ inline bool run_blocked(aq::Context& ctx, const aq_shader_source& shader, const 
   bind_blocks(columns, block_image, in);
   ctx.set_draw_region(in_blocks(out) ? blocks_of(drawn).for_drawing() : drawn);
   const bool ok = ctx.draw(out);
-  aq::unbind_textures(1);
+  aq::unbind_textures(2);
   return ok;
 }
 
@@ -205,8 +237,8 @@ inline bool convert_blocks(aq::Context& ctx, const aq_shader_source& shader, con
 // The two plain passes (pass 0 into one span texture per row half-width, pass 1 combining them)
 // from `in` into `out`, both in pixels.
 inline int run_plain(aq::Context& ctx, const aq_shader_source& shader, const aq_image& in,
-                     const aq_image& out, const SpanPlan& plan, bool luminance,
-                     const Region& drawn) {
+                     const aq_image& out, const SpanPlan& plan, bool luminance, const Region& drawn,
+                     const Confine& confine) {
   const bool in_hdr8 = in.format == AQ_FORMAT_RGBA8_HDR;
   const bool out_hdr8 = out.format == AQ_FORMAT_RGBA8_HDR;
   std::array<aq_image, kMaxSpans> spans{};
@@ -214,8 +246,10 @@ inline int run_plain(aq::Context& ctx, const aq_shader_source& shader, const aq_
     if (!ctx.scratch(in.width, in.height, in_hdr8 ? in.format : ctx.working_format(), &spans[i]))
       return AQ_ERROR;
   }
-  const std::string rows_text = variant_text(shader, 0, plan, luminance, in_hdr8, in_hdr8);
-  const std::string columns_text = variant_text(shader, 1, plan, luminance, in_hdr8, out_hdr8);
+  const std::string rows_text = confine_defines(confine, true, false) +
+                                variant_text(shader, 0, plan, luminance, in_hdr8, in_hdr8);
+  const std::string columns_text = confine_defines(confine, false, true) +
+                                   variant_text(shader, 1, plan, luminance, in_hdr8, out_hdr8);
   const GLuint rows = ctx.program(aq_shader_source{shader.name, rows_text.c_str(), nullptr});
   const GLuint columns = ctx.program(aq_shader_source{shader.name, columns_text.c_str(), nullptr});
   if (rows == 0 || columns == 0) return AQ_ERROR;
@@ -225,8 +259,9 @@ inline int run_plain(aq::Context& ctx, const aq_shader_source& shader, const aq_
       drawn.all() ? drawn : drawn.dilated(0, plan.radius, out.width, out.height).for_drawing());
   glUseProgram(rows);
   aq::bind_texture(rows, "u_image", 0, in);
+  bind_regions(rows, confine, true, 1);
   if (!ctx.bind_targets(spans.data(), static_cast<uint32_t>(plan.span_count))) {
-    aq::unbind_textures(1);
+    aq::unbind_textures(2);
     return AQ_ERROR;
   }
   ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
@@ -251,10 +286,12 @@ inline int run_plain(aq::Context& ctx, const aq_shader_source& shader, const aq_
 // `prefix`: defines before the variant's own.
 inline bool draw_blocked_pass(aq::Context& ctx, const aq_shader_source& shader,
                               const std::string& prefix, int pass, const SpanPlan& plan,
-                              const aq_image& in, const aq_image& target, const Region& region) {
+                              const aq_image& in, const aq_image& target, const Region& region,
+                              const Confine& confine = {}, bool first = false, bool last = false) {
   const bool out_hdr8 = target.format == AQ_FORMAT_RGBA8_HDR || in_blocks(target);
   const std::string text =
-      prefix + (in_blocks(in) ? "#define AQ_MORPH_IN_BLOCKS 1\n" : "") +
+      confine_defines(confine, first, last) + prefix +
+      (in_blocks(in) ? "#define AQ_MORPH_IN_BLOCKS 1\n" : "") +
       (pass == 1 && in_blocks(target) ? "#define AQ_MORPH_OUT_BLOCKS 1\n" : "") +
       variant_text(shader, pass, plan, false, true, pass == 0 || out_hdr8, true);
   const GLuint program = ctx.program(aq_shader_source{shader.name, text.c_str(), nullptr});
@@ -265,9 +302,10 @@ inline bool draw_blocked_pass(aq::Context& ctx, const aq_shader_source& shader,
   } else {
     aq::bind_texture(program, "u_image", 0, in);
   }
+  bind_regions(program, confine, first, 1);
   ctx.set_draw_region(in_blocks(target) ? blocks_of(region).for_drawing() : region);
   const bool ok = ctx.draw(target);
-  aq::unbind_textures(1);
+  aq::unbind_textures(2);
   return ok;
 }
 
@@ -276,13 +314,13 @@ inline bool draw_blocked_pass(aq::Context& ctx, const aq_shader_source& shader,
 // along the same axis (0: the writer's pass alone), over the blocks of `region`.
 inline bool run_fused_axis(aq::Context& ctx, const aq_shader_source& shader, const aq_image& in,
                            const aq_image& target, const aq_axis_pass& pending, int radius,
-                           const Region& region) {
+                           const Region& region, const Confine& confine) {
   const std::string prefix = "#define AQ_MORPH_PENDING_RADIUS " + std::to_string(pending.radius) +
                              "\n#define AQ_MORPH_PENDING_DILATE " +
                              (pending.dilate != 0 ? "1" : "0") +
                              "\n#define AQ_MORPH_OUT_BLOCKS 1\n";
   return draw_blocked_pass(ctx, shader, prefix, pending.axis, plan_spans(radius, kSquare), in,
-                           target, region);
+                           target, region, confine);
 }
 
 // The blocked path when a 1D pass moves across the node's boundaries: the input's writer left
@@ -293,33 +331,34 @@ inline bool run_fused_axis(aq::Context& ctx, const aq_shader_source& shader, con
 inline bool run_handing_over(aq::Context& ctx, const aq_shader_source& shader, Op op,
                              const aq_image& in, const aq_image& out, const SpanPlan& plan,
                              const Region& drawn, const std::optional<aq_axis_pass>& pending,
-                             bool defer) {
+                             bool defer, const Confine& confine) {
   const int r = plan.radius;
   const Region computed = in_blocks(out) ? whole_blocks(drawn, out.width, out.height) : drawn;
   const aq_axis_pass own_last{pending ? 1 - pending->axis : 1, op == Op::kDilate ? 1 : 0, r};
   if (!pending) {  // only the rows pass, straight into the output; the columns pass is the reader's
-    return draw_blocked_pass(ctx, shader, "", 0, plan, in, out, computed) &&
+    return draw_blocked_pass(ctx, shader, "", 0, plan, in, out, computed, confine, true) &&
            ctx.defer_axis(0, own_last);
   }
   if (defer) {  // the writer's pass and this node's first, as one; this node's last is handed on
-    return run_fused_axis(ctx, shader, in, out, *pending, r, computed) &&
+    return run_fused_axis(ctx, shader, in, out, *pending, r, computed, confine) &&
            ctx.defer_axis(0, own_last);
   }
   aq_image first;
   if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA8_HDR_BLOCKS, &first)) return false;
   const Region first_region = own_last.axis == 1 ? computed.dilated(0, r, out.width, out.height)
                                                  : computed.dilated(r, 0, out.width, out.height);
-  if (!run_fused_axis(ctx, shader, in, first, *pending, r, first_region)) return false;
+  if (!run_fused_axis(ctx, shader, in, first, *pending, r, first_region, confine)) return false;
   // The usual columns pass, into blocks or pixels.
-  if (own_last.axis == 1) return draw_blocked_pass(ctx, shader, "", 1, plan, first, out, drawn);
+  if (own_last.axis == 1)
+    return draw_blocked_pass(ctx, shader, "", 1, plan, first, out, drawn, confine, false, true);
   // The rows pass last: blocks to blocks, then to pixels if the output wants them.
   if (in_blocks(out))
     return draw_blocked_pass(ctx, shader, "#define AQ_MORPH_OUT_BLOCKS 1\n", 0, plan, first, out,
-                             computed);
+                             computed, confine, false, true);
   aq_image rows;
   if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA8_HDR_BLOCKS, &rows)) return false;
   return draw_blocked_pass(ctx, shader, "#define AQ_MORPH_OUT_BLOCKS 1\n", 0, plan, first, rows,
-                           computed) &&
+                           computed, confine, false, true) &&
          run_blocked(ctx, shader, rows, out, plan_spans(0, kSquare), drawn);
 }
 
@@ -349,6 +388,9 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader, Op op) {
   const auto footprint = static_cast<Footprint>(ctx.param_enum(kFootprint));
   const SpanPlan plan = plan_spans(radius, footprint == kDisc ? kDisc : kSquare);
   const bool luminance = ctx.param_enum(kMode) == kLuminance;
+  Confine confine;
+  confine.on = ctx.connected(kRegions);
+  if (confine.on) confine.regions = ctx.input_image(kRegions);
 
   // Damage tracking: with its output kept, only the pixels whose window holds a changed input
   // pixel are redrawn (and the writer's pass this node runs widens the window along its axis);
@@ -357,7 +399,9 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader, Op op) {
   if (ctx.output_kept(0) && in.width == out.width && in.height == out.height) {
     const int reach_x = radius + (pending && pending->axis == 0 ? pending->radius : 0);
     const int reach_y = radius + (pending && pending->axis == 1 ? pending->radius : 0);
-    damage = ctx.input_damage(0).dilated(reach_x, reach_y, out.width, out.height);
+    Region changed = ctx.input_damage(kImage);
+    if (confine.on) changed.add(ctx.input_damage(kRegions));  // a label moves the windows
+    damage = changed.dilated(reach_x, reach_y, out.width, out.height);
   }
   if (damage.empty()) return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
   Region drawn = damage.for_drawing();
@@ -370,20 +414,21 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader, Op op) {
   const bool defer =
       blocked && encoded_in && radius >= 1 && in_blocks(out) && ctx.may_defer_axis(0);
   if (blocked && (pending || defer)) {
-    if (!run_handing_over(ctx, shader, op, in, out, plan, drawn, pending, defer)) return AQ_ERROR;
+    if (!run_handing_over(ctx, shader, op, in, out, plan, drawn, pending, defer, confine))
+      return AQ_ERROR;
     return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
   }
   if (pending) {  // a disc or the luminance order: the writer's pass first, on its own
     aq_image completed;
     if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA8_HDR_BLOCKS, &completed)) return AQ_ERROR;
-    if (!run_fused_axis(ctx, shader, in, completed, *pending, 0, Region::everything()))
+    if (!run_fused_axis(ctx, shader, in, completed, *pending, 0, Region::everything(), confine))
       return AQ_ERROR;
     in = completed;
     damage = drawn = Region::everything();
     ctx.set_draw_region(Region::everything());
   }
   if (blocked) {
-    if (!run_blocked(ctx, shader, in, out, plan, drawn)) return AQ_ERROR;
+    if (!run_blocked(ctx, shader, in, out, plan, drawn, confine)) return AQ_ERROR;
     return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
   }
 
@@ -395,7 +440,8 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader, Op op) {
     damage = drawn = Region::everything();
     if (!ctx.scratch(out.width, out.height, AQ_FORMAT_RGBA8_HDR, &target)) return AQ_ERROR;
   }
-  if (run_plain(ctx, shader, source, target, plan, luminance, drawn) != AQ_OK) return AQ_ERROR;
+  if (run_plain(ctx, shader, source, target, plan, luminance, drawn, confine) != AQ_OK)
+    return AQ_ERROR;
   if (in_blocks(out) && !convert_blocks(ctx, shader, target, &out)) return AQ_ERROR;
   return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
 }

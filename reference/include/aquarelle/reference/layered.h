@@ -2,7 +2,8 @@
 // plugins/layered/README.md (Luft & Deussen's layered watercolor, seeds 003 and 004): the
 // per-object table, segmentation and lighting, Gaussian abstraction with a noise-modulated
 // threshold, wet edges (3x3 Laplacian, threshold, Gaussian, ease-out), edge darkening,
-// granulation, pigment mixing and glazing, and the blurred depth test. The `painting` view.
+// granulation, pigment mixing and glazing, the blurred depth test, and soft shadows by the
+// blurred depth test as their own translucent layer. The `painting` view.
 #pragma once
 
 #include <aquarelle/core/image.h>
@@ -47,6 +48,11 @@ struct LayeredParams {
   // Thin shapes: a pixel of the object that is the peak of its blurred mask over a
   // (2r+1)^2 window (r = ceil(sigma) + 1) and at least ~half a pixel wide keeps its coverage.
   double thin_shapes = 1.0;
+  // Soft shadows (blurred depth test): glazed after every layer where `shadow` is given.
+  double shadows = 0.8;          // pigment of the shadow layer
+  double shadow_softness = 4.0;  // Gaussian sigma, pixels
+  double shadow_band = 0.05;     // gap behind the occluder (scene units) to full shadow
+  Rgb shadow_color{0.35, 0.4, 0.6};
 };
 
 struct LayeredObject {
@@ -59,7 +65,10 @@ std::vector<LayeredObject> layered_objects(const ImageF& id, const ImageF& depth
                                            const ImageF& albedo);
 
 // The painting. `paper` (height in channel 0) may be null: flat paper, no granulation.
+// `shadow` (may be null: no shadows) holds per pixel the binary visibility from the light in
+// channel 0 (1 lit, 0 shadowed) and in channel 1 how far the pixel lies behind its occluder
+// along the light (scene units); only object pixels (receivers) read it.
 ImageF layered(const ImageF& id, const ImageF& normal, const ImageF& albedo, const ImageF& depth,
-               const ImageF* paper, const LayeredParams& params);
+               const ImageF* paper, const LayeredParams& params, const ImageF* shadow = nullptr);
 
 }  // namespace aq::reference

@@ -28,4 +28,25 @@ bool luminance_less(const double a[4], const double b[4]);
 // Erosion or dilation of a 4-channel image.
 ImageF morphology(const ImageF& image, const MorphologyParams& params);
 
+// The 8-bit label of a region colour (the node's `regions` input): its three bytes
+// round(255 · clamp(c, 0, 1)) packed as r | g << 8 | b << 16 and hashed (an integer mixer), top
+// byte. Equal colours share a label; two different colours share one with probability 1/256.
+int region_label(double r, double g, double b);
+
+// Which axis a confined node's window takes first: x (its rows pass first, as a node on its own
+// runs) or y (a node that runs the columns pass its writer handed on first, such as the
+// flagship's dilate between two erodes: `render --plan`, AQ_PORT_DEFER_AXIS).
+enum class MorphologyAxes { kRowsFirst, kColumnsFirst };
+
+// Erosion or dilation confined to regions (the node with `regions` connected): pixel q of the
+// footprint around p counts only when q, p and the corner between them share p's region label,
+// the corner being (p.x, q.y) when rows come first (q's row extreme is taken in q's row at
+// that corner, then the column pass at p takes the rows of p's region) and (q.x, p.y) when
+// columns come first. Coordinates clamp to the image. So no colour crosses from one region into
+// another, and a region thinner than the window keeps its own colours. Alpha of the result is
+// 1 (the labels ride in alpha inside the node; the image's alpha is not filtered).
+ImageF confined_morphology(const ImageF& image, const ImageF& regions,
+                           const MorphologyParams& params,
+                           MorphologyAxes axes = MorphologyAxes::kRowsFirst);
+
 }  // namespace aq::reference

@@ -1,0 +1,313 @@
+// The layered node's `fast` method: see fast_layers.h and README "Fast method".
+//
+//   id, depth, albedo ─► layered_table.comp ─► GPU table (hash of ids: count, sums)
+//   table, palette ─► layered_fast_colours ─► per slot: Gooch light, dark, (depth, wet, id)
+//   id, normal, depth ─► layered_fast_segment (½ size, 2x2 average) ─► lists: keys, I, D, Z
+//   lists ─► Gaussian (horizontal, vertical; the lists grow to the 4 nearest layers)
+//         ─► running max (thin shapes) and Laplacian edges ─► Gaussian of the edges
+//   everything ─► layered_fast_composite (full size: bilinear per layer, glazes far to near)
+#include "fast_layers.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "layered_params.h"
+#include "layered_shaders.h"
+
+namespace layered {
+
+namespace {
+
+constexpr int kTableWords = 12;  // per slot, as layered_table.comp lays them out
+
+std::string define(const char* name, int64_t value) {
+  return "#define " + std::string(name) + " " + std::to_string(value) + "\n";
+}
+
+// σ at half resolution giving σ at full size after the 2x2 average (variance ¼ px² per axis)
+// and the bilinear enlargement (¾ px²): 4 σh² + 1 = σ².
+double half_sigma(double sigma) {
+  return std::sqrt(std::max(sigma * sigma - 1.0, 0.0)) / 2.0;
+}
+
+int radius_of(double sigma) {
+  return sigma > 0.0 ? static_cast<int>(std::ceil(4.0 * sigma)) : 0;
+}
+
+// Normalised Gaussian weights by distance 0 … radius (the reference's 4σ truncation).
+std::vector<float> gaussian_weights(double sigma, int radius) {
+  std::vector<double> w(static_cast<size_t>(radius) + 1, 1.0);
+  double sum = 1.0;
+  for (int i = 1; i <= radius; ++i) {
+    w[i] = std::exp(-static_cast<double>(i * i) / (2.0 * sigma * sigma));
+    sum += 2.0 * w[i];
+  }
+  std::vector<float> out(w.size());
+  for (size_t i = 0; i < w.size(); ++i) out[i] = static_cast<float>(w[i] / sum);
+  return out;
+}
+
+GLuint compile_compute(aq::Context& ctx, const char* text) {
+  const std::string source = std::string("#version 450 core\n") + text;
+  const char* sources[] = {source.c_str()};
+  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  glShaderSource(shader, 1, sources, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  const GLuint program = glCreateProgram();
+  if (ok) {
+    glAttachShader(program, shader);
+    glLinkProgram(program);
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  }
+  if (!ok) {
+    char log[1024] = {0};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    ctx.fail(std::string("layered '") + ctx.node_id() + "': layered_table.comp did not compile: " +
+             log + " (a compute shader needs OpenGL 4.3; use method 'exact')");
+    glDeleteProgram(program);
+    glDeleteShader(shader);
+    return 0;
+  }
+  glDeleteShader(shader);
+  return program;
+}
+
+}  // namespace
+
+FastLayers::~FastLayers() {
+  if (table_program_ != 0) glDeleteProgram(table_program_);
+}
+
+bool FastLayers::applies(double sigma, double edge_sigma) {
+  return sigma >= 1.5 && radius_of(half_sigma(sigma)) <= kMaxRadius &&
+         radius_of(half_sigma(edge_sigma)) <= kMaxRadius;
+}
+
+std::string FastLayers::defines(aq::Context& ctx, const FastFrame& f) const {
+  return define("AQ_HAS_PAPER", f.has_paper ? 1 : 0) +
+         define("AQ_HAS_SHADOW", f.has_shadow ? 1 : 0) +
+         define("AQ_MIX_MODE", ctx.param_enum(kMixing)) + define("AQ_VIEW", 0);
+}
+
+GLuint FastLayers::fragment(aq::Context& ctx, const char* name, std::string& text,
+                            const aq_shader_source& main, const std::string& defines) {
+  text = defines +
+         "#include \"aquarelle/pigment.glsl\"\n#include \"aquarelle/edge_kernels.glsl\"\n" +
+         shaders::layered_common_glsl.text + "\n" + shaders::layered_lists_glsl.text +
+         "\n#line 1\n" + main.text;
+  return ctx.program({name, text.c_str(), nullptr});
+}
+
+bool FastLayers::run(aq::Context& ctx, const FastFrame& f) {
+  if (table_program_ == 0 || generation_ != ctx.raw()->gl_generation) {
+    if (generation_ != ctx.raw()->gl_generation) table_.forget();
+    table_program_ = compile_compute(ctx, shaders::layered_table_comp.text);
+    generation_ = ctx.raw()->gl_generation;
+    if (table_program_ == 0) return false;
+  }
+  Targets t;
+  const int hw = (f.w + 1) / 2, hh = (f.h + 1) / 2;
+  const uint32_t f32 = AQ_FORMAT_RGBA32F;
+  for (aq_image* image :
+       {&t.lists[0], &t.lists[1], &t.lists[2], &t.lists[3], &t.spare[0], &t.spare[1], &t.spare[2],
+        &t.spare[3], &t.peak, &t.spare_one, &t.edges, &t.blur_edges}) {
+    if (!ctx.scratch(hw, hh, f32, image)) return false;
+  }
+  glDisable(GL_SCISSOR_TEST);
+  const bool ok = build_table(ctx) && colours(ctx, f, t) && segment_and_blur(ctx, f, t) &&
+                  peaks_and_edges(ctx, f, t) && composite(ctx, f, t);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+  aq::unbind_textures(16);
+  return ok;
+}
+
+// The GPU table: cleared, then one invocation per run of 64 pixels of a row.
+bool FastLayers::build_table(aq::Context& ctx) {
+  const GLsizeiptr bytes = static_cast<GLsizeiptr>(kSlots) * kTableWords * sizeof(uint32_t);
+  if (!table_) glNamedBufferStorage(table_.create(), bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+  const uint32_t zero = 0;
+  glClearNamedBufferData(table_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, table_.get());
+  glUseProgram(table_program_);
+  aq::bind_texture(table_program_, "u_id", 0, ctx.input_image(kId));
+  aq::bind_texture(table_program_, "u_depth", 1, ctx.input_image(kDepth));
+  aq::bind_texture(table_program_, "u_albedo", 2, ctx.input_image(kAlbedo));
+  aq::set_int(table_program_, "u_slots", kSlots);
+  const aq_image id = ctx.input_image(kId);
+  const GLuint runs = static_cast<GLuint>(id.height) * ((id.width + 63) / 64);
+  glDispatchCompute((runs + 63) / 64, 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  return true;
+}
+
+// Per slot: Gooch light and dark colours and (mean depth, wet-in-wet, present, id).
+bool FastLayers::colours(aq::Context& ctx, const FastFrame& f, Targets& t) {
+  const int n = std::max<int>(1, static_cast<int>(f.palette.size() + f.wet_ids.size()));
+  if (!ctx.scratch(kSlots, 3, AQ_FORMAT_RGBA32F, &t.colours) ||
+      !ctx.scratch(n, 3, AQ_FORMAT_RGBA32F, &t.overrides)) {
+    return false;
+  }
+  overrides_.assign(static_cast<size_t>(n) * 3 * 4, 0.0f);
+  int i = 0;
+  for (const PaletteEntry& e : f.palette) {
+    float* head = &overrides_[4 * i];
+    head[0] = e.id;
+    head[2] = e.has_dark ? 1.0f : 0.0f;
+    for (int c = 0; c < 3; ++c) {
+      overrides_[4 * (n + i) + c] = static_cast<float>(e.light[c]);
+      overrides_[4 * (2 * n + i) + c] = static_cast<float>(e.dark[c]);
+    }
+    ++i;
+  }
+  for (float id : f.wet_ids) {
+    overrides_[4 * i] = id;
+    overrides_[4 * i + 1] = 1.0f;
+    ++i;
+  }
+  glTextureSubImage2D(t.overrides.texture, 0, 0, 0, n, 3, GL_RGBA, GL_FLOAT, overrides_.data());
+  const GLuint p = fragment(ctx, "layered_fast_colours.frag", colours_text_,
+                            shaders::layered_fast_colours_frag, defines(ctx, f));
+  if (p == 0) return false;
+  glUseProgram(p);
+  aq::bind_texture(p, "u_overrides", 0, t.overrides);
+  aq::set_int(p, "u_override_count", i);
+  aq::set_int(p, "u_wet_default", f.wet_default ? 1 : 0);
+  aq::set_float(p, "u_light_density", ctx.param_float(kLightDensity));
+  aq::set_float(p, "u_dark_density", ctx.param_float(kDarkDensity));
+  aq::set_float(p, "u_gooch", ctx.param_float(kGooch));
+  aq::set_vec3(p, "u_warm", ctx.param_vec3(kWarm));
+  aq::set_vec3(p, "u_cool", ctx.param_vec3(kCool));
+  return ctx.draw(t.colours);
+}
+
+// Half-resolution lists (keys, I, D, Z), then their Gaussian, horizontal then vertical: the
+// result is back in t.lists.
+bool FastLayers::segment_and_blur(aq::Context& ctx, const FastFrame& f, Targets& t) {
+  const GLuint p = fragment(ctx, "layered_fast_segment.frag", segment_text_,
+                            shaders::layered_fast_segment_frag, defines(ctx, f));
+  if (p == 0) return false;
+  glUseProgram(p);
+  aq::bind_texture(p, "u_id", 0, ctx.input_image(kId));
+  aq::bind_texture(p, "u_normal", 1, ctx.input_image(kNormal));
+  aq::bind_texture(p, "u_depth", 2, ctx.input_image(kDepth));
+  aq::set_vec3(p, "u_light", f.light);
+  aq::set_vec3(p, "u_half", f.half);
+  aq::set_float(p, "u_shininess", ctx.param_float(kShininess));
+  aq::set_float(p, "u_specular_threshold", ctx.param_float(kSpecularThreshold));
+  aq::set_int(p, "u_slots", kSlots);
+  if (!ctx.bind_targets(t.lists, 4)) return false;
+  ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+  const double sigma = half_sigma(f.sigma);
+  const int radius = radius_of(sigma);
+  return gather(ctx, 0, t.lists[0], &t.lists[1], 0, sigma, radius, t.spare, 4) &&
+         gather(ctx, 0, t.spare[0], &t.spare[1], 1, sigma, radius, t.lists, 4);
+}
+
+// Thin shapes' running maximum (radius ⌈σ⌉ + 1 px, halved) and the wet edges with their
+// Gaussian, all on the blurred lists' keys.
+bool FastLayers::peaks_and_edges(aq::Context& ctx, const FastFrame& f, Targets& t) {
+  if (f.thin) {
+    const int r = (static_cast<int>(std::ceil(f.sigma)) + 2) / 2;
+    if (!gather(ctx, 2, t.lists[0], &t.lists[1], 0, 0.0, r, &t.spare_one, 1) ||
+        !gather(ctx, 2, t.lists[0], &t.spare_one, 1, 0.0, r, &t.peak, 1)) {
+      return false;
+    }
+  }
+  if (!f.run_edges) return true;
+  const GLuint p = fragment(ctx, "layered_fast_edges.frag", edges_text_,
+                            shaders::layered_fast_edges_frag, defines(ctx, f));
+  if (p == 0) return false;
+  glUseProgram(p);
+  aq::bind_texture(p, "u_keys", 0, t.lists[0]);
+  aq::bind_texture(p, "u_blurred", 1, t.lists[1]);
+  aq::set_float(p, "u_edge_threshold", ctx.param_float(kEdgeThreshold));
+  aq::set_float(p, "u_scale", 0.5);
+  const double scale = ctx.render_scale();
+  aq::set_float(p, "u_threshold", ctx.param_float(kThreshold));
+  aq::set_float(p, "u_softness", ctx.param_float(kSoftness));
+  aq::set_float(p, "u_edge_noise", ctx.param_float(kEdgeNoise));
+  aq::set_float(p, "u_noise_scale", std::max(1e-3, ctx.param_float(kNoiseScale) * scale));
+  if (!ctx.draw(t.edges)) return false;
+  const double sigma = half_sigma(f.edge_sigma);
+  const int radius = radius_of(sigma);
+  return gather(ctx, 1, t.lists[0], &t.edges, 0, sigma, radius, &t.spare_one, 1) &&
+         gather(ctx, 1, t.lists[0], &t.spare_one, 1, sigma, radius, &t.blur_edges, 1);
+}
+
+// One axis of layered_fast_gather.frag: mode 0 grows the lists (keys and I, D, Z in
+// `values[0..2]`), 1 blurs and 2 takes the maximum of one value per key of a fixed list.
+bool FastLayers::gather(aq::Context& ctx, int mode, const aq_image& keys, const aq_image* values,
+                        int axis, double sigma, int radius, const aq_image* targets,
+                        int target_count) {
+  const std::string defs = define("AQ_GATHER", mode);
+  const GLuint p = fragment(ctx, "layered_fast_gather.frag", gather_text_[mode],
+                            shaders::layered_fast_gather_frag, defs);
+  if (p == 0) return false;
+  glUseProgram(p);
+  aq::bind_texture(p, "u_keys", 0, keys);
+  if (mode == 0) {
+    aq::bind_texture(p, "u_intensity", 1, values[0]);
+    aq::bind_texture(p, "u_diffuse", 2, values[1]);
+    aq::bind_texture(p, "u_depth", 3, values[2]);
+  } else {
+    aq::bind_texture(p, "u_values", 1, values[0]);
+  }
+  glUniform2i(glGetUniformLocation(p, "u_axis"), axis == 0 ? 1 : 0, axis == 0 ? 0 : 1);
+  aq::set_int(p, "u_radius", radius);
+  if (mode != 2) {
+    const std::vector<float> w = gaussian_weights(sigma, radius);
+    glUniform1fv(glGetUniformLocation(p, "u_weights"), static_cast<GLsizei>(w.size()), w.data());
+  }
+  if (!ctx.bind_targets(targets, static_cast<uint32_t>(target_count))) return false;
+  ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+  return true;
+}
+
+bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& t) {
+  const GLuint p = fragment(ctx, "layered_fast_composite.frag", composite_text_,
+                            shaders::layered_fast_composite_frag, defines(ctx, f));
+  if (p == 0) return false;
+  glUseProgram(p);
+  aq::bind_texture(p, "u_keys", 0, t.lists[0]);
+  aq::bind_texture(p, "u_blur_intensity", 1, t.lists[1]);
+  aq::bind_texture(p, "u_blur_diffuse", 2, t.lists[2]);
+  aq::bind_texture(p, "u_blur_depth", 3, t.lists[3]);
+  aq::bind_texture(p, "u_peak", 4, f.thin ? t.peak : t.lists[1]);
+  aq::bind_texture(p, "u_blur_edges", 5, f.run_edges ? t.blur_edges : t.lists[1]);
+  aq::bind_texture(p, "u_id", 6, ctx.input_image(kId));
+  aq::bind_texture(p, "u_normal", 7, ctx.input_image(kNormal));
+  aq::bind_texture(p, "u_depth", 8, ctx.input_image(kDepth));
+  if (f.has_paper) aq::bind_texture(p, "u_paper", 9, ctx.input_image(kPaper));
+  aq::bind_texture(p, "u_colours", 10, t.colours);
+  if (f.has_shadow) {
+    aq::bind_texture(p, "u_shadow_layer", 11, f.shadow_blur);
+    aq::bind_texture(p, "u_shadow_raw", 12, f.shadow_raw);
+    aq::set_float(p, "u_shadows", ctx.param_float(kShadows));
+    aq::set_vec3(p, "u_shadow_color", ctx.param_vec3(kShadowColor));
+  }
+  const double scale = ctx.render_scale();
+  aq::set_float(p, "u_threshold", ctx.param_float(kThreshold));
+  aq::set_float(p, "u_softness", ctx.param_float(kSoftness));
+  aq::set_float(p, "u_edge_noise", ctx.param_float(kEdgeNoise));
+  aq::set_float(p, "u_noise_scale", std::max(1e-3, ctx.param_float(kNoiseScale) * scale));
+  aq::set_vec2(p, "u_size", f.w, f.h);
+  aq::set_vec3(p, "u_half", f.half);
+  aq::set_float(p, "u_shininess", ctx.param_float(kShininess));
+  aq::set_float(p, "u_specular_threshold", ctx.param_float(kSpecularThreshold));
+  aq::set_float(p, "u_thin", f.thin ? ctx.param_float(kThinShapes) : 0.0);
+  aq::set_float(p, "u_line_width_scale", 2.5066283 * f.sigma);
+  aq::set_float(p, "u_edge_gain", f.run_edges ? std::max(1.0, 1.2533 * f.edge_sigma) : 0.0);
+  aq::set_float(p, "u_edge_darkness", ctx.param_float(kEdgeDarkness));
+  aq::set_float(p, "u_wet_spread", ctx.param_float(kWetSpread));
+  aq::set_float(p, "u_edge_darkening", ctx.param_float(kEdgeDarkening));
+  aq::set_float(p, "u_depth_band", ctx.param_float(kDepthBand));
+  aq::set_float(p, "u_granulation", f.has_paper ? ctx.param_float(kGranulation) : 0.0);
+  aq::set_float(p, "u_density", ctx.param_float(kDensity));
+  aq::set_vec3(p, "u_paper_color", ctx.param_vec3(kPaperColor));
+  aq::set_float(p, "u_paper_relief", ctx.param_float(kPaperRelief));
+  return ctx.draw(f.out);
+}
+
+}  // namespace layered

@@ -1,0 +1,69 @@
+// The layered node's `fast` method (README "Fast method"): every layer at once, at half
+// resolution, with a short list of the four nearest layers per texel; the per-object table
+// (ids, mean albedo and depth) is built on the GPU by a compute pass, so nothing is read back.
+// Cost: a fixed number of passes whatever the number of objects.
+#pragma once
+
+#include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/gl_raii.hpp>
+
+#include <string>
+#include <vector>
+
+#include "layer_table.h"
+
+namespace layered {
+
+// What the node hands the method: the lighting and the lists parsed from its parameters, and
+// the shadow layer when it made one (layered.cpp's shadow pass).
+struct FastFrame {
+  int w = 0, h = 0;
+  double light[3] = {0, 1, 0}, half[3] = {0, 1, 0};
+  double sigma = 0.0, edge_sigma = 0.0;  // output pixels, render scale applied
+  bool run_edges = false, thin = false, has_paper = false, has_shadow = false;
+  bool wet_default = false;
+  std::vector<PaletteEntry> palette;
+  std::vector<float> wet_ids;
+  aq_image shadow_raw{}, shadow_blur{}, out{};
+};
+
+class FastLayers {
+ public:
+  // Slots of the GPU table: ids beyond this many in one frame are left out.
+  static constexpr int kSlots = 4096;
+  static constexpr int kMaxRadius = 63;  // Gaussian taps per side the passes hold
+
+  FastLayers() = default;
+  FastLayers(const FastLayers&) = delete;
+  FastLayers& operator=(const FastLayers&) = delete;
+  ~FastLayers();
+
+  // Whether the method can run these blurs at half resolution (σ ≥ 1.5 px, radii that fit).
+  static bool applies(double sigma, double edge_sigma);
+  // Paints into f.out; false after ctx.fail.
+  bool run(aq::Context& ctx, const FastFrame& f);
+
+ private:
+  struct Targets {
+    aq_image lists[4]{}, spare[4]{}, peak{}, spare_one{}, edges{}, blur_edges{}, colours{},
+        overrides{};
+  };
+  bool build_table(aq::Context& ctx);
+  bool colours(aq::Context& ctx, const FastFrame& f, Targets& t);
+  bool segment_and_blur(aq::Context& ctx, const FastFrame& f, Targets& t);
+  bool peaks_and_edges(aq::Context& ctx, const FastFrame& f, Targets& t);
+  bool composite(aq::Context& ctx, const FastFrame& f, const Targets& t);
+  bool gather(aq::Context& ctx, int mode, const aq_image& keys, const aq_image* values, int axis,
+              double sigma, int radius, const aq_image* targets, int target_count);
+  GLuint fragment(aq::Context& ctx, const char* name, std::string& text,
+                  const aq_shader_source& main, const std::string& defines);
+  std::string defines(aq::Context& ctx, const FastFrame& f) const;
+
+  aq::gl::Buffer table_;
+  GLuint table_program_ = 0;
+  uint32_t generation_ = 0;
+  std::string segment_text_, gather_text_[3], edges_text_, colours_text_, composite_text_;
+  std::vector<float> overrides_;
+};
+
+}  // namespace layered
