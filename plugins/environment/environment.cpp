@@ -80,16 +80,8 @@ struct Environment {
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
     GLuint program = ctx.program(shaders::environment_frag);
     if (program == 0) return AQ_ERROR;
-    // The camera's basis from its view matrix (rows: right, up, -forward), as the g-buffer
-    // sees it; the field of view clamped as camera_projection clamps it.
-    const glm::mat4 view = aq::scene_math::camera_view(scene->camera);
-    const double fov = std::clamp(double(scene->camera.fov_y_degrees), 1.0, 179.0);
-    const double tan_half = std::tan(fov * 3.14159265358979 / 360.0);
-    const double aspect = double(in.width) / double(in.height);
-    const double forward[3] = {-view[0][2], -view[1][2], -view[2][2]};
-    const double right[3] = {view[0][0] * tan_half * aspect, view[1][0] * tan_half * aspect,
-                             view[2][0] * tan_half * aspect};
-    const double up[3] = {view[0][1] * tan_half, view[1][1] * tan_half, view[2][1] * tan_half};
+    const aq::scene_math::CameraRays rays =
+        aq::scene_math::camera_rays(scene->camera, double(in.width) / double(in.height));
     glUseProgram(program);
     aq::bind_texture(program, "u_image", 0, in);
     aq::bind_texture(program, "u_id", 1, ctx.input_image(1));
@@ -105,9 +97,9 @@ struct Environment {
     }
     glUniform1iv(glGetUniformLocation(program, "u_has_face"), 6, has_face);
     aq::set_vec3(program, "u_missing", ctx.param_vec3(kMissingFaceColor));
-    aq::set_vec3(program, "u_forward", forward);
-    aq::set_vec3(program, "u_right", right);
-    aq::set_vec3(program, "u_up", up);
+    aq::set_vec3(program, "u_forward", rays.forward);
+    aq::set_vec3(program, "u_right", rays.right);
+    aq::set_vec3(program, "u_up", rays.up);
     aq::set_vec2(program, "u_size", in.width, in.height);
     glUniform2i(glGetUniformLocation(program, "u_panorama_size"), panorama.width, panorama.height);
     aq::set_float(program, "u_rotation", ctx.param_float(kRotation) * 3.14159265358979 / 180.0);

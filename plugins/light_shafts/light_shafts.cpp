@@ -53,15 +53,8 @@ struct LightShafts {
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
     GLuint program = ctx.program(shaders::light_shafts_frag);
     if (program == 0) return AQ_ERROR;
-    // The camera's basis as the g-buffer sees it (environment's README).
-    const glm::mat4 view = aq::scene_math::camera_view(scene->camera);
-    const double fov = std::clamp(double(scene->camera.fov_y_degrees), 1.0, 179.0);
-    const double tan_half = std::tan(fov * 3.14159265358979 / 360.0);
-    const double aspect = double(in.width) / double(in.height);
-    const double forward[3] = {-view[0][2], -view[1][2], -view[2][2]};
-    const double right[3] = {view[0][0] * tan_half * aspect, view[1][0] * tan_half * aspect,
-                             view[2][0] * tan_half * aspect};
-    const double up[3] = {view[0][1] * tan_half, view[1][1] * tan_half, view[2][1] * tan_half};
+    const aq::scene_math::CameraRays rays =
+        aq::scene_math::camera_rays(scene->camera, double(in.width) / double(in.height));
     const double eye[3] = {scene->camera.position[0], scene->camera.position[1],
                            scene->camera.position[2]};
     const double light[3] = {scene->light.direction[0], scene->light.direction[1],
@@ -73,9 +66,9 @@ struct LightShafts {
     aq::bind_texture(program, "u_position", 1, ctx.input_image(1));
     aq::bind_texture(program, "u_caustics", 2, caustics);
     aq::set_vec3(program, "u_eye", eye);
-    aq::set_vec3(program, "u_forward", forward);
-    aq::set_vec3(program, "u_right", right);
-    aq::set_vec3(program, "u_up", up);
+    aq::set_vec3(program, "u_forward", rays.forward);
+    aq::set_vec3(program, "u_right", rays.right);
+    aq::set_vec3(program, "u_up", rays.up);
     aq::set_vec2(program, "u_size", in.width, in.height);
     aq::set_vec3(program, "u_light_direction", light);
     aq::set_vec3(program, "u_light_color", color);

@@ -4,20 +4,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vector3.h"
+
 namespace aq::reference {
 
 namespace {
 
-using Vec = std::array<double, 3>;
-
-Vec normalized(const Vec& v) {
-  const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  return {v[0] / length, v[1] / length, v[2] / length};
-}
-
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
+using vector3::cross;
+using vector3::normalized;
+using vector3::Vec;
 
 // The panorama's bilinear texel at (u, v) in [0, 1]: columns wrap, rows clamp.
 Vec lookup(const ImageF& pano, double u, double v) {

@@ -4,20 +4,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vector3.h"
+
 namespace aq::reference {
 
 namespace {
 
-using Vec = std::array<double, 3>;
-
-Vec normalized(const Vec& v) {
-  const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  return {v[0] / length, v[1] / length, v[2] / length};
-}
-
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
+using vector3::cross;
+using vector3::normalized;
+using vector3::Vec;
 
 // Periodic bilinear lookup at tile coordinates (u, v), texel centres at (i + 1/2) / size.
 Vec caustic(const ImageF& c, double u, double v) {

@@ -47,6 +47,29 @@ inline glm::mat4 camera_view(const aq_camera& camera) {
   return glm::lookAt(eye, target, stable_up(target - eye, to_vec3(camera.up)));
 }
 
+// The camera's rays for a full-screen pass: the pixel at normalised device coordinates (x, y)
+// looks along forward + x·right + y·up, with right and up scaled by the half field of view
+// (clamped as camera_projection clamps it), so the rays meet the g-buffer's pixels.
+struct CameraRays {
+  double forward[3];
+  double right[3];
+  double up[3];
+};
+
+inline CameraRays camera_rays(const aq_camera& camera, double aspect) {
+  // The view matrix's rows are right, up and -forward.
+  const glm::mat4 view = camera_view(camera);
+  const double fov = std::clamp(double(camera.fov_y_degrees), 1.0, 179.0);
+  const double tan_half = std::tan(fov * 3.14159265358979 / 360.0);
+  CameraRays rays{};
+  for (int axis = 0; axis < 3; ++axis) {
+    rays.forward[axis] = -view[axis][2];
+    rays.right[axis] = view[axis][0] * tan_half * aspect;
+    rays.up[axis] = view[axis][1] * tan_half;
+  }
+  return rays;
+}
+
 inline glm::mat4 camera_projection(const aq_camera& camera, float aspect) {
   float fov = std::clamp(camera.fov_y_degrees, 1.0f, 179.0f);
   float near_plane = std::max(camera.near_plane, 1e-4f);
