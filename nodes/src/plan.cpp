@@ -181,9 +181,11 @@ const PlannedPass* Plan::pass_of(const std::string& id) const {
   return nullptr;
 }
 
-Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const PlanOptions& options,
-                          const std::optional<PortRef>& requested) {
-  Plan plan;
+namespace {
+
+// The port to render: the requested one or the graph's output, present and within the node
+// budget (graphs never validated, built in Python or the editor, meet the same bound).
+Result<PortRef> render_target(const Graph& graph, const std::optional<PortRef>& requested) {
   std::optional<PortRef> target = requested ? requested : graph.output;
   if (!target)
     return make_error(
@@ -193,8 +195,30 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
     return make_error("output '" + target->str() + "' names node '" + target->node +
                       "', which is not in the graph");
   }
-  // Graphs that were never validated (built in Python or the editor) meet the same bound.
   if (std::string why = node_count_problem(graph, *target); !why.empty()) return make_error(why);
+  return *target;
+}
+
+// How many links (and the requested output) read each node of `order`.
+std::map<std::string, int> count_readers(const Graph& graph, const std::vector<std::string>& order,
+                                         const std::string& target) {
+  std::map<std::string, int> readers;
+  for (const auto& id : order) readers[id] += 0;
+  for (const auto& id : order) {
+    for (const auto& [port, source] : graph.nodes.at(id).inputs) ++readers[source.node];
+  }
+  readers[target] += 1;
+  return readers;
+}
+
+}  // namespace
+
+Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const PlanOptions& options,
+                          const std::optional<PortRef>& requested) {
+  Plan plan;
+  auto resolved = render_target(graph, requested);
+  if (!resolved.ok()) return resolved.error();
+  const std::optional<PortRef> target = resolved.value();
   plan.output = *target;
   plan.working = working_size(graph.settings);
   plan.output_size = PixelSize{graph.settings.width, graph.settings.height};
@@ -210,12 +234,7 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
     }
   }
 
-  std::map<std::string, int> readers;
-  for (const auto& id : order) readers[id] += 0;
-  for (const auto& id : order) {
-    for (const auto& [port, source] : graph.nodes.at(id).inputs) ++readers[source.node];
-  }
-  readers[target->node] += 1;
+  std::map<std::string, int> readers = count_readers(graph, order, target->node);
   const bool proxy = plan.working.width != plan.output_size.width ||
                      plan.working.height != plan.output_size.height;
   // A proxy render resamples the output's pointwise tail instead (the producer would have to
