@@ -5,6 +5,7 @@
 layout(location = 0) out vec4 o_color;
 
 uniform sampler2D u_keys;
+uniform sampler2D u_cells;  // a texel's list where it and its +x, +y, +xy neighbours agree, else -1
 uniform sampler2D u_blur_intensity;
 uniform sampler2D u_blur_diffuse;
 uniform sampler2D u_blur_depth;
@@ -34,9 +35,7 @@ uniform vec3 u_paper_color;
 uniform float u_paper_relief;
 #if AQ_HAS_SHADOW
 uniform sampler2D u_shadow_layer;
-uniform sampler2D u_shadow_raw;
 uniform float u_shadows;
-uniform vec3 u_shadow_color;
 #endif
 
 vec3 pigment_mix(vec3 a, vec3 b, float t) {
@@ -49,9 +48,31 @@ vec3 pigment_mix(vec3 a, vec3 b, float t) {
 #endif
 }
 
+// Kubelka–Munk layer of thickness x and constants (k, s) over a background reflecting r2
+// (aq_km_layer and aq_km_over, with sinh and cosh from one exp: llvmpipe evaluates each of
+// them with two).
+vec3 km_over(vec3 k, vec3 s, float x, vec3 r2) {
+  vec3 q = k / max(s, vec3(1.0e-30));
+  vec3 a = 1.0 + q;
+  vec3 b = sqrt(max(q * (q + 2.0), vec3(1.0e-12)));
+  vec3 e = exp(min(b * s * x, vec3(40.0)));
+  vec3 ie = 1.0 / e;
+  vec3 sh = 0.5 * (e - ie), ch = 0.5 * (e + ie);
+  vec3 c = a * sh + b * ch;
+  vec3 r = sh / c, tr = b / c;
+  vec3 over = r + tr * tr * r2 / (1.0 - r * r2);
+  return mix(r2, over, vec3(greaterThan(s, vec3(0.0))));  // no scattering: no layer
+}
+
 vec3 glaze(vec3 under, vec3 colour, float thickness) {
 #if AQ_MIX_MODE == 2
-  return aq_km_glaze(under, colour, thickness);
+  if (!(thickness > 0.0)) return aq_pigment_sanitize(under);
+  colour = aq_pigment_sanitize(colour);
+  vec2 kr = aq_km_ks(colour.r, AQ_KM_BLACK_RATIO * colour.r);
+  vec2 kg = aq_km_ks(colour.g, AQ_KM_BLACK_RATIO * colour.g);
+  vec2 kb = aq_km_ks(colour.b, AQ_KM_BLACK_RATIO * colour.b);
+  return aq_pigment_sanitize(
+      km_over(vec3(kr.x, kg.x, kb.x), vec3(kr.y, kg.y, kb.y), thickness, aq_pigment_sanitize(under)));
 #else
   vec3 c = pow(aq_pigment_sanitize(colour), vec3(max(thickness, 1.0)));
   return pigment_mix(under, c, min(thickness, 1.0));
@@ -62,16 +83,24 @@ struct Layers {
   vec4 keys, b, bd, bz, peak, edges;
 };
 
-// The four half-resolution texels around p, the nearest first, each one's layers moved to
-// the slots of the merged list.
+// The four low-resolution texels around p, bilinearly. Where they hold the same list
+// (u_cells: most of the image) the texture unit's bilinear filter does it; elsewhere each
+// corner's layers are moved to the slots of a merged list, the nearest corner first. The
+// merging is a loop whose condition is per pixel, so a group of pixels that all lie inside
+// agreeing cells leaves it at once (llvmpipe runs both sides of a branch, under a mask).
 Layers interpolate(vec2 frag) {
   ivec2 size = textureSize(u_keys, 0);
-  vec2 q = frag / 2.0 - 0.5;
-  vec2 f = fract(q);
+  vec2 q = frag / float(AQ_DIVISOR) - 0.5;
   ivec2 base = ivec2(floor(q));
+  vec4 cell = texelFetch(u_cells, clamp(base, ivec2(0), size - 1), 0);
+  vec2 uv = (q + 0.5) / vec2(size);
+  Layers l = Layers(cell, texture(u_blur_intensity, uv), texture(u_blur_diffuse, uv),
+                    texture(u_blur_depth, uv), texture(u_peak, uv), texture(u_blur_edges, uv));
+  bool merge = cell.x < 0.0 || any(lessThan(base, ivec2(0))) || any(greaterThanEqual(base + 1, size));
+  vec2 f = fract(q);
   ivec2 near = ivec2(step(0.5, f));  // the nearest corner
-  Layers l = Layers(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
-  for (int n = 0; n < 4; ++n) {
+  for (int n = 0; merge && n < 4; ++n) {
+    if (n == 0) l = Layers(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
     ivec2 corner = ivec2(n & 1, n >> 1) ^ near;  // n = 0 is the nearest
     vec2 w2 = mix(1.0 - f, f, vec2(corner));
     float w = w2.x * w2.y;
@@ -86,9 +115,30 @@ Layers interpolate(vec2 frag) {
   return l;
 }
 
-// One layer's glaze (layered_composite.frag's painting view).
-vec3 paint(vec3 under, int slot, float b, float bd, float bz, float peak, float be, float raw,
-           float t, float front, float granulation) {
+// The wash: d mixes the layer's dark and light pigments, glazed `thickness` thick over
+// `under`. Kubelka–Munk: the K and S of both pigments come from the colours pass (rows 3–6) and
+// are mixed by concentration, and the mixture itself is laid (the exact method lays the pigment
+// whose unit layer looks like the mixture, which is the same pigment at d = 0 and 1 and close to
+// it between; README "Fast method").
+vec3 wash(vec3 under, int slot, float d, float thickness) {
+#if AQ_MIX_MODE == 2
+  vec3 k = mix(texelFetch(u_colours, ivec2(slot, 5), 0).rgb,
+               texelFetch(u_colours, ivec2(slot, 3), 0).rgb, d);
+  vec3 s = mix(texelFetch(u_colours, ivec2(slot, 6), 0).rgb,
+               texelFetch(u_colours, ivec2(slot, 4), 0).rgb, d);
+  return aq_pigment_sanitize(km_over(k, s, thickness, aq_pigment_sanitize(under)));
+#else
+  return glaze(under,
+               pigment_mix(texelFetch(u_colours, ivec2(slot, 1), 0).rgb,
+                           texelFetch(u_colours, ivec2(slot, 0), 0).rgb, d),
+               thickness);
+#endif
+}
+
+// One layer's glaze (layered_composite.frag's painting view); a layer that puts down no
+// pigment here (thickness under 1e-5) costs no colour mixing.
+vec3 paint(vec3 under, int slot, bool wet_in_wet, float b, float bd, float bz, float peak,
+           float be, float raw, float t, float front, float granulation) {
   if (!(b > 1.0e-6)) return under;
   float a = layered_abstract(vec4(b), t).x;
   if (u_thin > 0.0) {
@@ -98,10 +148,6 @@ vec3 paint(vec3 under, int slot, float b, float bd, float bz, float peak, float 
   }
   float e = clamp(u_edge_gain * be, 0.0, 1.0);
   float w = 1.0 - (1.0 - e) * (1.0 - e);
-  float d = clamp(bd / b, 0.0, 1.0);
-  vec3 colour = pigment_mix(texelFetch(u_colours, ivec2(slot, 1), 0).rgb,
-                            texelFetch(u_colours, ivec2(slot, 0), 0).rgb, d);
-  bool wet_in_wet = texelFetch(u_colours, ivec2(slot, 2), 0).g > 0.5;
   float cover = a, extra = 0.0;
   if (wet_in_wet) {
     cover = max(a, u_wet_spread * w);
@@ -112,7 +158,9 @@ vec3 paint(vec3 under, int slot, float b, float bd, float bz, float peak, float 
   bool has_front = front > 0.0 && front < 3.0e38;
   float visible =
       has_front ? 1.0 - smoothstep(0.0, max(u_depth_band, 1.0e-6), bz / b - front) : 1.0;
-  return glaze(under, colour, u_density * cover * visible * granulation * (1.0 + extra));
+  float thickness = u_density * cover * visible * granulation * (1.0 + extra);
+  if (!(thickness > 1.0e-5)) return under;
+  return wash(under, slot, clamp(bd / b, 0.0, 1.0), thickness);
 }
 
 void main() {
@@ -133,16 +181,20 @@ void main() {
   float lit_part = pow(max(dot(n, u_half), 0.0), u_shininess) >= u_specular_threshold ? 0.0 : 1.0;
   float front = texelFetch(u_depth, p, 0).r;
   float t = layered_threshold(gl_FragCoord.xy);
-  // Far to near: mean depth descending, then id ascending (insertion sort of four).
+  // Far to near: mean depth descending, then id ascending (insertion sort of four; empty
+  // slots last). llvmpipe runs both sides of a branch under a mask but leaves a loop once no
+  // pixel of the group needs another turn, so the loop below costs what the group's longest
+  // list needs: one layer in most of the image.
   int order[4] = int[4](0, 1, 2, 3);
-  vec4 depth_of = vec4(0.0), id_of = vec4(0.0);
+  vec4 depth_of = vec4(-3.0e38), id_of = vec4(0.0), wet_of = vec4(0.0);
   for (int k = 0; k < 4; ++k) {
-    if (!(l.keys[k] > 0.5)) continue;
+    if (!(l.keys[k] > 0.5)) break;
     vec4 row = texelFetch(u_colours, ivec2(int(l.keys[k]) - 1, 2), 0);
     depth_of[k] = row.r;
     id_of[k] = row.a;
+    wet_of[k] = row.g;
   }
-  for (int i = 1; i < 4; ++i) {
+  for (int i = 1; i < 4 && l.keys[i] > 0.5; ++i) {
     for (int j = i; j > 0; --j) {
       int a = order[j - 1], c = order[j];
       bool swap = depth_of[c] > depth_of[a] || (depth_of[c] == depth_of[a] && id_of[c] < id_of[a]);
@@ -151,19 +203,19 @@ void main() {
       order[j] = a;
     }
   }
-  for (int i = 0; i < 4; ++i) {
+  for (int i = 0; i < 4 && l.keys[i] > 0.5; ++i) {
     int k = order[i];
-    if (!(l.keys[k] > 0.5)) continue;
     float raw = id == id_of[k] ? lit_part : 0.0;
-    under = paint(under, int(l.keys[k]) - 1, l.b[k], l.bd[k], l.bz[k], l.peak[k], l.edges[k], raw,
-                  t, front, granulation);
+    under = paint(under, int(l.keys[k]) - 1, wet_of[k] > 0.5, l.b[k], l.bd[k], l.bz[k], l.peak[k],
+                  l.edges[k], raw, t, front, granulation);
   }
 #if AQ_HAS_SHADOW
-  if (texelFetch(u_shadow_raw, p, 0).g > 0.5) {
-    vec2 s = texelFetch(u_shadow_layer, p, 0).rg;
-    float shadow = s.y > 1.0e-6 ? clamp(s.x / s.y, 0.0, 1.0) : 0.0;
-    under = glaze(under, u_shadow_color, u_shadows * shadow);
-  }
+  // The shadow layer's sums at the lists' resolution, enlarged bilinearly, on receivers.
+  vec2 s = texture(u_shadow_layer, gl_FragCoord.xy / (float(AQ_DIVISOR) * vec2(textureSize(u_shadow_layer, 0)))).rg;
+  float shadow = id >= 1.0 && s.y > 1.0e-6 ? clamp(s.x / s.y, 0.0, 1.0) : 0.0;
+  under = aq_pigment_sanitize(km_over(texelFetch(u_colours, ivec2(0, 7), 0).rgb,
+                                      texelFetch(u_colours, ivec2(1, 7), 0).rgb,
+                                      u_shadows * shadow, under));
 #endif
   o_color = vec4(under, 1.0);
 }
