@@ -9,6 +9,7 @@
 #include "fast_layers.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -57,6 +58,22 @@ std::vector<float> gaussian_weights(double sigma, int radius) {
   return out;
 }
 
+// Kubelka–Munk absorption and scattering of the pigment whose unit layer reflects `rw` over
+// white and 0.2 rw over black: aquarelle/pigment.glsl's aq_km_ks (maths in
+// plugins/pigment_mix/README.md), for the shadow glaze's constant colour, once per frame.
+void km_ks(double rw, double* k, double* s) {
+  constexpr double kEps = 1.0e-4, kBlackRatio = 0.2;
+  rw = std::isfinite(rw) ? std::clamp(rw, 0.0, 1.0) : 0.0;
+  double rb = kBlackRatio * rw;
+  rw = std::clamp(rw, 2.0 * kEps, 1.0 - kEps);
+  rb = std::clamp(rb, kEps, rw - kEps);
+  const double am1 = (1.0 - rw) * (1.0 - rb) / (2.0 * rb);
+  const double b = std::sqrt(am1 * (am1 + 2.0));
+  const double arg = std::max((1.0 - rb) * (1.0 + rw) / (2.0 * rb * b), 1.0 + 1.0e-6);
+  *s = 0.5 * std::log((arg + 1.0) / (arg - 1.0)) / b;
+  *k = am1 * *s;
+}
+
 GLuint compile_compute(aq::Context& ctx, const char* text) {
   const std::string source = std::string("#version 450 core\n") + text;
   const char* sources[] = {source.c_str()};
@@ -86,6 +103,15 @@ GLuint compile_compute(aq::Context& ctx, const char* text) {
 
 }  // namespace
 
+// Uniforms of layered_common.glsl.
+void FastLayers::set_threshold(aq::Context& ctx, GLuint p) {
+  aq::set_float(p, "u_threshold", ctx.param_float(kThreshold));
+  aq::set_float(p, "u_softness", ctx.param_float(kSoftness));
+  aq::set_float(p, "u_edge_noise", ctx.param_float(kEdgeNoise));
+  aq::set_float(p, "u_noise_scale",
+                std::max(1e-3, ctx.param_float(kNoiseScale) * ctx.render_scale()));
+}
+
 FastLayers::~FastLayers() {
   if (table_program_ != 0) glDeleteProgram(table_program_);
 }
@@ -95,8 +121,7 @@ double FastLayers::low_sigma(double sigma, int divisor) {
 }
 
 int FastLayers::divisor_for(double sigma) {
-  (void)sigma;  // quarter resolution (4) is not close enough to the reference yet
-  return 2;
+  return sigma * sigma >= resampling_variance(4) + 1.0 ? 4 : 2;
 }
 
 bool FastLayers::applies(double sigma, double edge_sigma) {
@@ -136,7 +161,7 @@ bool FastLayers::run(aq::Context& ctx, const FastFrame& f) {
   const uint32_t f32 = AQ_FORMAT_RGBA32F;
   for (aq_image* image :
        {&t.lists[0], &t.lists[1], &t.lists[2], &t.lists[3], &t.spare[0], &t.spare[1], &t.spare[2],
-        &t.spare[3], &t.peak, &t.spare_one, &t.edges, &t.blur_edges, &t.cells}) {
+        &t.spare[3], &t.peak, &t.spare_one, &t.edges, &t.blur_edges}) {
     if (!ctx.scratch(hw, hh, f32, image)) return false;
   }
   glDisable(GL_SCISSOR_TEST);
@@ -155,7 +180,8 @@ bool FastLayers::run(aq::Context& ctx, const FastFrame& f) {
   const bool ok = build_table(ctx) && lap("table") && colours(ctx, f, t) && lap("colours") &&
                   segment_and_blur(ctx, f, t) && lap("segment+blur") &&
                   peaks_and_edges(ctx, f, t) && lap("peaks+edges") && cells(ctx, f, t) &&
-                  lap("cells") && composite(ctx, f, t) && lap("composite");
+                  threshold_map(ctx, f, t) && lap("cells") && composite(ctx, f, t) &&
+                  lap("composite");
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
   aq::unbind_textures(16);
   return ok;
@@ -183,7 +209,7 @@ bool FastLayers::build_table(aq::Context& ctx) {
 // Per slot: Gooch light and dark colours and (mean depth, wet-in-wet, present, id).
 bool FastLayers::colours(aq::Context& ctx, const FastFrame& f, Targets& t) {
   const int n = std::max<int>(1, static_cast<int>(f.palette.size() + f.wet_ids.size()));
-  if (!ctx.scratch(kSlots, 8, AQ_FORMAT_RGBA32F, &t.colours) ||
+  if (!ctx.scratch(kSlots, 7, AQ_FORMAT_RGBA32F, &t.colours) ||
       !ctx.scratch(n, 3, AQ_FORMAT_RGBA32F, &t.overrides)) {
     return false;
   }
@@ -217,7 +243,6 @@ bool FastLayers::colours(aq::Context& ctx, const FastFrame& f, Targets& t) {
   aq::set_float(p, "u_gooch", ctx.param_float(kGooch));
   aq::set_vec3(p, "u_warm", ctx.param_vec3(kWarm));
   aq::set_vec3(p, "u_cool", ctx.param_vec3(kCool));
-  aq::set_vec3(p, "u_shadow_color", ctx.param_vec3(kShadowColor));
   return ctx.draw(t.colours);
 }
 
@@ -263,11 +288,7 @@ bool FastLayers::peaks_and_edges(aq::Context& ctx, const FastFrame& f, Targets& 
   aq::bind_texture(p, "u_blurred", 1, t.lists[1]);
   aq::set_float(p, "u_edge_threshold", ctx.param_float(kEdgeThreshold));
   aq::set_float(p, "u_scale", 1.0 / divisor_);
-  const double scale = ctx.render_scale();
-  aq::set_float(p, "u_threshold", ctx.param_float(kThreshold));
-  aq::set_float(p, "u_softness", ctx.param_float(kSoftness));
-  aq::set_float(p, "u_edge_noise", ctx.param_float(kEdgeNoise));
-  aq::set_float(p, "u_noise_scale", std::max(1e-3, ctx.param_float(kNoiseScale) * scale));
+  set_threshold(ctx, p);
   if (!ctx.draw(t.edges)) return false;
   const double sigma = low_sigma(f.edge_sigma, divisor_);
   const int radius = radius_of(sigma);
@@ -304,13 +325,37 @@ bool FastLayers::gather(aq::Context& ctx, int mode, const aq_image& keys, const 
   return true;
 }
 
+// layered_threshold per pixel, drawn again only when the size, the context or the threshold's
+// parameters change (the noise depends on nothing else).
+bool FastLayers::threshold_map(aq::Context& ctx, const FastFrame& f, Targets& t) {
+  const std::array<double, 4> key = {
+      ctx.param_float(kThreshold), ctx.param_float(kEdgeNoise),
+      std::max(1e-3, ctx.param_float(kNoiseScale) * ctx.render_scale()),
+      ctx.param_float(kSoftness)};
+  bool kept = false;
+  t.threshold = {threshold_.get(ctx.raw()->gl_generation, f.w, f.h, GL_R32F, &kept), f.w, f.h,
+                 AQ_FORMAT_R32F};
+  if (kept && key == threshold_key_) return true;
+  threshold_key_ = key;
+  const GLuint p = fragment(ctx, "layered_fast_threshold.frag", threshold_text_,
+                            shaders::layered_fast_threshold_frag, defines(ctx, f));
+  if (p == 0) return false;
+  glUseProgram(p);
+  set_threshold(ctx, p);
+  return ctx.draw(t.threshold);
+}
+
 bool FastLayers::cells(aq::Context& ctx, const FastFrame& f, Targets& t) {
   const GLuint p = fragment(ctx, "layered_fast_cells.frag", cells_text_,
                             shaders::layered_fast_cells_frag, defines(ctx, f));
   if (p == 0) return false;
   glUseProgram(p);
   aq::bind_texture(p, "u_keys", 0, t.lists[0]);
-  return ctx.draw(t.cells);
+  aq::bind_texture(p, "u_blur_intensity", 1, t.lists[1]);
+  aq::bind_texture(p, "u_blur_diffuse", 2, t.lists[2]);
+  aq::bind_texture(p, "u_blur_depth", 3, t.lists[3]);
+  const aq_image keys = t.lists[0];
+  return ctx.scratch(5 * keys.width, keys.height, AQ_FORMAT_RGBA32F, &t.cells) && ctx.draw(t.cells);
 }
 
 bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& t) {
@@ -337,22 +382,32 @@ bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& 
     glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   }
-  for (GLuint unit = 1; unit <= 5; ++unit) glBindSampler(unit, bilinear_.get());
+  for (GLuint unit : {1u, 2u, 3u, 4u, 5u, 13u}) glBindSampler(unit, bilinear_.get());
   if (f.has_shadow) {
     aq::bind_texture(p, "u_shadow_layer", 11, f.shadow_blur);
     glBindSampler(11, bilinear_.get());
     aq::set_float(p, "u_shadows", ctx.param_float(kShadows));
+    const double* colour = ctx.param_vec3(kShadowColor);
+    double k[3], sc[3];
+    for (int c = 0; c < 3; ++c) km_ks(colour[c], &k[c], &sc[c]);
+    aq::set_vec3(p, "u_shadow_k", k);
+    aq::set_vec3(p, "u_shadow_s", sc);
   }
-  const double scale = ctx.render_scale();
-  aq::set_float(p, "u_threshold", ctx.param_float(kThreshold));
-  aq::set_float(p, "u_softness", ctx.param_float(kSoftness));
-  aq::set_float(p, "u_edge_noise", ctx.param_float(kEdgeNoise));
-  aq::set_float(p, "u_noise_scale", std::max(1e-3, ctx.param_float(kNoiseScale) * scale));
+  aq::bind_texture(p, "u_threshold_map", 12, t.threshold);
+  set_threshold(ctx, p);
   aq::set_vec2(p, "u_size", f.w, f.h);
   aq::set_vec3(p, "u_half", f.half);
   aq::set_float(p, "u_shininess", ctx.param_float(kShininess));
   aq::set_float(p, "u_specular_threshold", ctx.param_float(kSpecularThreshold));
   aq::set_float(p, "u_thin", f.thin ? ctx.param_float(kThinShapes) : 0.0);
+  // b / m is 1 on a thin shape's ridge at full size; interpolated from texels four pixels apart
+  // it dips between them, so the quarter resolution takes a lower step (a wide shape's
+  // rounded corner stays near 0.3 and is still dropped).
+  if (divisor_ == 4) {
+    aq::set_vec2(p, "u_ridge", 0.45, 0.65);
+  } else {
+    aq::set_vec2(p, "u_ridge", 0.75, 0.9);
+  }
   aq::set_float(p, "u_line_width_scale", 2.5066283 * f.sigma);
   aq::set_float(p, "u_edge_gain", f.run_edges ? std::max(1.0, 1.2533 * f.edge_sigma) : 0.0);
   aq::set_float(p, "u_edge_darkness", ctx.param_float(kEdgeDarkness));
@@ -364,7 +419,7 @@ bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& 
   aq::set_vec3(p, "u_paper_color", ctx.param_vec3(kPaperColor));
   aq::set_float(p, "u_paper_relief", ctx.param_float(kPaperRelief));
   const bool ok = ctx.draw(f.out);
-  for (GLuint unit = 1; unit <= 11; ++unit) glBindSampler(unit, 0);
+  for (GLuint unit = 1; unit <= 13; ++unit) glBindSampler(unit, 0);
   return ok;
 }
 

@@ -7,6 +7,7 @@
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/sdk/gl_raii.hpp>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -52,13 +53,15 @@ class FastLayers {
  private:
   struct Targets {
     aq_image lists[4]{}, spare[4]{}, peak{}, spare_one{}, edges{}, blur_edges{}, colours{},
-        overrides{}, cells{};
+        overrides{}, cells{}, threshold{};
   };
   bool build_table(aq::Context& ctx);
   bool colours(aq::Context& ctx, const FastFrame& f, Targets& t);
   bool segment_and_blur(aq::Context& ctx, const FastFrame& f, Targets& t);
   bool peaks_and_edges(aq::Context& ctx, const FastFrame& f, Targets& t);
   bool cells(aq::Context& ctx, const FastFrame& f, Targets& t);
+  bool threshold_map(aq::Context& ctx, const FastFrame& f, Targets& t);
+  static void set_threshold(aq::Context& ctx, GLuint program);
   bool composite(aq::Context& ctx, const FastFrame& f, const Targets& t);
   bool gather(aq::Context& ctx, int mode, const aq_image& keys, const aq_image* values, int axis,
               double sigma, int radius, const aq_image* targets, int target_count);
@@ -71,7 +74,9 @@ class FastLayers {
   uint32_t generation_ = 0;
   int divisor_ = 2;  // this frame's, divisor_for(σ)
   std::string segment_text_, gather_text_[3], edges_text_, colours_text_, composite_text_,
-      cells_text_;
+      cells_text_, threshold_text_;
+  aq::gl::KeptTexture threshold_;          // layered_threshold per pixel
+  std::array<double, 4> threshold_key_{};  // the parameters it was drawn with
   aq::gl::Sampler bilinear_;  // for the composite's interpolation inside agreeing cells
   std::vector<float> overrides_;
 };

@@ -1,6 +1,6 @@
 // Per slot of the GPU table (layered_table.comp): the layer's Gooch-mixed light (row 0) and
 // dark (row 1) colours, (mean depth, wet-in-wet, present, id) in row 2 and the Kubelka–Munk
-// K and S of light (rows 3, 4) and dark (5, 6); row 7 holds the shadow colour's K and S, as layer_table.cpp
+// K and S of light (rows 3, 4) and dark (5, 6), as layer_table.cpp
 // and layered_colours.frag make them for the exact method (README "Lighting colours").
 layout(location = 0) out vec4 o_value;
 
@@ -15,7 +15,6 @@ uniform float u_dark_density;
 uniform float u_gooch;
 uniform vec3 u_warm;
 uniform vec3 u_cool;
-uniform vec3 u_shadow_color;
 
 const int kWords = 12;
 
@@ -35,15 +34,6 @@ float sum64(uint base) {
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  if (p.y == 7) {
-    // The shadow glaze's K (column 0) and S (column 1), once per frame.
-    vec3 c = aq_pigment_sanitize(u_shadow_color);
-    vec2 r = aq_km_ks(c.r, AQ_KM_BLACK_RATIO * c.r);
-    vec2 g = aq_km_ks(c.g, AQ_KM_BLACK_RATIO * c.g);
-    vec2 b = aq_km_ks(c.b, AQ_KM_BLACK_RATIO * c.b);
-    o_value = p.x == 0 ? vec4(r.x, g.x, b.x, 1.0) : vec4(r.y, g.y, b.y, 1.0);
-    return;
-  }
   uint base = uint(p.x) * uint(kWords);
   uint key = entries[base];
   uint count = entries[base + 1u];

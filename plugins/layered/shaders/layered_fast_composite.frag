@@ -5,6 +5,7 @@
 layout(location = 0) out vec4 o_color;
 
 uniform sampler2D u_keys;
+uniform sampler2D u_threshold_map;  // layered_threshold per pixel (layered_fast_threshold.frag)
 uniform sampler2D u_cells;  // a texel's list where it and its +x, +y, +xy neighbours agree, else -1
 uniform sampler2D u_blur_intensity;
 uniform sampler2D u_blur_diffuse;
@@ -23,6 +24,7 @@ uniform vec3 u_half;
 uniform float u_shininess;
 uniform float u_specular_threshold;
 uniform float u_thin;
+uniform vec2 u_ridge;  // the ridge test's smooth step on b / m (README "Fast method")
 uniform float u_line_width_scale;
 uniform float u_edge_gain;
 uniform float u_edge_darkness;
@@ -36,6 +38,8 @@ uniform float u_paper_relief;
 #if AQ_HAS_SHADOW
 uniform sampler2D u_shadow_layer;
 uniform float u_shadows;
+uniform vec3 u_shadow_k;  // the shadow colour's Kubelka–Munk K and S
+uniform vec3 u_shadow_s;
 #endif
 
 vec3 pigment_mix(vec3 a, vec3 b, float t) {
@@ -84,18 +88,28 @@ struct Layers {
 };
 
 // The four low-resolution texels around p, bilinearly. Where they hold the same list
-// (u_cells: most of the image) the texture unit's bilinear filter does it; elsewhere each
-// corner's layers are moved to the slots of a merged list, the nearest corner first. The
-// merging is a loop whose condition is per pixel, so a group of pixels that all lie inside
-// agreeing cells leaves it at once (llvmpipe runs both sides of a branch, under a mask).
+// (u_cells, layered_fast_cells.frag: most of the image) the texture unit's bilinear filter
+// does it, one fetch per layer of the list; elsewhere each corner's layers are moved to the
+// slots of a merged list, the nearest corner first. Both are loops whose condition is per
+// pixel: llvmpipe runs both sides of a branch under a mask, but leaves a loop as soon as no
+// pixel of the group needs another turn.
 Layers interpolate(vec2 frag) {
   ivec2 size = textureSize(u_keys, 0);
   vec2 q = frag / float(AQ_DIVISOR) - 0.5;
   ivec2 base = ivec2(floor(q));
   vec4 cell = texelFetch(u_cells, clamp(base, ivec2(0), size - 1), 0);
-  vec2 uv = (q + 0.5) / vec2(size);
-  Layers l = Layers(cell, texture(u_blur_intensity, uv), texture(u_blur_diffuse, uv),
-                    texture(u_blur_depth, uv), texture(u_peak, uv), texture(u_blur_edges, uv));
+  vec2 strip = vec2(textureSize(u_cells, 0));
+  vec2 uv = (q + 0.5) / strip;
+  vec2 part = vec2(float(size.x) / strip.x, 0.0);
+  vec2 st = (q + 0.5) / vec2(size);
+  Layers l = Layers(cell, vec4(0.0), vec4(0.0), vec4(0.0), texture(u_peak, st),
+                    texture(u_blur_edges, st));
+  for (int k = 0; k < 4 && cell[k] > 0.5; ++k) {
+    vec4 v = texture(u_cells, uv + float(k + 1) * part);
+    l.b[k] = v.x;
+    l.bd[k] = v.y;
+    l.bz[k] = v.z;
+  }
   bool merge = cell.x < 0.0 || any(lessThan(base, ivec2(0))) || any(greaterThanEqual(base + 1, size));
   vec2 f = fract(q);
   ivec2 near = ivec2(step(0.5, f));  // the nearest corner
@@ -142,7 +156,7 @@ vec3 paint(vec3 under, int slot, bool wet_in_wet, float b, float bd, float bz, f
   if (!(b > 1.0e-6)) return under;
   float a = layered_abstract(vec4(b), t).x;
   if (u_thin > 0.0) {
-    float ridge = smoothstep(0.75, 0.9, b / max(peak, 1.0e-6));
+    float ridge = smoothstep(u_ridge.x, u_ridge.y, b / max(peak, 1.0e-6));
     float wide_enough = smoothstep(0.5, 1.0, peak * u_line_width_scale);
     a = max(a, u_thin * raw * ridge * wide_enough);
   }
@@ -163,6 +177,34 @@ vec3 paint(vec3 under, int slot, bool wet_in_wet, float b, float bd, float bz, f
   return wash(under, slot, clamp(bd / b, 0.0, 1.0), thickness);
 }
 
+// A pixel's layers with their table rows: mean depth, id, wet-in-wet.
+struct Ordered {
+  Layers l;
+  vec4 depth, id, wet;
+};
+
+void swap_component(inout vec4 v, int a, int c) {
+  float x = v[a];
+  v[a] = v[c];
+  v[c] = x;
+}
+
+// Puts layers a < c (constant components) far to near: c first if it lies farther, or as far
+// with a smaller id; empty slots (depth −3e38) stay behind.
+void order_pair(inout Ordered o, int a, int c) {
+  bool swap = o.depth[c] > o.depth[a] || (o.depth[c] == o.depth[a] && o.id[c] < o.id[a]);
+  if (!swap) return;
+  swap_component(o.l.keys, a, c);
+  swap_component(o.l.b, a, c);
+  swap_component(o.l.bd, a, c);
+  swap_component(o.l.bz, a, c);
+  swap_component(o.l.peak, a, c);
+  swap_component(o.l.edges, a, c);
+  swap_component(o.depth, a, c);
+  swap_component(o.id, a, c);
+  swap_component(o.wet, a, c);
+}
+
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
 #if AQ_HAS_PAPER
@@ -180,42 +222,34 @@ void main() {
   n = len > 1.0e-6 && len < 1.0e30 ? n / len : vec3(0.0);
   float lit_part = pow(max(dot(n, u_half), 0.0), u_shininess) >= u_specular_threshold ? 0.0 : 1.0;
   float front = texelFetch(u_depth, p, 0).r;
-  float t = layered_threshold(gl_FragCoord.xy);
-  // Far to near: mean depth descending, then id ascending (insertion sort of four; empty
-  // slots last). llvmpipe runs both sides of a branch under a mask but leaves a loop once no
-  // pixel of the group needs another turn, so the loop below costs what the group's longest
-  // list needs: one layer in most of the image.
-  int order[4] = int[4](0, 1, 2, 3);
-  vec4 depth_of = vec4(-3.0e38), id_of = vec4(0.0), wet_of = vec4(0.0);
-  for (int k = 0; k < 4; ++k) {
-    if (!(l.keys[k] > 0.5)) break;
+  float t = texelFetch(u_threshold_map, p, 0).r;  // layered_threshold, kept between frames
+  // Far to near: mean depth descending, then id ascending, empty slots last. A sorting network
+  // with fixed components (indexing a local array by a computed index is slow on llvmpipe);
+  // then the layers in order. llvmpipe runs both sides of a branch under a mask but leaves a
+  // loop once no pixel of the group needs another turn, so the loop costs what the group's
+  // longest list needs: one layer in most of the image.
+  Ordered o = Ordered(l, vec4(-3.0e38), vec4(0.0), vec4(0.0));
+  for (int k = 0; k < 4 && l.keys[k] > 0.5; ++k) {
     vec4 row = texelFetch(u_colours, ivec2(int(l.keys[k]) - 1, 2), 0);
-    depth_of[k] = row.r;
-    id_of[k] = row.a;
-    wet_of[k] = row.g;
+    o.depth[k] = row.r;
+    o.id[k] = row.a;
+    o.wet[k] = row.g;
   }
-  for (int i = 1; i < 4 && l.keys[i] > 0.5; ++i) {
-    for (int j = i; j > 0; --j) {
-      int a = order[j - 1], c = order[j];
-      bool swap = depth_of[c] > depth_of[a] || (depth_of[c] == depth_of[a] && id_of[c] < id_of[a]);
-      if (!swap) break;
-      order[j - 1] = c;
-      order[j] = a;
-    }
-  }
-  for (int i = 0; i < 4 && l.keys[i] > 0.5; ++i) {
-    int k = order[i];
-    float raw = id == id_of[k] ? lit_part : 0.0;
-    under = paint(under, int(l.keys[k]) - 1, wet_of[k] > 0.5, l.b[k], l.bd[k], l.bz[k], l.peak[k],
-                  l.edges[k], raw, t, front, granulation);
+  order_pair(o, 0, 1);
+  order_pair(o, 2, 3);
+  order_pair(o, 0, 2);
+  order_pair(o, 1, 3);
+  order_pair(o, 1, 2);
+  for (int i = 0; i < 4 && o.l.keys[i] > 0.5; ++i) {
+    float raw = id == o.id[i] ? lit_part : 0.0;
+    under = paint(under, int(o.l.keys[i]) - 1, o.wet[i] > 0.5, o.l.b[i], o.l.bd[i], o.l.bz[i],
+                  o.l.peak[i], o.l.edges[i], raw, t, front, granulation);
   }
 #if AQ_HAS_SHADOW
   // The shadow layer's sums at the lists' resolution, enlarged bilinearly, on receivers.
   vec2 s = texture(u_shadow_layer, gl_FragCoord.xy / (float(AQ_DIVISOR) * vec2(textureSize(u_shadow_layer, 0)))).rg;
   float shadow = id >= 1.0 && s.y > 1.0e-6 ? clamp(s.x / s.y, 0.0, 1.0) : 0.0;
-  under = aq_pigment_sanitize(km_over(texelFetch(u_colours, ivec2(0, 7), 0).rgb,
-                                      texelFetch(u_colours, ivec2(1, 7), 0).rgb,
-                                      u_shadows * shadow, under));
+  under = aq_pigment_sanitize(km_over(u_shadow_k, u_shadow_s, u_shadows * shadow, under));
 #endif
   o_color = vec4(under, 1.0);
 }
