@@ -274,5 +274,22 @@ TEST(SmallFilesLargeMemory, CrowdedDistinctVerticesRenderInSeconds) {
   EXPECT_LT(run.peak_kib, kOneGigabyteKib);
 }
 
+// 400,000 unconnected nodes (11 MB of JSON) took 10 s and 720 MB and printed 400,000 lines;
+// a graph file holds at most kMaxGraphFileNodes, refused in one line.
+TEST(SmallFilesLargeMemory, GraphOfManyUnusedNodesIsRefusedInOneLine) {
+  const fs::path dir = scratch_dir("bad_input_mem_many_nodes");
+  std::string graph = R"({"aquarelle": 1, "settings": {"width": 16, "height": 16}, "nodes": {)";
+  for (int i = 0; i < 400000; ++i) graph += "\"n" + std::to_string(i) + R"(": {"type": "tint"},)";
+  graph += R"("src": {"type": "read", "params": {"path": "x.png"}}}, "output": "src.image"})";
+  write_bytes(dir / "g.json", graph);
+  const MeasuredRun run = aquarelle_measured(
+      60, "render " + (dir / "g.json").string() + " -q -o " + (dir / "out.exr").string());
+  EXPECT_EQ(run.exit_code, 1) << run.output.substr(0, 2000);
+  EXPECT_EQ(line_count(run.output), 1) << run.output.substr(0, 2000);
+  EXPECT_TRUE(mentions(run.output, "400001 nodes")) << run.output.substr(0, 2000);
+  EXPECT_LT(run.seconds, 20.0);
+  EXPECT_LT(run.peak_kib, kOneGigabyteKib / 2);
+}
+
 }  // namespace
 }  // namespace aq::test::bad_input
