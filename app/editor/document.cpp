@@ -4,6 +4,8 @@
 
 #include "canvas_view.h"
 
+#include <aquarelle/core/write_guard.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -300,6 +302,10 @@ Status Document::save_as(const std::string& path, bool replace) {
     return make_error("'" + path +
                       "' exists already: confirm to replace it, or choose another name");
   }
+  // Saving onto the graph's own file is what Save is for; onto an image or mesh it reads is not.
+  std::vector<ReadFile> reads = files_read_by(graph_, registry_);
+  std::erase_if(reads, [](const ReadFile& read) { return read.role == "the graph file"; });
+  if (auto may = check_may_write("Save As", path, reads); !may.ok()) return may;
   const std::string text = text_to_save();
   Status saved = save_graph_text(text, path);
   if (!saved) return saved;

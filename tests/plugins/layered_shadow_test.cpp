@@ -52,6 +52,7 @@ std::string graph(double shadows, double softness) {
                          {{"type", "layered"},
                           {"params",
                            {{"specular_threshold", 1.0},
+                            {"method", "exact"},  // the definition; fast: layered_test.cpp
                             {"shadows", shadows},
                             {"shadow_softness", softness},
                             {"shadow_band", 0.05}}},
