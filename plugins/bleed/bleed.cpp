@@ -56,7 +56,8 @@ constexpr aq_param_desc kParams[] = {
 // with `final`, else a colour and key pair). Program and uniforms are set by the caller.
 bool gated_passes(aq::Context& ctx, GLuint program, const aq_image& color, const aq_image& key,
                   const aq_image& original, const aq_image (&horizontal)[2],
-                  const aq_image* targets, uint32_t target_count, bool final) {
+                  const aq_image* targets, uint32_t target_count, bool final,
+                  const aq::Region& region = aq::Region::everything()) {
   aq::bind_texture(program, "u_color", 0, color);
   aq::bind_texture(program, "u_key", 1, key);
   aq::bind_texture(program, "u_original", 2, original);
@@ -69,6 +70,7 @@ bool gated_passes(aq::Context& ctx, GLuint program, const aq_image& color, const
   glUniform2i(glGetUniformLocation(program, "u_direction"), 0, 1);
   aq::set_int(program, "u_final", final ? 1 : 0);
   if (!ctx.bind_targets(targets, target_count)) return false;
+  if (final) ctx.set_draw_region(region);
   ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
   return true;
 }
@@ -85,12 +87,39 @@ struct Bleed {
     const int cell = std::clamp(static_cast<int>(std::floor(sigma / 2.0)), 1, asked);
     aq_image out;
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+    damage_ = damaged(ctx, in, out, sigma, cell);
     const bool drawn = cell == 1 ? exact(ctx, in, sigma, out) : on_cells(ctx, in, sigma, cell, out);
+    ctx.set_draw_region(aq::Region::everything());
     aq::unbind_textures(9);
-    return drawn ? AQ_OK : AQ_ERROR;
+    return drawn && ctx.set_output_damage(0, damage_) ? AQ_OK : AQ_ERROR;
   }
 
  private:
+  // Damage tracking: the passes on cells (or the first exact pass) run whole each frame, from
+  // the same inputs the same values; only the last pass, the full-size one, is limited to the
+  // pixels that can reach a changed input texel: the cell, the extrusion's reach, the kernel's
+  // and the two cells the upsampling reads, all in pixels.
+  aq::Region damaged(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma,
+                     int cell) const {
+    if (!ctx.output_kept(0)) return aq::Region::everything();
+    aq::Region changed = ctx.input_damage(kImage);
+    for (uint32_t input : {kControl, kDepth, kId}) {
+      if (!ctx.connected(input)) continue;
+      const aq_image image = ctx.input_image(input);
+      if (image.width != in.width || image.height != in.height) return aq::Region::everything();
+      changed.add(ctx.input_damage(input));
+    }
+    const int length = std::max((in.width + cell - 1) / cell, (in.height + cell - 1) / cell);
+    const int radius =
+        std::clamp(static_cast<int>(std::ceil(ctx.param_float(kReach) * sigma / cell)), 1,
+                   std::max(length, 1));
+    const int extruded = static_cast<int>(std::ceil(extrude_pixels(ctx) / cell));
+    const int reach = cell * (radius + extruded + 3);
+    return changed.dilated(reach, reach, out.width, out.height).for_drawing();
+  }
+
+  aq::Region damage_ = aq::Region::everything();
+
   // The node's inputs as bleed_inputs.glsl reads them (units 4 to 6).
   static void bind_inputs(aq::Context& ctx, GLuint program) {
     const aq_image control = ctx.input_image(kControl);
@@ -156,7 +185,7 @@ struct Bleed {
   }
 
   // The definition itself, every pixel a tap (reference/bleed.h).
-  static bool exact(aq::Context& ctx, const aq_image& in, double sigma, const aq_image& out) {
+  bool exact(aq::Context& ctx, const aq_image& in, double sigma, const aq_image& out) {
     aq_image key, colour_h, key_h;  // key: the packed inputs, then extruded when asked
     if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &key) || !make_key(ctx, key) ||
         !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &colour_h) ||
@@ -174,14 +203,13 @@ struct Bleed {
     }
     const GLuint program = pass_program(ctx, sigma, std::max(in.width, in.height));
     return program != 0 && gated_passes(ctx, program, colour, key, colour, {colour_h, key_h}, &out,
-                                        1, /*final=*/true);
+                                        1, /*final=*/true, damage_);
   }
 
   // The same passes on cells of cell² pixels (σ / cell), then the cells brought back by the
   // gate (bleed_down.frag, bleed_up.frag): a wide Gaussian is smooth at the cell's scale. Both
   // read the node's inputs directly: no full-size key.
-  static bool on_cells(aq::Context& ctx, const aq_image& in, double sigma, int cell,
-                       const aq_image& out) {
+  bool on_cells(aq::Context& ctx, const aq_image& in, double sigma, int cell, const aq_image& out) {
     const int w = (in.width + cell - 1) / cell, h = (in.height + cell - 1) / cell;
     aq_image cells[2], horizontal[2], blurred[2];
     for (aq_image* pair : {cells, horizontal, blurred})
@@ -220,6 +248,7 @@ struct Bleed {
     aq::set_int(up, "u_extruded", extruding ? 1 : 0);
     aq::bind_texture(up, "u_cell_source", 7, extruded[0]);
     aq::bind_texture(up, "u_cell_source_key", 8, extruded[1]);
+    ctx.set_draw_region(damage_);
     return ctx.draw(out);
   }
 };

@@ -98,9 +98,39 @@ struct EdgeDarkening {
     aq::set_float(program, "u_grazing", ctx.param_float(kGrazing));
     aq::set_float(program, "u_dead_zone", kDeadZone);
     aq::set_float(program, "u_max_exponent", ctx.param_float(kMaxExponent));
+    aq::Region damage = damaged(ctx, source, out, sigma);
+    if (!ctx.set_draw_region(damage)) damage = aq::Region::everything();
     const bool drawn = ctx.draw(out);
+    ctx.set_draw_region(aq::Region::everything());
     aq::unbind_textures(4);
-    return drawn ? AQ_OK : AQ_ERROR;
+    return drawn && ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
+  }
+
+ private:
+  // Damage tracking: the blur runs whole each frame (from the same source the same values);
+  // the full-size pass is limited to the pixels whose own image texel changed, whose blur can
+  // reach a changed source texel (4σ, plus the cells' averaging and bilinear reading back), or
+  // whose control tent (one texel around) changed.
+  static aq::Region damaged(const aq::Context& ctx, const aq_image& source, const aq_image& out,
+                            double sigma) {
+    if (!ctx.output_kept(0)) return aq::Region::everything();
+    const int reach = static_cast<int>(std::ceil(aq::gaussian::kTruncationSigmas * sigma)) + 6;
+    // Taps past a small image's edge read the edge texel from every pixel.
+    if (2 * reach >= std::min(source.width, source.height)) return aq::Region::everything();
+    if (source.width != out.width || source.height != out.height) return aq::Region::everything();
+    aq::Region damage = ctx.input_damage(kImage);
+    if (ctx.connected(kSource)) {
+      damage.add(ctx.input_damage(kSource).dilated(reach, reach, out.width, out.height));
+    } else {
+      damage.add(damage.dilated(reach, reach, out.width, out.height));
+    }
+    if (ctx.connected(kControl)) {
+      const aq_image control = ctx.input_image(kControl);
+      if (control.width != out.width || control.height != out.height)
+        return aq::Region::everything();
+      damage.add(ctx.input_damage(kControl).dilated(1, 1, out.width, out.height));
+    }
+    return damage.for_drawing();
   }
 };
 
