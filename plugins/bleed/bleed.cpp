@@ -16,10 +16,12 @@
 // into, the vertical pass on the horizontal one's results); reference/bleed.h computes the
 // same definition in double. Amount 0 at a pixel returns its texel unchanged (bit-exact).
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/gl_raii.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "bleed_shaders.h"
 
@@ -57,20 +59,22 @@ constexpr aq_param_desc kParams[] = {
 bool gated_passes(aq::Context& ctx, GLuint program, const aq_image& color, const aq_image& key,
                   const aq_image& original, const aq_image (&horizontal)[2],
                   const aq_image* targets, uint32_t target_count, bool final,
-                  const aq::Region& region = aq::Region::everything()) {
+                  const aq::Region& rows = aq::Region::everything(),
+                  const aq::Region& columns = aq::Region::everything()) {
   aq::bind_texture(program, "u_color", 0, color);
   aq::bind_texture(program, "u_key", 1, key);
   aq::bind_texture(program, "u_original", 2, original);
   glUniform2i(glGetUniformLocation(program, "u_direction"), 1, 0);
   aq::set_int(program, "u_final", 0);
   if (!ctx.bind_targets(horizontal, 2)) return false;
+  ctx.set_draw_region(rows);
   ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
   aq::bind_texture(program, "u_color", 0, horizontal[0]);
   aq::bind_texture(program, "u_key", 1, horizontal[1]);
   glUniform2i(glGetUniformLocation(program, "u_direction"), 0, 1);
   aq::set_int(program, "u_final", final ? 1 : 0);
   if (!ctx.bind_targets(targets, target_count)) return false;
-  if (final) ctx.set_draw_region(region);
+  ctx.set_draw_region(columns);
   ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
   return true;
 }
@@ -100,7 +104,8 @@ struct Bleed {
   // pixels that can reach a changed input texel: the cell, the extrusion's reach, the kernel's
   // and the two cells the upsampling reads, all in pixels.
   aq::Region damaged(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma,
-                     int cell) const {
+                     int cell) {
+    changed_ = aq::Region::everything();
     if (!ctx.output_kept(0)) return aq::Region::everything();
     aq::Region changed = ctx.input_damage(kImage);
     for (uint32_t input : {kControl, kDepth, kId}) {
@@ -109,6 +114,7 @@ struct Bleed {
       if (image.width != in.width || image.height != in.height) return aq::Region::everything();
       changed.add(ctx.input_damage(input));
     }
+    changed_ = changed;
     const int length = std::max((in.width + cell - 1) / cell, (in.height + cell - 1) / cell);
     const int radius =
         std::clamp(static_cast<int>(std::ceil(ctx.param_float(kReach) * sigma / cell)), 1,
@@ -119,6 +125,38 @@ struct Bleed {
   }
 
   aq::Region damage_ = aq::Region::everything();
+  aq::Region changed_ = aq::Region::everything();  // the inputs' changed pixels (or all)
+  // The cells' textures (down, extruded, horizontal, blurred: colour and key each), the node's
+  // own between calls, so that only the cells a changed pixel can reach are drawn again.
+  aq::gl::KeptTexture kept_cells_[8];
+  bool cells_valid_ = false;  // they hold the last call's cells
+
+  // Kept cell texture `k` for w x h cells; `*all_kept` false when one was (re)made.
+  aq_image kept_cell(aq::Context& ctx, int k, int w, int h, bool* all_kept) {
+    bool kept = false;
+    const GLuint name = kept_cells_[k].get(ctx.raw()->gl_generation, w, h, GL_RGBA32F, &kept);
+    if (!kept) {  // sampled as the pool's textures are: bilinear, clamped at the edges
+      glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTextureParameteri(name, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTextureParameteri(name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    *all_kept = *all_kept && kept;
+    return aq_image{name, w, h, AQ_FORMAT_RGBA32F};
+  }
+
+  // The cells of `cell`² pixels holding the pixels of `pixels`.
+  static aq::Region cells_of(const aq::Region& pixels, int cell, int w, int h) {
+    if (pixels.all()) return pixels;
+    std::vector<aq::PixelRect> rects;
+    for (const aq::PixelRect& r : pixels.rects()) {
+      rects.push_back(aq::PixelRect{r.x0 / cell, r.y0 / cell, std::min((r.x1 + cell - 1) / cell, w),
+                                    std::min((r.y1 + cell - 1) / cell, h)});
+    }
+    aq::Region cells;
+    cells.add(rects);
+    return cells;
+  }
 
   // The node's inputs as bleed_inputs.glsl reads them (units 4 to 6).
   static void bind_inputs(aq::Context& ctx, GLuint program) {
@@ -203,7 +241,7 @@ struct Bleed {
     }
     const GLuint program = pass_program(ctx, sigma, std::max(in.width, in.height));
     return program != 0 && gated_passes(ctx, program, colour, key, colour, {colour_h, key_h}, &out,
-                                        1, /*final=*/true, damage_);
+                                        1, /*final=*/true, aq::Region::everything(), damage_);
   }
 
   // The same passes on cells of cell² pixels (σ / cell), then the cells brought back by the
@@ -211,10 +249,30 @@ struct Bleed {
   // read the node's inputs directly: no full-size key.
   bool on_cells(aq::Context& ctx, const aq_image& in, double sigma, int cell, const aq_image& out) {
     const int w = (in.width + cell - 1) / cell, h = (in.height + cell - 1) / cell;
-    aq_image cells[2], horizontal[2], blurred[2];
-    for (aq_image* pair : {cells, horizontal, blurred})
-      for (int k = 0; k < 2; ++k)
-        if (!ctx.scratch(w, h, AQ_FORMAT_RGBA32F, &pair[k])) return false;
+    bool all_kept = true;
+    aq_image cells[2], horizontal[2], blurred[2], extruded[2];
+    for (int k = 0; k < 2; ++k) {
+      cells[k] = kept_cell(ctx, k, w, h, &all_kept);
+      extruded[k] = kept_cell(ctx, 2 + k, w, h, &all_kept);
+      horizontal[k] = kept_cell(ctx, 4 + k, w, h, &all_kept);
+      blurred[k] = kept_cell(ctx, 6 + k, w, h, &all_kept);
+    }
+    // Damage tracking on the cells: a down cell changes with its own pixels, an extruded one
+    // within the extrusion's reach of those, a gated pass's within its radius along its axis
+    // (and one more for the block flag); the rest keep what the last call drew.
+    const bool extruding = extrude_pixels(ctx) > 0.0;
+    const int length = std::max(w, h);
+    const int radius =
+        std::clamp(static_cast<int>(std::ceil(ctx.param_float(kReach) * sigma / cell)), 1,
+                   std::max(length, 1));
+    const int reach = extruding ? static_cast<int>(std::ceil(extrude_pixels(ctx) / cell)) : 0;
+    const aq::Region down_cells = all_kept && cells_valid_
+                                      ? cells_of(changed_, cell, w, h).for_drawing()
+                                      : aq::Region::everything();
+    const aq::Region extruded_cells = down_cells.dilated(reach, reach, w, h).for_drawing();
+    const aq::Region row_cells = extruded_cells.dilated(radius + 1, 1, w, h).for_drawing();
+    const aq::Region column_cells = row_cells.dilated(1, radius + 1, w, h).for_drawing();
+    cells_valid_ = false;
     const GLuint down = with_inputs(ctx, shaders::bleed_down_frag);
     const GLuint up = with_inputs(ctx, shaders::bleed_up_frag);
     if (down == 0 || up == 0) return false;
@@ -225,19 +283,22 @@ struct Bleed {
     aq::set_int(down, "u_cell", cell);
     aq::set_float(down, "u_depth_bias", bias);
     if (!ctx.bind_targets(cells, 2)) return false;
+    ctx.set_draw_region(down_cells);
     ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
-    const bool extruding = extrude_pixels(ctx) > 0.0;
-    aq_image extruded[2] = {cells[0], cells[1]};
     if (extruding) {
-      for (aq_image& image : extruded)
-        if (!ctx.scratch(w, h, AQ_FORMAT_RGBA32F, &image)) return false;
+      ctx.set_draw_region(extruded_cells);
       if (!extrude(ctx, cells[0], cells[1], cell, extruded)) return false;
+    } else {
+      extruded[0] = cells[0];
+      extruded[1] = cells[1];
     }
     const GLuint program = pass_program(ctx, sigma / cell, std::max(w, h));
-    if (program == 0 || !gated_passes(ctx, program, extruded[0], extruded[1], extruded[0],
-                                      {horizontal[0], horizontal[1]}, blurred, 2, false)) {
+    if (program == 0 ||
+        !gated_passes(ctx, program, extruded[0], extruded[1], extruded[0],
+                      {horizontal[0], horizontal[1]}, blurred, 2, false, row_cells, column_cells)) {
       return false;
     }
+    cells_valid_ = true;
     glUseProgram(up);
     aq::bind_texture(up, "u_original", 0, in);
     bind_inputs(ctx, up);
