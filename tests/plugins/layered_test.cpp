@@ -348,6 +348,12 @@ TEST(Layered, NanAndInfinityStayFinite) {
   for (MixMode mode : {MixMode::kRgb, MixMode::kCmyk, MixMode::kKubelkaMunk}) {
     p.mixing = mode;
     EXPECT_TRUE(aq::test::all_finite(run(g, p, &paper))) << static_cast<int>(mode);
+    // The default fast method too, at a quarter (σ = 3) and a half (σ = 2) resolution.
+    EXPECT_TRUE(aq::test::all_finite(run(g, p, &paper, "float", "fast"))) << static_cast<int>(mode);
+    LayeredParams half = p;
+    half.abstraction_sigma = 2.0;
+    EXPECT_TRUE(aq::test::all_finite(run(g, half, &paper, "half", "fast")))
+        << static_cast<int>(mode);
   }
 }
 
