@@ -28,6 +28,9 @@ const ExactSetting kExactSettings[] = {
     {"blur", R"({"method": "gaussian", "linear_taps": false, "direct_kernel": "full"})"},
     {"caustics", R"({"grid": 1024, "auto_grid": false})"},
     {"shadowmap", R"({"size": 4096, "auto_size": false})"},
+    // Seeds 003/004 (issue 36): the fast method's low-resolution lists against every layer at
+    // full size (equal to reference::layered to the precision's rounding).
+    {"layered", R"({"method": "exact"})"},
 };
 
 std::string in_words(const json& params) {

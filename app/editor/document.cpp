@@ -4,6 +4,10 @@
 
 #include "canvas_view.h"
 
+#include <aquarelle/core/message_text.h>
+#include <aquarelle/core/write_guard.h>
+#include <aquarelle/sdk/regular_file.hpp>
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -236,20 +240,21 @@ void Document::new_graph(const std::string& path) {
 }
 
 Status Document::open(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return make_error("cannot open '" + path + "': " + std::strerror(errno));
-  std::stringstream text;
-  text << in.rdbuf();
+  // Only a regular file of a graph's size: a FIFO would block the window for ever.
+  std::string text, why;
+  if (!files::read_regular_file(path, kMaxEditorFileBytes, &text, &why)) {
+    return make_error("cannot open " + quote_for_message(path) + ": " + why);
+  }
   // Refuse only text that is not JSON at all; a graph that reads but fails validation opens so
   // the user can fix it here.
-  if (!nlohmann::json::accept(text.str())) {
-    ReadResult read = read_graph_text(text.str(), registry_, path);
+  if (!nlohmann::json::accept(text)) {
+    ReadResult read = read_graph_text(text, registry_, path);
     return make_error_lines("cannot read '" + path + "': " + format_problems(read.problems));
   }
-  ReadResult read = read_graph_text(text.str(), registry_, path);
+  ReadResult read = read_graph_text(text, registry_, path);
   graph_ = std::move(read.graph);
   graph_.source_path = path;
-  file_text_ = text.str();
+  file_text_ = text;
   // A graph written by hand has no positions: place them once, so the canvas does not
   // rearrange itself while links are edited. Not an edit: the file is not marked changed,
   // and saving it unedited leaves them out.
@@ -300,6 +305,10 @@ Status Document::save_as(const std::string& path, bool replace) {
     return make_error("'" + path +
                       "' exists already: confirm to replace it, or choose another name");
   }
+  // Saving onto the graph's own file is what Save is for; onto an image or mesh it reads is not.
+  std::vector<ReadFile> reads = files_read_by(graph_, registry_);
+  std::erase_if(reads, [](const ReadFile& read) { return read.role == "the graph file"; });
+  if (auto may = check_may_write("Save As", path, reads); !may.ok()) return may;
   const std::string text = text_to_save();
   Status saved = save_graph_text(text, path);
   if (!saved) return saved;
@@ -347,14 +356,14 @@ bool Document::has_recovery() const {
 
 Status Document::recover() {
   std::string side = autosave_path();
-  std::ifstream in(side, std::ios::binary);
-  if (!in) return make_error("no autosave to recover at '" + side + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  if (!nlohmann::json::accept(text.str())) {
+  std::string text, why;
+  if (!files::read_regular_file(side, kMaxEditorFileBytes, &text, &why)) {
+    return make_error("cannot recover the autosave " + quote_for_message(side) + ": " + why);
+  }
+  if (!nlohmann::json::accept(text)) {
     return make_error("the autosave '" + side + "' is not valid JSON; delete it");
   }
-  ReadResult read = read_graph_text(text.str(), registry_, side);
+  ReadResult read = read_graph_text(text, registry_, side);
   place_unplaced_nodes(read.graph, &registry_);
   Change change;
   change.label = "recover autosave";

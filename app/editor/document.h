@@ -33,6 +33,9 @@
 
 namespace aq::editor {
 
+// The largest graph, autosave or script the editor reads (as `render` reads graphs).
+inline constexpr uint64_t kMaxEditorFileBytes = 64ull << 20;
+
 struct Position {
   float x = 0;
   float y = 0;

@@ -9,6 +9,7 @@
 
 #include <aquarelle/core/image.h>
 #include <aquarelle/core/image_io.h>
+#include <aquarelle/core/write_guard.h>
 #include <glad/gl.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -1003,6 +1004,8 @@ void EditorApp::poll_hot_reload() {
 }
 
 Status EditorApp::write_screenshot(const std::string& path) {
+  const std::vector<ReadFile> reads = files_read_by(document_.graph(), registry_);
+  if (auto may = check_may_write("--screenshot", path, reads); !may.ok()) return may;
   int width = 0;
   int height = 0;
   glfwGetFramebufferSize(window_, &width, &height);

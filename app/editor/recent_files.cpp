@@ -1,6 +1,7 @@
 // Recently opened graphs. See recent_files.h.
 #include "recent_files.h"
 
+#include <aquarelle/sdk/regular_file.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -12,11 +13,15 @@ namespace aq::editor {
 
 namespace fs = std::filesystem;
 
+namespace {
+constexpr uint64_t kMaxStoreBytes = 1 << 20;  // ten paths need far less
+}  // namespace
+
 RecentFiles::RecentFiles(std::string store) : store_(std::move(store)) {
   if (store_.empty()) return;
-  std::ifstream in(store_);
-  if (!in) return;
-  const nlohmann::json list = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  std::string text, why;  // a FIFO or device in its place is ignored, never waited on
+  if (!files::read_regular_file(store_, kMaxStoreBytes, &text, &why)) return;
+  const nlohmann::json list = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (!list.is_array()) return;  // unreadable: start a new list rather than fail
   for (const auto& item : list) {
     if (item.is_string() && paths_.size() < kKept) paths_.push_back(item.get<std::string>());

@@ -1,7 +1,11 @@
 // The scripted mode's interpreter. See script.h.
 #include "script.h"
 
+#include "document.h"
 #include "editor_actions.h"
+
+#include <aquarelle/core/message_text.h>
+#include <aquarelle/sdk/regular_file.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -238,11 +242,11 @@ Status run_action(EditorState& state, const nlohmann::json& action, const Script
 }  // namespace
 
 Result<nlohmann::json> read_script(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return make_error("cannot open the script '" + path + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  nlohmann::json script = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
+  std::string text, why;
+  if (!files::read_regular_file(path, kMaxEditorFileBytes, &text, &why)) {
+    return make_error("cannot open the script " + quote_for_message(path) + ": " + why);
+  }
+  nlohmann::json script = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (script.is_discarded()) return make_error("the script '" + path + "' is not valid JSON");
   if (script.is_object() && script.contains("actions")) script = script["actions"];
   if (!script.is_array()) {

@@ -164,6 +164,7 @@ Status FrameRun::run_node(const PlannedNode& planned, NodeState& state, NodeCall
   host_call.sources = &call.inputs.sources;
   host_call.input_keys = &call.inputs.keys;
   host_call.self_key = call.self_key;
+  host_call.damage_key = call.damage_key;
   begin_damage_call(host_call, type.outputs.size());
   const uint64_t previous_key = state.key;
   aq_process_ctx ctx{};

@@ -37,6 +37,7 @@ void keep_call(KeptCall& kept, const PlannedNode& planned, NodeState& state, Nod
   kept.call.sources = &kept.sources;
   kept.call.input_keys = &kept.input_keys;
   kept.call.self_key = call.self_key;
+  kept.call.damage_key = call.damage_key;
 }
 
 }  // namespace
@@ -177,8 +178,12 @@ Result<TextureRef> run_fused_pass(FusedChain& chain, const PlannedNode& planned,
   // What the producer's kept output holds depends on the epilogue it applied.
   uint64_t& producer_key = producer.call.self_key;
   producer_key = hash_string(producer_key, "epilogue");
-  for (const auto& stage : chain.stages)
+  uint64_t& producer_damage_key = producer.call.damage_key;
+  producer_damage_key = hash_string(producer_damage_key, "epilogue");
+  for (const auto& stage : chain.stages) {
     producer_key = hash_string(producer_key, stage->call.node_id);
+    producer_damage_key = hash_string(producer_damage_key, stage->call.node_id);
+  }
   auto result = run_producer(producer, stages, planned.stored_formats, format, fuser, host);
   producer.call.epilogue = nullptr;  // `stages` ends here
   return result;

@@ -46,10 +46,15 @@ std::string format_problem(const Problem& problem) {
 
 std::string format_problems(const std::vector<Problem>& problems) {
   // One per line, without a final newline: callers print it with their own.
+  // A screenful: past it the first problems are what to fix, the count says how many remain.
+  constexpr size_t kShown = 40;
   std::string text;
-  for (const Problem& problem : problems) {
+  for (size_t i = 0; i < problems.size() && i < kShown; ++i) {
     if (!text.empty()) text += "\n";
-    text += format_problem(problem);
+    text += format_problem(problems[i]);
+  }
+  if (problems.size() > kShown) {
+    text += "\n... and " + std::to_string(problems.size() - kShown) + " more problems";
   }
   return text;
 }

@@ -142,7 +142,7 @@ class GraphReader {
     if (!read_version()) return;  // another version's layout would only give noise
     if (root_.contains("settings")) read_settings(root_["settings"]);
     if (root_.contains("nodes")) {
-      read_nodes(root_["nodes"]);
+      if (!read_nodes(root_["nodes"])) return;  // too many to say more about
     } else {
       add("/nodes", "no \"nodes\": a graph needs at least the node that gives its output");
     }
@@ -254,13 +254,22 @@ class GraphReader {
     }
   }
 
-  void read_nodes(const nlohmann::json& nodes) {
+  // False when the graph has more nodes than a file may hold (nothing else is read).
+  bool read_nodes(const nlohmann::json& nodes) {
     if (!nodes.is_object()) {
       add("/nodes",
           "\"nodes\" must be an object keyed by node id, not " + graph_checks::json_kind(nodes));
-      return;
+      return true;
+    }
+    if (nodes.size() > kMaxGraphFileNodes) {
+      add("/nodes", "the graph holds " + std::to_string(nodes.size()) + " nodes, more than the " +
+                        std::to_string(kMaxGraphFileNodes) +
+                        " a graph file may hold: remove the nodes its output does not use or "
+                        "split it into several graphs");
+      return false;
     }
     for (const auto& [id, value] : nodes.items()) read_node(id, value);
+    return true;
   }
 
   void read_node(const std::string& id, const nlohmann::json& value) {

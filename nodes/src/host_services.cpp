@@ -304,7 +304,7 @@ static bool damage_tracking_enabled() {
 Region input_damage_of(const CallState& call, uint32_t index) {
   if (!damage_tracking_enabled()) return Region::everything();
   const NodeState& self = *call.state;
-  if (!self.seen || self.seen_self_key != call.self_key || call.input_keys == nullptr ||
+  if (!self.seen || self.seen_damage_key != call.damage_key || call.input_keys == nullptr ||
       call.sources == nullptr || index >= call.input_keys->size() ||
       index >= call.sources->size() || index >= self.seen_input_keys.size())
     return Region::everything();
@@ -350,6 +350,7 @@ void record_output_damage(NodeState& state, uint64_t previous_key,
 void finish_damage_call(NodeState& state, const CallState& call, uint64_t previous_key) {
   state.seen = true;
   state.seen_self_key = call.self_key;
+  state.seen_damage_key = call.damage_key;
   state.seen_input_keys = call.input_keys != nullptr ? *call.input_keys : std::vector<uint64_t>();
   record_output_damage(state, previous_key, call.declared_damage, call.declared_bounds);
   for (size_t o = 0; o < state.output_deferred.size() && o < call.declared_deferral.size(); ++o)

@@ -39,6 +39,7 @@ struct NodeState {
   // own key (CallState::self_key) and its inputs' keys.
   bool seen = false;
   uint64_t seen_self_key = 0;
+  uint64_t seen_damage_key = 0;  // CallState::damage_key
   std::vector<uint64_t> seen_input_keys;
   // Where each output changed on that call, from what it held under `previous_key` (the key
   // before the call); all() where the node said nothing (aq_host::set_output_damage).
@@ -105,6 +106,9 @@ struct CallState {
   const std::vector<DamageSource>* sources = nullptr;
   const std::vector<uint64_t>* input_keys = nullptr;
   uint64_t self_key = 0;
+  // The same without the frame: what input_damage compares, so that a time-dependent node
+  // learns where its inputs changed (and adds what time changes itself).
+  uint64_t damage_key = 0;
   // With an epilogue: what its stages' other inputs or parameters changed (evaluator).
   Region epilogue_damage;
   // draw_fullscreen's rects (aq_host::set_draw_region) and what set_output_damage declared.

@@ -179,13 +179,13 @@ Status check_strings(const std::string& id, const NodeType& type, const ParamVal
 // What the frame adds to a node's key: the graph's size, the working format, the quality, the
 // frame for time-dependent nodes, how the plan stores its outputs, and a built-in's own inputs.
 uint64_t hash_frame(uint64_t key, const PlannedNode& planned, const FrameConstants& frame,
-                    const std::vector<aq_param_value>& params) {
+                    const std::vector<aq_param_value>& params, bool with_frame = true) {
   const Settings& settings = *frame.settings;
   key = hash_value(key, settings.width);
   key = hash_value(key, settings.height);
   key = hash_value(key, frame.format);
   key = hash_value(key, quality_index(settings.quality));
-  if (planned.type->time_dependent()) key = hash_value(key, frame.options->frame);
+  if (with_frame && planned.type->time_dependent()) key = hash_value(key, frame.options->frame);
   for (uint32_t stored : planned.stored_formats) key = hash_value(key, stored);
   for (bool deferrable : planned.axis_deferrable) key = hash_value(key, deferrable ? 1 : 2);
   return builtin_key(*planned.type, params, *frame.options, key);
@@ -212,6 +212,7 @@ Result<NodeCall> prepare_node_call(const PlannedNode& planned, const Node& node,
     self_key = hash_value(self_key, value.connected);
   call.key = hash_frame(key, planned, frame, call.params.params);
   call.self_key = hash_frame(self_key, planned, frame, call.params.params);
+  call.damage_key = hash_frame(self_key, planned, frame, call.params.params, /*with_frame=*/false);
   return call;
 }
 

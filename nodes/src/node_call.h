@@ -70,6 +70,9 @@ struct NodeCall {
   GatheredInputs inputs;
   uint64_t key = 0;       // the cache key: type, parameters, inputs' keys, frame settings
   uint64_t self_key = 0;  // the same without the inputs' keys (damage tracking)
+  // The same without the frame: a time-dependent node's inputs' damage is relative to what it
+  // read on its last call, whatever the frame (it adds what time changes itself).
+  uint64_t damage_key = 0;
 };
 
 // The node's key and its inputs: converts its parameters, gathers its inputs from `states` and

@@ -16,10 +16,12 @@
 // into, the vertical pass on the horizontal one's results); reference/bleed.h computes the
 // same definition in double. Amount 0 at a pixel returns its texel unchanged (bit-exact).
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/gl_raii.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "bleed_shaders.h"
 
@@ -56,19 +58,23 @@ constexpr aq_param_desc kParams[] = {
 // with `final`, else a colour and key pair). Program and uniforms are set by the caller.
 bool gated_passes(aq::Context& ctx, GLuint program, const aq_image& color, const aq_image& key,
                   const aq_image& original, const aq_image (&horizontal)[2],
-                  const aq_image* targets, uint32_t target_count, bool final) {
+                  const aq_image* targets, uint32_t target_count, bool final,
+                  const aq::Region& rows = aq::Region::everything(),
+                  const aq::Region& columns = aq::Region::everything()) {
   aq::bind_texture(program, "u_color", 0, color);
   aq::bind_texture(program, "u_key", 1, key);
   aq::bind_texture(program, "u_original", 2, original);
   glUniform2i(glGetUniformLocation(program, "u_direction"), 1, 0);
   aq::set_int(program, "u_final", 0);
   if (!ctx.bind_targets(horizontal, 2)) return false;
+  ctx.set_draw_region(rows);
   ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
   aq::bind_texture(program, "u_color", 0, horizontal[0]);
   aq::bind_texture(program, "u_key", 1, horizontal[1]);
   glUniform2i(glGetUniformLocation(program, "u_direction"), 0, 1);
   aq::set_int(program, "u_final", final ? 1 : 0);
   if (!ctx.bind_targets(targets, target_count)) return false;
+  ctx.set_draw_region(columns);
   ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
   return true;
 }
@@ -85,12 +91,73 @@ struct Bleed {
     const int cell = std::clamp(static_cast<int>(std::floor(sigma / 2.0)), 1, asked);
     aq_image out;
     if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+    damage_ = damaged(ctx, in, out, sigma, cell);
     const bool drawn = cell == 1 ? exact(ctx, in, sigma, out) : on_cells(ctx, in, sigma, cell, out);
+    ctx.set_draw_region(aq::Region::everything());
     aq::unbind_textures(9);
-    return drawn ? AQ_OK : AQ_ERROR;
+    return drawn && ctx.set_output_damage(0, damage_) ? AQ_OK : AQ_ERROR;
   }
 
  private:
+  // Damage tracking: the passes on cells (or the first exact pass) run whole each frame, from
+  // the same inputs the same values; only the last pass, the full-size one, is limited to the
+  // pixels that can reach a changed input texel: the cell, the extrusion's reach, the kernel's
+  // and the two cells the upsampling reads, all in pixels.
+  aq::Region damaged(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma,
+                     int cell) {
+    changed_ = aq::Region::everything();
+    if (!ctx.output_kept(0)) return aq::Region::everything();
+    aq::Region changed = ctx.input_damage(kImage);
+    for (uint32_t input : {kControl, kDepth, kId}) {
+      if (!ctx.connected(input)) continue;
+      const aq_image image = ctx.input_image(input);
+      if (image.width != in.width || image.height != in.height) return aq::Region::everything();
+      changed.add(ctx.input_damage(input));
+    }
+    changed_ = changed;
+    const int length = std::max((in.width + cell - 1) / cell, (in.height + cell - 1) / cell);
+    const int radius =
+        std::clamp(static_cast<int>(std::ceil(ctx.param_float(kReach) * sigma / cell)), 1,
+                   std::max(length, 1));
+    const int extruded = static_cast<int>(std::ceil(extrude_pixels(ctx) / cell));
+    const int reach = cell * (radius + extruded + 3);
+    return changed.dilated(reach, reach, out.width, out.height).for_drawing();
+  }
+
+  aq::Region damage_ = aq::Region::everything();
+  aq::Region changed_ = aq::Region::everything();  // the inputs' changed pixels (or all)
+  // The cells' textures (down, extruded, horizontal, blurred: colour and key each), the node's
+  // own between calls, so that only the cells a changed pixel can reach are drawn again.
+  aq::gl::KeptTexture kept_cells_[8];
+  bool cells_valid_ = false;  // they hold the last call's cells
+
+  // Kept cell texture `k` for w x h cells; `*all_kept` false when one was (re)made.
+  aq_image kept_cell(aq::Context& ctx, int k, int w, int h, bool* all_kept) {
+    bool kept = false;
+    const GLuint name = kept_cells_[k].get(ctx.raw()->gl_generation, w, h, GL_RGBA32F, &kept);
+    if (!kept) {  // sampled as the pool's textures are: bilinear, clamped at the edges
+      glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTextureParameteri(name, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTextureParameteri(name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    *all_kept = *all_kept && kept;
+    return aq_image{name, w, h, AQ_FORMAT_RGBA32F};
+  }
+
+  // The cells of `cell`² pixels holding the pixels of `pixels`.
+  static aq::Region cells_of(const aq::Region& pixels, int cell, int w, int h) {
+    if (pixels.all()) return pixels;
+    std::vector<aq::PixelRect> rects;
+    for (const aq::PixelRect& r : pixels.rects()) {
+      rects.push_back(aq::PixelRect{r.x0 / cell, r.y0 / cell, std::min((r.x1 + cell - 1) / cell, w),
+                                    std::min((r.y1 + cell - 1) / cell, h)});
+    }
+    aq::Region cells;
+    cells.add(rects);
+    return cells;
+  }
+
   // The node's inputs as bleed_inputs.glsl reads them (units 4 to 6).
   static void bind_inputs(aq::Context& ctx, GLuint program) {
     const aq_image control = ctx.input_image(kControl);
@@ -156,7 +223,7 @@ struct Bleed {
   }
 
   // The definition itself, every pixel a tap (reference/bleed.h).
-  static bool exact(aq::Context& ctx, const aq_image& in, double sigma, const aq_image& out) {
+  bool exact(aq::Context& ctx, const aq_image& in, double sigma, const aq_image& out) {
     aq_image key, colour_h, key_h;  // key: the packed inputs, then extruded when asked
     if (!ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &key) || !make_key(ctx, key) ||
         !ctx.scratch(in.width, in.height, AQ_FORMAT_RGBA32F, &colour_h) ||
@@ -174,19 +241,38 @@ struct Bleed {
     }
     const GLuint program = pass_program(ctx, sigma, std::max(in.width, in.height));
     return program != 0 && gated_passes(ctx, program, colour, key, colour, {colour_h, key_h}, &out,
-                                        1, /*final=*/true);
+                                        1, /*final=*/true, aq::Region::everything(), damage_);
   }
 
   // The same passes on cells of cell² pixels (σ / cell), then the cells brought back by the
   // gate (bleed_down.frag, bleed_up.frag): a wide Gaussian is smooth at the cell's scale. Both
   // read the node's inputs directly: no full-size key.
-  static bool on_cells(aq::Context& ctx, const aq_image& in, double sigma, int cell,
-                       const aq_image& out) {
+  bool on_cells(aq::Context& ctx, const aq_image& in, double sigma, int cell, const aq_image& out) {
     const int w = (in.width + cell - 1) / cell, h = (in.height + cell - 1) / cell;
-    aq_image cells[2], horizontal[2], blurred[2];
-    for (aq_image* pair : {cells, horizontal, blurred})
-      for (int k = 0; k < 2; ++k)
-        if (!ctx.scratch(w, h, AQ_FORMAT_RGBA32F, &pair[k])) return false;
+    bool all_kept = true;
+    aq_image cells[2], horizontal[2], blurred[2], extruded[2];
+    for (int k = 0; k < 2; ++k) {
+      cells[k] = kept_cell(ctx, k, w, h, &all_kept);
+      extruded[k] = kept_cell(ctx, 2 + k, w, h, &all_kept);
+      horizontal[k] = kept_cell(ctx, 4 + k, w, h, &all_kept);
+      blurred[k] = kept_cell(ctx, 6 + k, w, h, &all_kept);
+    }
+    // Damage tracking on the cells: a down cell changes with its own pixels, an extruded one
+    // within the extrusion's reach of those, a gated pass's within its radius along its axis
+    // (and one more for the block flag); the rest keep what the last call drew.
+    const bool extruding = extrude_pixels(ctx) > 0.0;
+    const int length = std::max(w, h);
+    const int radius =
+        std::clamp(static_cast<int>(std::ceil(ctx.param_float(kReach) * sigma / cell)), 1,
+                   std::max(length, 1));
+    const int reach = extruding ? static_cast<int>(std::ceil(extrude_pixels(ctx) / cell)) : 0;
+    const aq::Region down_cells = all_kept && cells_valid_
+                                      ? cells_of(changed_, cell, w, h).for_drawing()
+                                      : aq::Region::everything();
+    const aq::Region extruded_cells = down_cells.dilated(reach, reach, w, h).for_drawing();
+    const aq::Region row_cells = extruded_cells.dilated(radius + 1, 1, w, h).for_drawing();
+    const aq::Region column_cells = row_cells.dilated(1, radius + 1, w, h).for_drawing();
+    cells_valid_ = false;
     const GLuint down = with_inputs(ctx, shaders::bleed_down_frag);
     const GLuint up = with_inputs(ctx, shaders::bleed_up_frag);
     if (down == 0 || up == 0) return false;
@@ -197,19 +283,22 @@ struct Bleed {
     aq::set_int(down, "u_cell", cell);
     aq::set_float(down, "u_depth_bias", bias);
     if (!ctx.bind_targets(cells, 2)) return false;
+    ctx.set_draw_region(down_cells);
     ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
-    const bool extruding = extrude_pixels(ctx) > 0.0;
-    aq_image extruded[2] = {cells[0], cells[1]};
     if (extruding) {
-      for (aq_image& image : extruded)
-        if (!ctx.scratch(w, h, AQ_FORMAT_RGBA32F, &image)) return false;
+      ctx.set_draw_region(extruded_cells);
       if (!extrude(ctx, cells[0], cells[1], cell, extruded)) return false;
+    } else {
+      extruded[0] = cells[0];
+      extruded[1] = cells[1];
     }
     const GLuint program = pass_program(ctx, sigma / cell, std::max(w, h));
-    if (program == 0 || !gated_passes(ctx, program, extruded[0], extruded[1], extruded[0],
-                                      {horizontal[0], horizontal[1]}, blurred, 2, false)) {
+    if (program == 0 ||
+        !gated_passes(ctx, program, extruded[0], extruded[1], extruded[0],
+                      {horizontal[0], horizontal[1]}, blurred, 2, false, row_cells, column_cells)) {
       return false;
     }
+    cells_valid_ = true;
     glUseProgram(up);
     aq::bind_texture(up, "u_original", 0, in);
     bind_inputs(ctx, up);
@@ -220,6 +309,7 @@ struct Bleed {
     aq::set_int(up, "u_extruded", extruding ? 1 : 0);
     aq::bind_texture(up, "u_cell_source", 7, extruded[0]);
     aq::bind_texture(up, "u_cell_source_key", 8, extruded[1]);
+    ctx.set_draw_region(damage_);
     return ctx.draw(out);
   }
 };

@@ -14,12 +14,14 @@
 // the result is Beer–Lambert's exactly (reference/clouds.h).
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/sdk/scene_math.hpp>
+#include <aquarelle/sdk/static_layer.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "clouds_shaders.h"
 
@@ -95,7 +97,8 @@ void set_volume(aq::Context& ctx, GLuint program) {
   aq::set_float(program, "u_max_distance", ctx.param_float(kMaxDistance));
 }
 
-struct Clouds {
+class Clouds {
+ public:
   int process(aq::Context& ctx) {
     const aq_image in = ctx.input_image(kImage);
     const aq_scene* scene = ctx.input_scene(kScene);
@@ -136,7 +139,12 @@ struct Clouds {
     aq::set_vec3(march, "u_camera", camera.position);
     aq::set_vec3(march, "u_forward", glm::value_ptr(forward));
     set_volume(ctx, march);
+    const glm::dmat4 view_projection_d = glm::dmat4(view_projection);
+    aq::Region damage = damaged(ctx, in, depth, has_depth, view_projection_d, cell);
+    if (!ctx.set_draw_region(march_cells(damage, cell, cells_x, cells_y)))
+      damage = aq::Region::everything();
     if (!ctx.draw(tau)) return AQ_ERROR;
+    ctx.set_draw_region(damage);
 
     glUseProgram(composite);
     aq::bind_texture(composite, "u_image", 0, in);
@@ -146,10 +154,58 @@ struct Clouds {
     aq::set_int(composite, "u_cell", cell);
     aq::set_float(composite, "u_max_distance", ctx.param_float(kMaxDistance));
     aq::set_vec3(composite, "u_light_color", ctx.param_vec3(kLightColor));
+    // Drawn even when nothing changed: the host learns that the draw applies the epilogue.
     const bool drawn = ctx.draw(out);
+    ctx.set_draw_region(aq::Region::everything());
     aq::unbind_textures(3);
-    return drawn ? AQ_OK : AQ_ERROR;
+    return drawn && ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
   }
+
+ private:
+  // Damage tracking: with the output kept and the same camera, a pixel can change where its
+  // image texel changed, where a depth its four cells' rays or its own weights read changed
+  // (two cells around), where the volume can be (it drifts with time: the distance falloff's
+  // sphere, widened by the warp, projected; the whole frame for the other falloffs), or where
+  // the fused epilogue changed. Outside the sphere τ is exactly 0 and the pixel its image's.
+  aq::Region damaged(aq::Context& ctx, const aq_image& in, const aq_image& depth, bool has_depth,
+                     const glm::dmat4& view_projection, int cell) {
+    const bool same_camera = view_projection == last_view_projection_;
+    last_view_projection_ = view_projection;
+    if (!ctx.output_kept(0) || !same_camera) return aq::Region::everything();
+    if (has_depth && (depth.width != in.width || depth.height != in.height))
+      return aq::Region::everything();
+    const int reach = 2 * cell + 1;
+    aq::Region damage = ctx.input_damage(kImage);
+    if (has_depth) damage.add(ctx.input_damage(kDepth).dilated(reach, reach, in.width, in.height));
+    if (ctx.param_enum(kFalloff) != 2) return aq::Region::everything();
+    const double radius =
+        ctx.param_float(kFalloffLength) + std::max(ctx.param_float(kWarp), 0.0) * 1.05;
+    const double* centre = ctx.param_vec3(kCentre);
+    aq::view_bounds::Box sphere;
+    sphere.add(glm::dvec3(centre[0] - radius, centre[1] - radius, centre[2] - radius));
+    sphere.add(glm::dvec3(centre[0] + radius, centre[1] + radius, centre[2] + radius));
+    damage.add(aq::Region::of(aq::covered_pixels(sphere, view_projection, in.width, in.height))
+                   .dilated(reach, reach, in.width, in.height));
+    damage.add(ctx.epilogue_damage());
+    return damage.for_drawing();
+  }
+
+  // The march cells the composite reads for the pixels of `damage`: a pixel reads the cell
+  // under it and its neighbours at ±1.
+  static aq::Region march_cells(const aq::Region& damage, int cell, int cells_x, int cells_y) {
+    if (damage.all()) return damage;
+    std::vector<aq::PixelRect> rects;
+    for (const aq::PixelRect& r : damage.rects()) {
+      rects.push_back(aq::PixelRect{std::max(r.x0 / cell - 1, 0), std::max(r.y0 / cell - 1, 0),
+                                    std::min((r.x1 - 1) / cell + 2, cells_x),
+                                    std::min((r.y1 - 1) / cell + 2, cells_y)});
+    }
+    aq::Region cells;
+    cells.add(rects);
+    return cells.for_drawing();
+  }
+
+  glm::dmat4 last_view_projection_{0.0};
 };
 
 }  // namespace

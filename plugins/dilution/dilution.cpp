@@ -10,7 +10,9 @@
 //   τ)) ──► dilution = dil (where paper_relief shows the paper)
 #include <aquarelle/plugin.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <string>
 
 #include "dilution_shaders.h"
@@ -89,10 +91,27 @@ struct Dilution {
     aq::set_float(program, "u_scale", ctx.param_float(kScale));
     aq::set_int(program, "u_octaves", static_cast<int>(ctx.param_int(kOctaves)));
     if (!ctx.bind_targets(targets, kOutputCount)) return AQ_ERROR;
+    // Damage tracking: every pixel reads only its own texels, so with the outputs kept and the
+    // same light only the pixels whose inputs changed are redrawn (the fish, not the floor's
+    // FBM).
+    aq::Region damage = aq::Region::everything();
+    const bool same_light = std::equal(std::begin(to_light), std::end(to_light), last_light_);
+    if (ctx.output_kept(kImage) && ctx.output_kept(kDilution) && same_light) {
+      damage = ctx.input_damage(kAlbedo);
+      damage.add(ctx.input_damage(kNormal));
+      if (anchored) damage.add(ctx.input_damage(kObject));
+    }
+    std::copy(std::begin(to_light), std::end(to_light), last_light_);
+    if (!ctx.set_draw_region(damage.for_drawing())) damage = aq::Region::everything();
     ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+    ctx.set_draw_region(aq::Region::everything());
     aq::unbind_textures(3);
+    for (uint32_t i = 0; i < kOutputCount; ++i)
+      if (!ctx.set_output_damage(i, damage)) return AQ_ERROR;
     return AQ_OK;
   }
+
+  double last_light_[3] = {0.0, 0.0, 0.0};
 };
 
 }  // namespace

@@ -9,7 +9,11 @@
 #include "fast_layers.h"
 
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "layered_params.h"
 #include "layered_shaders.h"
@@ -24,10 +28,17 @@ std::string define(const char* name, int64_t value) {
   return "#define " + std::string(name) + " " + std::to_string(value) + "\n";
 }
 
-// σ at half resolution giving σ at full size after the 2x2 average (variance ¼ px² per axis)
-// and the bilinear enlargement (¾ px²): 4 σh² + 1 = σ².
-double half_sigma(double sigma) {
-  return std::sqrt(std::max(sigma * sigma - 1.0, 0.0)) / 2.0;
+// Variance (px² per axis) that the D×D average and the bilinear enlargement add by
+// themselves: (D² − 1)/12 for the box, and for the enlargement the two-tap variance f (1 − f)
+// texel² averaged over the D phases f of the output pixels (¾ px² at D = 2, 2.75 at D = 4).
+double resampling_variance(int divisor) {
+  double tent = 0.0;
+  for (int k = 0; k < divisor; ++k) {
+    const double u = (k + 0.5) / divisor - 0.5;
+    const double f = u - std::floor(u);
+    tent += f * (1.0 - f);
+  }
+  return (divisor * divisor - 1.0) / 12.0 + tent / divisor * divisor * divisor;
 }
 
 int radius_of(double sigma) {
@@ -45,6 +56,22 @@ std::vector<float> gaussian_weights(double sigma, int radius) {
   std::vector<float> out(w.size());
   for (size_t i = 0; i < w.size(); ++i) out[i] = static_cast<float>(w[i] / sum);
   return out;
+}
+
+// Kubelka–Munk absorption and scattering of the pigment whose unit layer reflects `rw` over
+// white and 0.2 rw over black: aquarelle/pigment.glsl's aq_km_ks (maths in
+// plugins/pigment_mix/README.md), for the shadow glaze's constant colour, once per frame.
+void km_ks(double rw, double* k, double* s) {
+  constexpr double kEps = 1.0e-4, kBlackRatio = 0.2;
+  rw = std::isfinite(rw) ? std::clamp(rw, 0.0, 1.0) : 0.0;
+  double rb = kBlackRatio * rw;
+  rw = std::clamp(rw, 2.0 * kEps, 1.0 - kEps);
+  rb = std::clamp(rb, kEps, rw - kEps);
+  const double am1 = (1.0 - rw) * (1.0 - rb) / (2.0 * rb);
+  const double b = std::sqrt(am1 * (am1 + 2.0));
+  const double arg = std::max((1.0 - rb) * (1.0 + rw) / (2.0 * rb * b), 1.0 + 1.0e-6);
+  *s = 0.5 * std::log((arg + 1.0) / (arg - 1.0)) / b;
+  *k = am1 * *s;
 }
 
 GLuint compile_compute(aq::Context& ctx, const char* text) {
@@ -76,17 +103,35 @@ GLuint compile_compute(aq::Context& ctx, const char* text) {
 
 }  // namespace
 
+// Uniforms of layered_common.glsl.
+void FastLayers::set_threshold(aq::Context& ctx, GLuint p) {
+  aq::set_float(p, "u_threshold", ctx.param_float(kThreshold));
+  aq::set_float(p, "u_softness", ctx.param_float(kSoftness));
+  aq::set_float(p, "u_edge_noise", ctx.param_float(kEdgeNoise));
+  aq::set_float(p, "u_noise_scale",
+                std::max(1e-3, ctx.param_float(kNoiseScale) * ctx.render_scale()));
+}
+
 FastLayers::~FastLayers() {
   if (table_program_ != 0) glDeleteProgram(table_program_);
 }
 
+double FastLayers::low_sigma(double sigma, int divisor) {
+  return std::sqrt(std::max(sigma * sigma - resampling_variance(divisor), 0.0)) / divisor;
+}
+
+int FastLayers::divisor_for(double sigma) {
+  return sigma * sigma >= resampling_variance(4) + 1.0 ? 4 : 2;
+}
+
 bool FastLayers::applies(double sigma, double edge_sigma) {
-  return sigma >= 1.5 && radius_of(half_sigma(sigma)) <= kMaxRadius &&
-         radius_of(half_sigma(edge_sigma)) <= kMaxRadius;
+  const int d = divisor_for(sigma);
+  return sigma >= 1.5 && radius_of(low_sigma(sigma, d)) <= kMaxRadius &&
+         radius_of(low_sigma(edge_sigma, d)) <= kMaxRadius;
 }
 
 std::string FastLayers::defines(aq::Context& ctx, const FastFrame& f) const {
-  return define("AQ_HAS_PAPER", f.has_paper ? 1 : 0) +
+  return define("AQ_DIVISOR", divisor_) + define("AQ_HAS_PAPER", f.has_paper ? 1 : 0) +
          define("AQ_HAS_SHADOW", f.has_shadow ? 1 : 0) +
          define("AQ_MIX_MODE", ctx.param_enum(kMixing)) + define("AQ_VIEW", 0);
 }
@@ -102,13 +147,17 @@ GLuint FastLayers::fragment(aq::Context& ctx, const char* name, std::string& tex
 
 bool FastLayers::run(aq::Context& ctx, const FastFrame& f) {
   if (table_program_ == 0 || generation_ != ctx.raw()->gl_generation) {
-    if (generation_ != ctx.raw()->gl_generation) table_.forget();
+    if (generation_ != ctx.raw()->gl_generation) {
+      table_.forget();
+      bilinear_.forget();
+    }
     table_program_ = compile_compute(ctx, shaders::layered_table_comp.text);
     generation_ = ctx.raw()->gl_generation;
     if (table_program_ == 0) return false;
   }
   Targets t;
-  const int hw = (f.w + 1) / 2, hh = (f.h + 1) / 2;
+  divisor_ = divisor_for(f.sigma);
+  const int hw = (f.w + divisor_ - 1) / divisor_, hh = (f.h + divisor_ - 1) / divisor_;
   const uint32_t f32 = AQ_FORMAT_RGBA32F;
   for (aq_image* image :
        {&t.lists[0], &t.lists[1], &t.lists[2], &t.lists[3], &t.spare[0], &t.spare[1], &t.spare[2],
@@ -116,8 +165,23 @@ bool FastLayers::run(aq::Context& ctx, const FastFrame& f) {
     if (!ctx.scratch(hw, hh, f32, image)) return false;
   }
   glDisable(GL_SCISSOR_TEST);
-  const bool ok = build_table(ctx) && colours(ctx, f, t) && segment_and_blur(ctx, f, t) &&
-                  peaks_and_edges(ctx, f, t) && composite(ctx, f, t);
+  static const bool profile = std::getenv("AQ_LAYERED_PROFILE") != nullptr;
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&](const char* what) {
+    if (!profile) return true;
+    glFinish();
+    const auto now = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "layered fast %s %.1f ms\n", what,
+                 std::chrono::duration<double, std::milli>(now - clock).count());
+    clock = now;
+    return true;
+  };
+  lap("before");
+  const bool ok = build_table(ctx) && lap("table") && colours(ctx, f, t) && lap("colours") &&
+                  segment_and_blur(ctx, f, t) && lap("segment+blur") &&
+                  peaks_and_edges(ctx, f, t) && lap("peaks+edges") && cells(ctx, f, t) &&
+                  threshold_map(ctx, f, t) && lap("cells") && composite(ctx, f, t) &&
+                  lap("composite");
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
   aq::unbind_textures(16);
   return ok;
@@ -145,7 +209,7 @@ bool FastLayers::build_table(aq::Context& ctx) {
 // Per slot: Gooch light and dark colours and (mean depth, wet-in-wet, present, id).
 bool FastLayers::colours(aq::Context& ctx, const FastFrame& f, Targets& t) {
   const int n = std::max<int>(1, static_cast<int>(f.palette.size() + f.wet_ids.size()));
-  if (!ctx.scratch(kSlots, 3, AQ_FORMAT_RGBA32F, &t.colours) ||
+  if (!ctx.scratch(kSlots, 7, AQ_FORMAT_RGBA32F, &t.colours) ||
       !ctx.scratch(n, 3, AQ_FORMAT_RGBA32F, &t.overrides)) {
     return false;
   }
@@ -199,7 +263,7 @@ bool FastLayers::segment_and_blur(aq::Context& ctx, const FastFrame& f, Targets&
   aq::set_int(p, "u_slots", kSlots);
   if (!ctx.bind_targets(t.lists, 4)) return false;
   ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
-  const double sigma = half_sigma(f.sigma);
+  const double sigma = low_sigma(f.sigma, divisor_);
   const int radius = radius_of(sigma);
   return gather(ctx, 0, t.lists[0], &t.lists[1], 0, sigma, radius, t.spare, 4) &&
          gather(ctx, 0, t.spare[0], &t.spare[1], 1, sigma, radius, t.lists, 4);
@@ -209,7 +273,7 @@ bool FastLayers::segment_and_blur(aq::Context& ctx, const FastFrame& f, Targets&
 // Gaussian, all on the blurred lists' keys.
 bool FastLayers::peaks_and_edges(aq::Context& ctx, const FastFrame& f, Targets& t) {
   if (f.thin) {
-    const int r = (static_cast<int>(std::ceil(f.sigma)) + 2) / 2;
+    const int r = (static_cast<int>(std::ceil(f.sigma)) + 1 + divisor_ - 1) / divisor_;
     if (!gather(ctx, 2, t.lists[0], &t.lists[1], 0, 0.0, r, &t.spare_one, 1) ||
         !gather(ctx, 2, t.lists[0], &t.spare_one, 1, 0.0, r, &t.peak, 1)) {
       return false;
@@ -223,14 +287,10 @@ bool FastLayers::peaks_and_edges(aq::Context& ctx, const FastFrame& f, Targets& 
   aq::bind_texture(p, "u_keys", 0, t.lists[0]);
   aq::bind_texture(p, "u_blurred", 1, t.lists[1]);
   aq::set_float(p, "u_edge_threshold", ctx.param_float(kEdgeThreshold));
-  aq::set_float(p, "u_scale", 0.5);
-  const double scale = ctx.render_scale();
-  aq::set_float(p, "u_threshold", ctx.param_float(kThreshold));
-  aq::set_float(p, "u_softness", ctx.param_float(kSoftness));
-  aq::set_float(p, "u_edge_noise", ctx.param_float(kEdgeNoise));
-  aq::set_float(p, "u_noise_scale", std::max(1e-3, ctx.param_float(kNoiseScale) * scale));
+  aq::set_float(p, "u_scale", 1.0 / divisor_);
+  set_threshold(ctx, p);
   if (!ctx.draw(t.edges)) return false;
-  const double sigma = half_sigma(f.edge_sigma);
+  const double sigma = low_sigma(f.edge_sigma, divisor_);
   const int radius = radius_of(sigma);
   return gather(ctx, 1, t.lists[0], &t.edges, 0, sigma, radius, &t.spare_one, 1) &&
          gather(ctx, 1, t.lists[0], &t.spare_one, 1, sigma, radius, &t.blur_edges, 1);
@@ -265,6 +325,39 @@ bool FastLayers::gather(aq::Context& ctx, int mode, const aq_image& keys, const 
   return true;
 }
 
+// layered_threshold per pixel, drawn again only when the size, the context or the threshold's
+// parameters change (the noise depends on nothing else).
+bool FastLayers::threshold_map(aq::Context& ctx, const FastFrame& f, Targets& t) {
+  const std::array<double, 4> key = {
+      ctx.param_float(kThreshold), ctx.param_float(kEdgeNoise),
+      std::max(1e-3, ctx.param_float(kNoiseScale) * ctx.render_scale()),
+      ctx.param_float(kSoftness)};
+  bool kept = false;
+  t.threshold = {threshold_.get(ctx.raw()->gl_generation, f.w, f.h, GL_R32F, &kept), f.w, f.h,
+                 AQ_FORMAT_R32F};
+  if (kept && key == threshold_key_) return true;
+  threshold_key_ = key;
+  const GLuint p = fragment(ctx, "layered_fast_threshold.frag", threshold_text_,
+                            shaders::layered_fast_threshold_frag, defines(ctx, f));
+  if (p == 0) return false;
+  glUseProgram(p);
+  set_threshold(ctx, p);
+  return ctx.draw(t.threshold);
+}
+
+bool FastLayers::cells(aq::Context& ctx, const FastFrame& f, Targets& t) {
+  const GLuint p = fragment(ctx, "layered_fast_cells.frag", cells_text_,
+                            shaders::layered_fast_cells_frag, defines(ctx, f));
+  if (p == 0) return false;
+  glUseProgram(p);
+  aq::bind_texture(p, "u_keys", 0, t.lists[0]);
+  aq::bind_texture(p, "u_blur_intensity", 1, t.lists[1]);
+  aq::bind_texture(p, "u_blur_diffuse", 2, t.lists[2]);
+  aq::bind_texture(p, "u_blur_depth", 3, t.lists[3]);
+  const aq_image keys = t.lists[0];
+  return ctx.scratch(5 * keys.width, keys.height, AQ_FORMAT_RGBA32F, &t.cells) && ctx.draw(t.cells);
+}
+
 bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& t) {
   const GLuint p = fragment(ctx, "layered_fast_composite.frag", composite_text_,
                             shaders::layered_fast_composite_frag, defines(ctx, f));
@@ -281,22 +374,40 @@ bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& 
   aq::bind_texture(p, "u_depth", 8, ctx.input_image(kDepth));
   if (f.has_paper) aq::bind_texture(p, "u_paper", 9, ctx.input_image(kPaper));
   aq::bind_texture(p, "u_colours", 10, t.colours);
+  aq::bind_texture(p, "u_cells", 13, t.cells);
+  if (!bilinear_) {
+    const GLuint s = bilinear_.create();
+    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+  for (GLuint unit : {1u, 2u, 3u, 4u, 5u, 13u}) glBindSampler(unit, bilinear_.get());
   if (f.has_shadow) {
     aq::bind_texture(p, "u_shadow_layer", 11, f.shadow_blur);
-    aq::bind_texture(p, "u_shadow_raw", 12, f.shadow_raw);
+    glBindSampler(11, bilinear_.get());
     aq::set_float(p, "u_shadows", ctx.param_float(kShadows));
-    aq::set_vec3(p, "u_shadow_color", ctx.param_vec3(kShadowColor));
+    const double* colour = ctx.param_vec3(kShadowColor);
+    double k[3], sc[3];
+    for (int c = 0; c < 3; ++c) km_ks(colour[c], &k[c], &sc[c]);
+    aq::set_vec3(p, "u_shadow_k", k);
+    aq::set_vec3(p, "u_shadow_s", sc);
   }
-  const double scale = ctx.render_scale();
-  aq::set_float(p, "u_threshold", ctx.param_float(kThreshold));
-  aq::set_float(p, "u_softness", ctx.param_float(kSoftness));
-  aq::set_float(p, "u_edge_noise", ctx.param_float(kEdgeNoise));
-  aq::set_float(p, "u_noise_scale", std::max(1e-3, ctx.param_float(kNoiseScale) * scale));
+  aq::bind_texture(p, "u_threshold_map", 12, t.threshold);
+  set_threshold(ctx, p);
   aq::set_vec2(p, "u_size", f.w, f.h);
   aq::set_vec3(p, "u_half", f.half);
   aq::set_float(p, "u_shininess", ctx.param_float(kShininess));
   aq::set_float(p, "u_specular_threshold", ctx.param_float(kSpecularThreshold));
   aq::set_float(p, "u_thin", f.thin ? ctx.param_float(kThinShapes) : 0.0);
+  // b / m is 1 on a thin shape's ridge at full size; interpolated from texels four pixels apart
+  // it dips between them, so the quarter resolution takes a lower step (a wide shape's
+  // rounded corner stays near 0.3 and is still dropped).
+  if (divisor_ == 4) {
+    aq::set_vec2(p, "u_ridge", 0.45, 0.65);
+  } else {
+    aq::set_vec2(p, "u_ridge", 0.75, 0.9);
+  }
   aq::set_float(p, "u_line_width_scale", 2.5066283 * f.sigma);
   aq::set_float(p, "u_edge_gain", f.run_edges ? std::max(1.0, 1.2533 * f.edge_sigma) : 0.0);
   aq::set_float(p, "u_edge_darkness", ctx.param_float(kEdgeDarkness));
@@ -307,7 +418,9 @@ bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& 
   aq::set_float(p, "u_density", ctx.param_float(kDensity));
   aq::set_vec3(p, "u_paper_color", ctx.param_vec3(kPaperColor));
   aq::set_float(p, "u_paper_relief", ctx.param_float(kPaperRelief));
-  return ctx.draw(f.out);
+  const bool ok = ctx.draw(f.out);
+  for (GLuint unit = 1; unit <= 13; ++unit) glBindSampler(unit, 0);
+  return ok;
 }
 
 }  // namespace layered

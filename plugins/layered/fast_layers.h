@@ -7,6 +7,7 @@
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/sdk/gl_raii.hpp>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -38,7 +39,13 @@ class FastLayers {
   FastLayers& operator=(const FastLayers&) = delete;
   ~FastLayers();
 
-  // Whether the method can run these blurs at half resolution (σ ≥ 1.5 px, radii that fit).
+  // The lists' resolution divisor: 4 where the abstraction's blur is wider than what the 4×4
+  // average and the enlargement add (σ ≥ 2.24 px), else 2.
+  static int divisor_for(double sigma);
+  // σ at 1/D resolution giving σ at full size after the D x D average and the bilinear
+  // enlargement: D² σl² + what those two add = σ² (0 when they blur that much already).
+  static double low_sigma(double sigma, int divisor);
+  // Whether the method can run these blurs at low resolution (σ ≥ 1.5 px, radii that fit).
   static bool applies(double sigma, double edge_sigma);
   // Paints into f.out; false after ctx.fail.
   bool run(aq::Context& ctx, const FastFrame& f);
@@ -46,12 +53,15 @@ class FastLayers {
  private:
   struct Targets {
     aq_image lists[4]{}, spare[4]{}, peak{}, spare_one{}, edges{}, blur_edges{}, colours{},
-        overrides{};
+        overrides{}, cells{}, threshold{};
   };
   bool build_table(aq::Context& ctx);
   bool colours(aq::Context& ctx, const FastFrame& f, Targets& t);
   bool segment_and_blur(aq::Context& ctx, const FastFrame& f, Targets& t);
   bool peaks_and_edges(aq::Context& ctx, const FastFrame& f, Targets& t);
+  bool cells(aq::Context& ctx, const FastFrame& f, Targets& t);
+  bool threshold_map(aq::Context& ctx, const FastFrame& f, Targets& t);
+  static void set_threshold(aq::Context& ctx, GLuint program);
   bool composite(aq::Context& ctx, const FastFrame& f, const Targets& t);
   bool gather(aq::Context& ctx, int mode, const aq_image& keys, const aq_image* values, int axis,
               double sigma, int radius, const aq_image* targets, int target_count);
@@ -62,7 +72,12 @@ class FastLayers {
   aq::gl::Buffer table_;
   GLuint table_program_ = 0;
   uint32_t generation_ = 0;
-  std::string segment_text_, gather_text_[3], edges_text_, colours_text_, composite_text_;
+  int divisor_ = 2;  // this frame's, divisor_for(σ)
+  std::string segment_text_, gather_text_[3], edges_text_, colours_text_, composite_text_,
+      cells_text_, threshold_text_;
+  aq::gl::KeptTexture threshold_;          // layered_threshold per pixel
+  std::array<double, 4> threshold_key_{};  // the parameters it was drawn with
+  aq::gl::Sampler bilinear_;  // for the composite's interpolation inside agreeing cells
   std::vector<float> overrides_;
 };
 

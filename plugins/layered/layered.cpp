@@ -121,10 +121,11 @@ constexpr aq_param_desc kParams[] = {
                     "depth (scene units) behind its occluder over which a surface passes from "
                     "semi-visible to fully shadowed"),
     aq::color_param("shadow_color", 0.35, 0.4, 0.6, "pigment of the shadow glaze (cool)"),
-    aq::enum_param("method", "exact|fast", kExact,
-                   "exact: every layer at full size, as the CPU reference; fast: all layers at "
-                   "once at half resolution with a short list of the four nearest layers per "
-                   "texel (README: Fast method)")};
+    aq::enum_param("method", "exact|fast", kFast,
+                   "fast: all layers at once at a quarter (abstraction_sigma >= 2.24 px) or half "
+                   "resolution with a short list of the four nearest layers per texel, no "
+                   "readback (README: Fast method); exact: every layer at full size, as the CPU "
+                   "reference")};
 
 constexpr int kLayersPerRange = 4;
 
@@ -223,7 +224,9 @@ struct Layered {
     // covers the whole image).
     std::vector<Rect> last_paint;
     if (f.range_count > 0) ok = ok && gooch_colours(ctx, f);
-    if (f.range_count > 0 && f.has_shadow) ok = ok && shadow_layer(ctx, f);
+    if (f.range_count > 0 && f.has_shadow) {
+      ok = ok && shadow_layer(ctx, f, ctx.param_float(kShadowSoftness) * ctx.render_scale());
+    }
     for (size_t r = 0; ok && r < f.range_count; ++r) ok = run_range(ctx, f, r, last_paint);
     glDisable(GL_SCISSOR_TEST);
     aq::unbind_textures(15);
@@ -236,11 +239,17 @@ struct Layered {
     f.has_paper = ctx.connected(kPaper);
     if (!ctx.output_like(0, ctx.input_image(kId), &f.out)) return false;
     if (f.has_shadow) {
+      // The shadow layer at the lists' resolution: averaged there, blurred there, divided
+      // after the composite's bilinear enlargement (README "Fast method").
+      const int d = layered::FastLayers::divisor_for(f.sigma);
+      const int lw = (f.w + d - 1) / d, lh = (f.h + d - 1) / d;
       const uint32_t f32 = AQ_FORMAT_RGBA32F;
-      if (!ctx.scratch(f.w, f.h, f32, &f.shadow_raw) ||
-          !ctx.scratch(f.w, f.h, f32, &f.shadow_blur) ||
-          !ctx.scratch(f.w, f.h, f32, &f.horizontal) || !compile_shadow(ctx, f) ||
-          !shadow_layer(ctx, f)) {
+      if (!ctx.scratch(lw, lh, f32, &f.shadow_raw) || !ctx.scratch(lw, lh, f32, &f.shadow_blur) ||
+          !ctx.scratch(lw, lh, f32, &f.horizontal) ||
+          !compile_shadow(ctx, f, shaders::layered_fast_shadow_frag, d) ||
+          !shadow_layer(ctx, f,
+                        layered::FastLayers::low_sigma(
+                            ctx.param_float(kShadowSoftness) * ctx.render_scale(), d))) {
         return false;
       }
     }
@@ -264,12 +273,15 @@ struct Layered {
     return fast.run(ctx, ff);
   }
 
-  bool compile_shadow(aq::Context& ctx, Frame& f) {
+  // The exact method's per-pixel shadow pass, or with `divisor` > 1 the fast method's average
+  // over divisor x divisor pixels.
+  bool compile_shadow(aq::Context& ctx, Frame& f, const aq_shader_source& main, int divisor) {
     const std::string defines =
         define("AQ_HAS_PAPER", f.has_paper ? 1 : 0) + define("AQ_HAS_SHADOW", 1) +
-        define("AQ_MIX_MODE", ctx.param_enum(kMixing)) + define("AQ_VIEW", ctx.param_enum(kView));
-    shadow_text = compose(defines, shaders::layered_shadow_frag, "");
-    f.shadow_program = ctx.program({"layered_shadow.frag", shadow_text.c_str(), nullptr});
+        define("AQ_MIX_MODE", ctx.param_enum(kMixing)) + define("AQ_VIEW", ctx.param_enum(kView)) +
+        define("AQ_DIVISOR", divisor);
+    shadow_text = compose(defines, main, shaders::layered_shadow_glsl.text);
+    f.shadow_program = ctx.program({main.name, shadow_text.c_str(), nullptr});
     return f.shadow_program != 0;
   }
 
@@ -456,7 +468,7 @@ struct Layered {
         compose(defines, shaders::layered_colours_frag, "#include \"aquarelle/pigment.glsl\"\n");
     f.colours_program = ctx.program({"layered_colours.frag", colours_text.c_str(), nullptr});
     if (f.colours_program == 0) return false;
-    if (f.has_shadow && !compile_shadow(ctx, f)) return false;
+    if (f.has_shadow && !compile_shadow(ctx, f, shaders::layered_shadow_frag, 1)) return false;
     return f.segment != 0 && f.edge != 0 && f.paper != 0 && f.composite != 0 && f.peak_program != 0;
   }
 
@@ -715,7 +727,8 @@ struct Layered {
   // Soft shadows (README): the binary visibility and the smooth step over the gap behind the
   // occluder per receiver pixel (layered_shadow.frag), then the shared Gaussian of the
   // (shadow, receivers) pair; the last composite glazes it.
-  bool shadow_layer(aq::Context& ctx, const Frame& f) {
+  // The shadow pass into f.shadow_raw, then its Gaussian of σ `sigma` (pixels of that image).
+  bool shadow_layer(aq::Context& ctx, const Frame& f, double sigma) {
     const aq_scene* scene = ctx.input_scene(kScene);
     const aq_image shadow = ctx.input_image(kShadow);
     // The matrix the shadow map was drawn with (as cel_light finds it): fitted to the
@@ -737,7 +750,6 @@ struct Layered {
     aq::set_float(p, "u_shadow_band", ctx.param_float(kShadowBand));
     if (!ctx.draw(f.shadow_raw)) return false;
     aq::unbind_textures(3);
-    const double sigma = ctx.param_float(kShadowSoftness) * ctx.render_scale();
     return aq::gaussian::blur_pass(ctx, f.shadow_raw, f.horizontal, sigma, 0) &&
            aq::gaussian::blur_pass(ctx, f.horizontal, f.shadow_blur, sigma, 1);
   }

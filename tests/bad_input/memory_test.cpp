@@ -10,6 +10,7 @@
 #include <aquarelle/core/image_io.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <utility>
 
@@ -245,6 +246,49 @@ TEST(SmallFilesLargeMemory, CoincidentTrianglesRenderInSeconds) {
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_LT(run.seconds, 20.0);
   EXPECT_LT(run.peak_kib, kOneGigabyteKib);
+}
+
+// Distinct corners instead of shared ones: 150,000 vertices crowded within the weld tolerance
+// (1e-5 of the mesh's size, which one far triangle makes large), every one compared with all
+// earlier ones in its cell (over a minute). It renders in seconds.
+TEST(SmallFilesLargeMemory, CrowdedDistinctVerticesRenderInSeconds) {
+  const fs::path dir = scratch_dir("bad_input_mem_obj_crowded");
+  std::string obj = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nv 20000 0 0\n";
+  for (int i = 0; i < 150000; ++i) {
+    // Distinct floats inside a 0.02-wide cube; the tolerance is 1e-5 x 20000 = 0.2.
+    char line[96];
+    std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", 1e-7 * i, 1.3e-7 * (i % 1000),
+                  0.01 + 1.7e-7 * (i % 777));
+    obj += line;
+  }
+  obj += "f 1 2 3\nf 1 2 4\n";
+  for (int i = 0; i < 150000; i += 3)
+    obj += "f " + std::to_string(5 + i) + " " + std::to_string(6 + i) + " " +
+           std::to_string(7 + i) + "\n";
+  write_bytes(dir / "crowd.obj", obj);
+  write_bytes(dir / "g.json", mesh_graph("crowd.obj"));
+  const MeasuredRun run = aquarelle_measured(
+      60, "render " + (dir / "g.json").string() + " -q -o " + (dir / "out.exr").string());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_LT(run.seconds, 20.0);
+  EXPECT_LT(run.peak_kib, kOneGigabyteKib);
+}
+
+// 400,000 unconnected nodes (11 MB of JSON) took 10 s and 720 MB and printed 400,000 lines;
+// a graph file holds at most kMaxGraphFileNodes, refused in one line.
+TEST(SmallFilesLargeMemory, GraphOfManyUnusedNodesIsRefusedInOneLine) {
+  const fs::path dir = scratch_dir("bad_input_mem_many_nodes");
+  std::string graph = R"({"aquarelle": 1, "settings": {"width": 16, "height": 16}, "nodes": {)";
+  for (int i = 0; i < 400000; ++i) graph += "\"n" + std::to_string(i) + R"(": {"type": "tint"},)";
+  graph += R"("src": {"type": "read", "params": {"path": "x.png"}}}, "output": "src.image"})";
+  write_bytes(dir / "g.json", graph);
+  const MeasuredRun run = aquarelle_measured(
+      60, "render " + (dir / "g.json").string() + " -q -o " + (dir / "out.exr").string());
+  EXPECT_EQ(run.exit_code, 1) << run.output.substr(0, 2000);
+  EXPECT_EQ(line_count(run.output), 1) << run.output.substr(0, 2000);
+  EXPECT_TRUE(mentions(run.output, "400001 nodes")) << run.output.substr(0, 2000);
+  EXPECT_LT(run.seconds, 20.0);
+  EXPECT_LT(run.peak_kib, kOneGigabyteKib / 2);
 }
 
 }  // namespace

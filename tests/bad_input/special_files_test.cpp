@@ -191,5 +191,25 @@ TEST(Signals, SigintStopsARenderInsideALongNode) {
   expect_prompt_stop(SIGINT);
 }
 
+// The editor read its graph, its script and its autosave with a plain ifstream: a FIFO as any
+// of them left the window waiting for ever. Each is refused at once with exit 1.
+TEST(SpecialFiles, EditorGraphAndScriptMustBeRegular) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "no xvfb-run";
+  const fs::path dir = scratch_dir("bad_input_special_editor");
+  make_fifo(dir / "fifo.json");
+  write_bytes(dir / "g.json", R"({"aquarelle": 1, "nodes": {}})");
+  for (const std::string args :
+       {"fifo.json", "g.json --script fifo.json", "g.json --script /dev/zero"}) {
+    // The editor's status is printed inside xvfb-run, whose own status also counts its
+    // clean-up (which fails now and then when several servers come and go).
+    const CommandResult run =
+        run_command("cd " + dir.string() + " && timeout -s KILL 60 xvfb-run -a sh -c '" +
+                    AQ_APP_PATH + " edit " + args + " --quit --size 320x240; echo status=$?'");
+    EXPECT_NE(run.output.find("status=1"), std::string::npos) << args << ": " << run.output;
+    EXPECT_NE(run.output.find("only regular files"), std::string::npos)
+        << args << ": " << run.output;
+  }
+}
+
 }  // namespace
 }  // namespace aq::test::bad_input

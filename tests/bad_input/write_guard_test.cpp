@@ -1,5 +1,6 @@
 // Round three (issue 40), class 1: no writer destroys an input. One rule, aq::check_may_write,
-// for -o, --layer's side file, `bench --csv/--plot` and the Python module (tested in
+// for -o, --layer's side file, `bench --csv/--plot`, the editor's --screenshot and Save As, and
+// the Python module (tested in
 // test_python_bad_input.py): never onto a file the evaluation reads, resolved through links
 // (a texture an OBJ's MTL names included), never onto something that is not a regular file.
 #include <aquarelle/core/graph_io.h>
@@ -7,6 +8,7 @@
 #include <aquarelle/core/write_guard.h>
 
 #include "bad_input/bad_input_support.h"
+#include "editor/window_fixture.h"
 
 namespace aq::test::bad_input {
 namespace {
@@ -112,6 +114,34 @@ TEST(WriteGuard, PlotFromAFifoOrAFolderIsExitOne) {
         30, "bench --plot-from " + report.string() + " --plot " + (dir / "plot.png").string());
     EXPECT_EQ(result.exit_code, 1) << report << ": " << result.output;
     EXPECT_TRUE(mentions(result.output, "--plot-from")) << result.output;
+  }
+}
+
+// The editor writes too: `--screenshot` onto an image the graph reads or onto the graph, and
+// Save As onto the image, each wrote over the input (the window's pixels, the graph's JSON).
+class EditorWrites : public aq::test::EditorWindowTest {};
+
+TEST_F(EditorWrites, ScreenshotAndSaveAsNeverWriteOntoAnInput) {
+  ASSERT_TRUE(write_image((dir_ / "input.png").string(), gradient_image(8, 8)).ok());
+  write_bytes(dir_ / "graph.json", R"({"aquarelle": 1,
+  "settings": {"width": 32, "height": 32, "frames": [1, 1]},
+  "nodes": {"source": {"type": "read", "params": {"path": "input.png"}}},
+  "output": "source.image"})");
+  const std::string image = file_bytes(dir_ / "input.png");
+  const std::string graph = file_bytes(dir_ / "graph.json");
+  write_bytes(dir_ / "none.json", "[]");
+  write_bytes(dir_ / "save.json", R"([{"do": "save", "path": "input.png", "replace": true}])");
+  struct Case {
+    std::string args, names;
+  };
+  for (const Case& c : {Case{"--script none.json --screenshot input.png", "--screenshot"},
+                        Case{"--script none.json --screenshot graph.json", "--screenshot"},
+                        Case{"--script save.json --screenshot shot.png", "Save As"}}) {
+    std::string log;
+    EXPECT_EQ(run_editor("graph.json " + c.args + " --quit --size 640x400", &log), 1) << log;
+    EXPECT_TRUE(mentions(log, c.names)) << log;
+    EXPECT_TRUE(file_bytes(dir_ / "input.png") == image) << "input.png overwritten: " << c.args;
+    EXPECT_TRUE(file_bytes(dir_ / "graph.json") == graph) << "graph.json overwritten: " << c.args;
   }
 }
 

@@ -8,6 +8,7 @@
 #include <aquarelle/core/plugin_loader.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -197,6 +198,10 @@ TEST(BadGraph, TenThousandBrokenNodesAreAllReported) {
   text += R"(}, "output": "src.image"})";
   const aq::ReadResult result = aq::read_graph_text(text, registry(), "broken.json");
   ASSERT_EQ(result.problems.size(), 20000u);
+  // Printed, they are a screenful and a count, not 20,000 lines.
+  const std::string printed = aq::format_problems(result.problems);
+  EXPECT_EQ(std::count(printed.begin(), printed.end(), '\n'), 40);
+  EXPECT_NE(printed.find("... and 19960 more problems"), std::string::npos);
   for (size_t i = 0; i < result.problems.size(); i += 997) {
     const aq::Problem& problem = result.problems[i];
     EXPECT_EQ(problem.node.substr(0, 1), "t");

@@ -348,6 +348,12 @@ TEST(Layered, NanAndInfinityStayFinite) {
   for (MixMode mode : {MixMode::kRgb, MixMode::kCmyk, MixMode::kKubelkaMunk}) {
     p.mixing = mode;
     EXPECT_TRUE(aq::test::all_finite(run(g, p, &paper))) << static_cast<int>(mode);
+    // The default fast method too, at a quarter (σ = 3) and a half (σ = 2) resolution.
+    EXPECT_TRUE(aq::test::all_finite(run(g, p, &paper, "float", "fast"))) << static_cast<int>(mode);
+    LayeredParams half = p;
+    half.abstraction_sigma = 2.0;
+    EXPECT_TRUE(aq::test::all_finite(run(g, half, &paper, "half", "fast")))
+        << static_cast<int>(mode);
   }
 }
 
@@ -501,19 +507,50 @@ TEST(Layered, ManyRangesOverAFloorMatchTheReference) {
 
 namespace {
 
-// The fast method (README "Fast method"): every layer at half resolution with four layers per
-// texel, no readback. An approximation: close to the reference, not equal to it (measured
-// 46.6 dB, mean 1.1e-3, max 0.067 here; rgb mixing 44.0 dB).
+// The fast method (README "Fast method"): every layer at a quarter (σ ≥ 2.24 px) or half
+// resolution with four layers per texel, no readback. An approximation: close to the reference,
+// not equal to it. Half resolution at σ = 3 (before the quarter existed): 46.6 dB, mean
+// 1.1e-3, max 0.067. At σ = 2 (half resolution now): 42.5 dB or more, mean under 2.5e-3, max
+// 0.62 at a few pixels of a one-pixel tip kept by one and dropped by the other.
 TEST(Layered, FastMethodStaysNearTheReference) {
   const GBuffer g = scene(128, 128);
   const ImageF paper = paper_image(128, 128);
-  const LayeredParams p = comparable();
+  LayeredParams p = comparable();
+  p.abstraction_sigma = 2.0;
   const ImageF fast = run(g, p, &paper, "float", "fast");
   const ImageF cpu = reference(g, p, &paper);
   EXPECT_GT(aq::test::psnr(fast, cpu, 1.0, 3), 42.0);
   EXPECT_LT(aq::test::mean_abs_diff(fast, cpu, 3), 2.5e-3);
-  EXPECT_LT(aq::test::max_abs_diff(fast, cpu, 3), 0.15);
+  EXPECT_LT(aq::test::max_abs_diff(fast, cpu, 3), 0.7);
   EXPECT_GT(aq::test::max_abs_diff(fast, run(g, p, &paper), 3), 1e-3) << "fast is not exact";
+}
+
+// The default is the fast method, at a quarter resolution for the default σ = 3 px: the node
+// without `method` is not the exact method, and stays near the CPU reference (measured
+// 35.0 dB, mean 4.4e-3, max 0.56 where a shape's rim or a one-pixel tip moves by a pixel).
+TEST(Layered, TheDefaultIsTheFastMethodNearTheReference) {
+  const GBuffer g = scene(128, 128);
+  const ImageF paper = paper_image(128, 128);
+  const LayeredParams p = comparable();
+  nlohmann::json params = to_json(p);
+  params.erase("method");
+  aq::test::RenderOptions options;
+  options.width = 128;
+  options.height = 128;
+  options.precision = "float";
+  auto fast = aq::test::run_node("layered",
+                                 {{"id", g.id},
+                                  {"normal", g.normal},
+                                  {"albedo", g.albedo},
+                                  {"depth", g.depth},
+                                  {"paper", paper}},
+                                 params, options);
+  ASSERT_TRUE(fast.ok()) << fast.message();
+  const ImageF cpu = reference(g, p, &paper);
+  EXPECT_GT(aq::test::max_abs_diff(*fast, run(g, p, &paper), 3), 1e-3) << "exact is not default";
+  EXPECT_GT(aq::test::psnr(*fast, cpu, 1.0, 3), 33.0);
+  EXPECT_LT(aq::test::mean_abs_diff(*fast, cpu, 3), 6e-3);
+  EXPECT_LT(aq::test::max_abs_diff(*fast, cpu, 3), 0.7);
 }
 
 }  // namespace

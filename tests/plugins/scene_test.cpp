@@ -12,6 +12,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
+#include <numeric>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -223,6 +227,88 @@ TEST(Weld, UsesDistanceNotRoundedCells) {
   EXPECT_EQ(group[1], group[2]);  // transitive
   EXPECT_NE(group[2], group[3]);
   EXPECT_EQ(groups, 2u);
+}
+
+// The definition the weld implements, by brute force: vertices closer than `tol`,
+// transitively, share a group. Returns a canonical labelling (first vertex of each group).
+std::vector<uint32_t> weld_by_definition(const std::vector<float>& p, double tol) {
+  const size_t n = p.size() / 3;
+  std::vector<uint32_t> label(n);
+  std::iota(label.begin(), label.end(), 0u);
+  std::function<uint32_t(uint32_t)> find = [&](uint32_t x) {
+    return label[x] == x ? x : label[x] = find(label[x]);
+  };
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = 0; j < i; ++j) {
+      const double dx = p[3 * i] - p[3 * j], dy = p[3 * i + 1] - p[3 * j + 1],
+                   dz = p[3 * i + 2] - p[3 * j + 2];
+      if (std::sqrt(dx * dx + dy * dy + dz * dz) <= tol) {
+        const uint32_t a = find(i), b = find(j);
+        label[std::max(a, b)] = std::min(a, b);
+      }
+    }
+  for (size_t i = 0; i < n; ++i) label[i] = find(i);
+  return label;
+}
+
+// Two labellings describe the same partition.
+bool same_partition(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
+  std::map<uint32_t, uint32_t> a_to_b, b_to_a;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a_to_b.emplace(a[i], b[i]).first->second != b[i]) return false;
+    if (b_to_a.emplace(b[i], a[i]).first->second != a[i]) return false;
+  }
+  return true;
+}
+
+std::vector<float> random_cloud(size_t n, double extent, uint32_t seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> coordinate(0.0f, static_cast<float>(extent));
+  std::vector<float> p(3 * n);
+  for (float& v : p) v = coordinate(random);
+  return p;
+}
+
+TEST(Weld, MatchesTheDistanceDefinitionOnRandomClouds) {
+  // Sparse to dense: from isolated points to chains of welds across many cells.
+  const double tol = 0.01;
+  for (const double extent : {1.0, 0.3, 0.12}) {
+    const std::vector<float> p = random_cloud(1500, extent, 11);
+    uint32_t groups = 0;
+    const std::vector<uint32_t> group = aq::mesh::weld_positions(p, tol, &groups);
+    EXPECT_TRUE(same_partition(group, weld_by_definition(p, tol))) << "extent " << extent;
+  }
+}
+
+// 200,000 distinct vertices inside one tolerance-sized cube (a file can hold them: the weld
+// tolerance is relative to the whole mesh's size, which one far vertex makes large). Every
+// vertex compared against every earlier one in its cell: 2e10 distances, minutes (issue 40).
+// By the definition they are all one group.
+TEST(Weld, ACrowdOfDistinctVerticesInOneCellIsWeldedInLinearTime) {
+  const double tol = 1e-2;
+  std::vector<float> p = random_cloud(200000, tol / 2, 5);
+  uint32_t groups = 0;
+  aq::mesh::weld_positions(p, tol, &groups);
+  EXPECT_EQ(groups, 1u);
+}
+
+// Where a crowd is not all within reach, the guarantee still holds: every two vertices within
+// the tolerance share a group; welded vertices further apart than (1 + sqrt 3) tolerance are
+// only ever joined through a chain of such steps.
+TEST(Weld, InsideACrowdVerticesWithinTheToleranceAlwaysShareAGroup) {
+  const double tol = 1e-2;
+  const std::vector<float> p = random_cloud(3000, 3 * tol, 9);
+  uint32_t groups = 0;
+  const std::vector<uint32_t> group = aq::mesh::weld_positions(p, tol, &groups);
+  const std::vector<uint32_t> exact = weld_by_definition(p, tol);
+  for (size_t i = 0; i < exact.size(); ++i)
+    ASSERT_EQ(group[i], group[exact[i]]) << "vertex " << i << " within reach of " << exact[i];
+  const std::vector<uint32_t> loose = weld_by_definition(p, (1 + std::sqrt(3.0)) * tol);
+  for (size_t i = 0; i < group.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (group[i] == group[j]) {
+        ASSERT_EQ(loose[i], loose[j]) << i << " and " << j;
+      }
 }
 
 // ---- GPU: the scene node through gbuffer -------------------------------------------------

@@ -5,6 +5,8 @@
 layout(location = 0) out vec4 o_color;
 
 uniform sampler2D u_keys;
+uniform sampler2D u_threshold_map;  // layered_threshold per pixel (layered_fast_threshold.frag)
+uniform sampler2D u_cells;  // a texel's list where it and its +x, +y, +xy neighbours agree, else -1
 uniform sampler2D u_blur_intensity;
 uniform sampler2D u_blur_diffuse;
 uniform sampler2D u_blur_depth;
@@ -22,6 +24,7 @@ uniform vec3 u_half;
 uniform float u_shininess;
 uniform float u_specular_threshold;
 uniform float u_thin;
+uniform vec2 u_ridge;  // the ridge test's smooth step on b / m (README "Fast method")
 uniform float u_line_width_scale;
 uniform float u_edge_gain;
 uniform float u_edge_darkness;
@@ -34,9 +37,9 @@ uniform vec3 u_paper_color;
 uniform float u_paper_relief;
 #if AQ_HAS_SHADOW
 uniform sampler2D u_shadow_layer;
-uniform sampler2D u_shadow_raw;
 uniform float u_shadows;
-uniform vec3 u_shadow_color;
+uniform vec3 u_shadow_k;  // the shadow colour's Kubelka–Munk K and S
+uniform vec3 u_shadow_s;
 #endif
 
 vec3 pigment_mix(vec3 a, vec3 b, float t) {
@@ -49,9 +52,31 @@ vec3 pigment_mix(vec3 a, vec3 b, float t) {
 #endif
 }
 
+// Kubelka–Munk layer of thickness x and constants (k, s) over a background reflecting r2
+// (aq_km_layer and aq_km_over, with sinh and cosh from one exp: llvmpipe evaluates each of
+// them with two).
+vec3 km_over(vec3 k, vec3 s, float x, vec3 r2) {
+  vec3 q = k / max(s, vec3(1.0e-30));
+  vec3 a = 1.0 + q;
+  vec3 b = sqrt(max(q * (q + 2.0), vec3(1.0e-12)));
+  vec3 e = exp(min(b * s * x, vec3(40.0)));
+  vec3 ie = 1.0 / e;
+  vec3 sh = 0.5 * (e - ie), ch = 0.5 * (e + ie);
+  vec3 c = a * sh + b * ch;
+  vec3 r = sh / c, tr = b / c;
+  vec3 over = r + tr * tr * r2 / (1.0 - r * r2);
+  return mix(r2, over, vec3(greaterThan(s, vec3(0.0))));  // no scattering: no layer
+}
+
 vec3 glaze(vec3 under, vec3 colour, float thickness) {
 #if AQ_MIX_MODE == 2
-  return aq_km_glaze(under, colour, thickness);
+  if (!(thickness > 0.0)) return aq_pigment_sanitize(under);
+  colour = aq_pigment_sanitize(colour);
+  vec2 kr = aq_km_ks(colour.r, AQ_KM_BLACK_RATIO * colour.r);
+  vec2 kg = aq_km_ks(colour.g, AQ_KM_BLACK_RATIO * colour.g);
+  vec2 kb = aq_km_ks(colour.b, AQ_KM_BLACK_RATIO * colour.b);
+  return aq_pigment_sanitize(
+      km_over(vec3(kr.x, kg.x, kb.x), vec3(kr.y, kg.y, kb.y), thickness, aq_pigment_sanitize(under)));
 #else
   vec3 c = pow(aq_pigment_sanitize(colour), vec3(max(thickness, 1.0)));
   return pigment_mix(under, c, min(thickness, 1.0));
@@ -62,16 +87,34 @@ struct Layers {
   vec4 keys, b, bd, bz, peak, edges;
 };
 
-// The four half-resolution texels around p, the nearest first, each one's layers moved to
-// the slots of the merged list.
+// The four low-resolution texels around p, bilinearly. Where they hold the same list
+// (u_cells, layered_fast_cells.frag: most of the image) the texture unit's bilinear filter
+// does it, one fetch per layer of the list; elsewhere each corner's layers are moved to the
+// slots of a merged list, the nearest corner first. Both are loops whose condition is per
+// pixel: llvmpipe runs both sides of a branch under a mask, but leaves a loop as soon as no
+// pixel of the group needs another turn.
 Layers interpolate(vec2 frag) {
   ivec2 size = textureSize(u_keys, 0);
-  vec2 q = frag / 2.0 - 0.5;
-  vec2 f = fract(q);
+  vec2 q = frag / float(AQ_DIVISOR) - 0.5;
   ivec2 base = ivec2(floor(q));
+  vec4 cell = texelFetch(u_cells, clamp(base, ivec2(0), size - 1), 0);
+  vec2 strip = vec2(textureSize(u_cells, 0));
+  vec2 uv = (q + 0.5) / strip;
+  vec2 part = vec2(float(size.x) / strip.x, 0.0);
+  vec2 st = (q + 0.5) / vec2(size);
+  Layers l = Layers(cell, vec4(0.0), vec4(0.0), vec4(0.0), texture(u_peak, st),
+                    texture(u_blur_edges, st));
+  for (int k = 0; k < 4 && cell[k] > 0.5; ++k) {
+    vec4 v = texture(u_cells, uv + float(k + 1) * part);
+    l.b[k] = v.x;
+    l.bd[k] = v.y;
+    l.bz[k] = v.z;
+  }
+  bool merge = cell.x < 0.0 || any(lessThan(base, ivec2(0))) || any(greaterThanEqual(base + 1, size));
+  vec2 f = fract(q);
   ivec2 near = ivec2(step(0.5, f));  // the nearest corner
-  Layers l = Layers(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
-  for (int n = 0; n < 4; ++n) {
+  for (int n = 0; merge && n < 4; ++n) {
+    if (n == 0) l = Layers(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
     ivec2 corner = ivec2(n & 1, n >> 1) ^ near;  // n = 0 is the nearest
     vec2 w2 = mix(1.0 - f, f, vec2(corner));
     float w = w2.x * w2.y;
@@ -86,22 +129,39 @@ Layers interpolate(vec2 frag) {
   return l;
 }
 
-// One layer's glaze (layered_composite.frag's painting view).
-vec3 paint(vec3 under, int slot, float b, float bd, float bz, float peak, float be, float raw,
-           float t, float front, float granulation) {
+// The wash: d mixes the layer's dark and light pigments, glazed `thickness` thick over
+// `under`. Kubelka–Munk: the K and S of both pigments come from the colours pass (rows 3–6) and
+// are mixed by concentration, and the mixture itself is laid (the exact method lays the pigment
+// whose unit layer looks like the mixture, which is the same pigment at d = 0 and 1 and close to
+// it between; README "Fast method").
+vec3 wash(vec3 under, int slot, float d, float thickness) {
+#if AQ_MIX_MODE == 2
+  vec3 k = mix(texelFetch(u_colours, ivec2(slot, 5), 0).rgb,
+               texelFetch(u_colours, ivec2(slot, 3), 0).rgb, d);
+  vec3 s = mix(texelFetch(u_colours, ivec2(slot, 6), 0).rgb,
+               texelFetch(u_colours, ivec2(slot, 4), 0).rgb, d);
+  return aq_pigment_sanitize(km_over(k, s, thickness, aq_pigment_sanitize(under)));
+#else
+  return glaze(under,
+               pigment_mix(texelFetch(u_colours, ivec2(slot, 1), 0).rgb,
+                           texelFetch(u_colours, ivec2(slot, 0), 0).rgb, d),
+               thickness);
+#endif
+}
+
+// One layer's glaze (layered_composite.frag's painting view); a layer that puts down no
+// pigment here (thickness under 1e-5) costs no colour mixing.
+vec3 paint(vec3 under, int slot, bool wet_in_wet, float b, float bd, float bz, float peak,
+           float be, float raw, float t, float front, float granulation) {
   if (!(b > 1.0e-6)) return under;
   float a = layered_abstract(vec4(b), t).x;
   if (u_thin > 0.0) {
-    float ridge = smoothstep(0.75, 0.9, b / max(peak, 1.0e-6));
+    float ridge = smoothstep(u_ridge.x, u_ridge.y, b / max(peak, 1.0e-6));
     float wide_enough = smoothstep(0.5, 1.0, peak * u_line_width_scale);
     a = max(a, u_thin * raw * ridge * wide_enough);
   }
   float e = clamp(u_edge_gain * be, 0.0, 1.0);
   float w = 1.0 - (1.0 - e) * (1.0 - e);
-  float d = clamp(bd / b, 0.0, 1.0);
-  vec3 colour = pigment_mix(texelFetch(u_colours, ivec2(slot, 1), 0).rgb,
-                            texelFetch(u_colours, ivec2(slot, 0), 0).rgb, d);
-  bool wet_in_wet = texelFetch(u_colours, ivec2(slot, 2), 0).g > 0.5;
   float cover = a, extra = 0.0;
   if (wet_in_wet) {
     cover = max(a, u_wet_spread * w);
@@ -112,7 +172,37 @@ vec3 paint(vec3 under, int slot, float b, float bd, float bz, float peak, float 
   bool has_front = front > 0.0 && front < 3.0e38;
   float visible =
       has_front ? 1.0 - smoothstep(0.0, max(u_depth_band, 1.0e-6), bz / b - front) : 1.0;
-  return glaze(under, colour, u_density * cover * visible * granulation * (1.0 + extra));
+  float thickness = u_density * cover * visible * granulation * (1.0 + extra);
+  if (!(thickness > 1.0e-5)) return under;
+  return wash(under, slot, clamp(bd / b, 0.0, 1.0), thickness);
+}
+
+// A pixel's layers with their table rows: mean depth, id, wet-in-wet.
+struct Ordered {
+  Layers l;
+  vec4 depth, id, wet;
+};
+
+void swap_component(inout vec4 v, int a, int c) {
+  float x = v[a];
+  v[a] = v[c];
+  v[c] = x;
+}
+
+// Puts layers a < c (constant components) far to near: c first if it lies farther, or as far
+// with a smaller id; empty slots (depth −3e38) stay behind.
+void order_pair(inout Ordered o, int a, int c) {
+  bool swap = o.depth[c] > o.depth[a] || (o.depth[c] == o.depth[a] && o.id[c] < o.id[a]);
+  if (!swap) return;
+  swap_component(o.l.keys, a, c);
+  swap_component(o.l.b, a, c);
+  swap_component(o.l.bd, a, c);
+  swap_component(o.l.bz, a, c);
+  swap_component(o.l.peak, a, c);
+  swap_component(o.l.edges, a, c);
+  swap_component(o.depth, a, c);
+  swap_component(o.id, a, c);
+  swap_component(o.wet, a, c);
 }
 
 void main() {
@@ -132,38 +222,34 @@ void main() {
   n = len > 1.0e-6 && len < 1.0e30 ? n / len : vec3(0.0);
   float lit_part = pow(max(dot(n, u_half), 0.0), u_shininess) >= u_specular_threshold ? 0.0 : 1.0;
   float front = texelFetch(u_depth, p, 0).r;
-  float t = layered_threshold(gl_FragCoord.xy);
-  // Far to near: mean depth descending, then id ascending (insertion sort of four).
-  int order[4] = int[4](0, 1, 2, 3);
-  vec4 depth_of = vec4(0.0), id_of = vec4(0.0);
-  for (int k = 0; k < 4; ++k) {
-    if (!(l.keys[k] > 0.5)) continue;
+  float t = texelFetch(u_threshold_map, p, 0).r;  // layered_threshold, kept between frames
+  // Far to near: mean depth descending, then id ascending, empty slots last. A sorting network
+  // with fixed components (indexing a local array by a computed index is slow on llvmpipe);
+  // then the layers in order. llvmpipe runs both sides of a branch under a mask but leaves a
+  // loop once no pixel of the group needs another turn, so the loop costs what the group's
+  // longest list needs: one layer in most of the image.
+  Ordered o = Ordered(l, vec4(-3.0e38), vec4(0.0), vec4(0.0));
+  for (int k = 0; k < 4 && l.keys[k] > 0.5; ++k) {
     vec4 row = texelFetch(u_colours, ivec2(int(l.keys[k]) - 1, 2), 0);
-    depth_of[k] = row.r;
-    id_of[k] = row.a;
+    o.depth[k] = row.r;
+    o.id[k] = row.a;
+    o.wet[k] = row.g;
   }
-  for (int i = 1; i < 4; ++i) {
-    for (int j = i; j > 0; --j) {
-      int a = order[j - 1], c = order[j];
-      bool swap = depth_of[c] > depth_of[a] || (depth_of[c] == depth_of[a] && id_of[c] < id_of[a]);
-      if (!swap) break;
-      order[j - 1] = c;
-      order[j] = a;
-    }
-  }
-  for (int i = 0; i < 4; ++i) {
-    int k = order[i];
-    if (!(l.keys[k] > 0.5)) continue;
-    float raw = id == id_of[k] ? lit_part : 0.0;
-    under = paint(under, int(l.keys[k]) - 1, l.b[k], l.bd[k], l.bz[k], l.peak[k], l.edges[k], raw,
-                  t, front, granulation);
+  order_pair(o, 0, 1);
+  order_pair(o, 2, 3);
+  order_pair(o, 0, 2);
+  order_pair(o, 1, 3);
+  order_pair(o, 1, 2);
+  for (int i = 0; i < 4 && o.l.keys[i] > 0.5; ++i) {
+    float raw = id == o.id[i] ? lit_part : 0.0;
+    under = paint(under, int(o.l.keys[i]) - 1, o.wet[i] > 0.5, o.l.b[i], o.l.bd[i], o.l.bz[i],
+                  o.l.peak[i], o.l.edges[i], raw, t, front, granulation);
   }
 #if AQ_HAS_SHADOW
-  if (texelFetch(u_shadow_raw, p, 0).g > 0.5) {
-    vec2 s = texelFetch(u_shadow_layer, p, 0).rg;
-    float shadow = s.y > 1.0e-6 ? clamp(s.x / s.y, 0.0, 1.0) : 0.0;
-    under = glaze(under, u_shadow_color, u_shadows * shadow);
-  }
+  // The shadow layer's sums at the lists' resolution, enlarged bilinearly, on receivers.
+  vec2 s = texture(u_shadow_layer, gl_FragCoord.xy / (float(AQ_DIVISOR) * vec2(textureSize(u_shadow_layer, 0)))).rg;
+  float shadow = id >= 1.0 && s.y > 1.0e-6 ? clamp(s.x / s.y, 0.0, 1.0) : 0.0;
+  under = aq_pigment_sanitize(km_over(u_shadow_k, u_shadow_s, u_shadows * shadow, under));
 #endif
   o_color = vec4(under, 1.0);
 }

@@ -13,7 +13,7 @@ void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   ivec2 size = textureSize(u_keys, 0);
   vec4 keys = texelFetch(u_keys, p, 0);
-  float t = layered_threshold(2.0 * gl_FragCoord.xy);  // the full-size pixel position
+  float t = layered_threshold(float(AQ_DIVISOR) * gl_FragCoord.xy);  // the full-size pixel position
   vec4 n[9];
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 3; ++i) {

@@ -36,10 +36,10 @@ float table_key(float id) {
 
 void main() {
   ivec2 size = textureSize(u_id, 0);
-  ivec2 base = 2 * ivec2(gl_FragCoord.xy);
+  ivec2 base = AQ_DIVISOR * ivec2(gl_FragCoord.xy);
   vec4 keys = vec4(0.0), intensity = vec4(0.0), diffuse = vec4(0.0), depth = vec4(0.0);
-  for (int j = 0; j < 2; ++j) {
-    for (int i = 0; i < 2; ++i) {
+  for (int j = 0; j < AQ_DIVISOR; ++j) {
+    for (int i = 0; i < AQ_DIVISOR; ++i) {
       ivec2 p = list_clamp(base + ivec2(i, j), size);
       float id = texelFetch(u_id, p, 0).r;
       if (!(id >= 1.0 && id < 16777216.0 && floor(id) == id)) continue;
@@ -50,7 +50,7 @@ void main() {
       n = len > 1.0e-6 && len < 1.0e30 ? n / len : vec3(0.0);
       float lit = clamp(dot(n, u_light), 0.0, 1.0);
       float specular = pow(max(dot(n, u_half), 0.0), u_shininess);
-      float I = specular >= u_specular_threshold ? 0.0 : 0.25;
+      float I = specular >= u_specular_threshold ? 0.0 : 1.0 / float(AQ_DIVISOR * AQ_DIVISOR);
       float z = texelFetch(u_depth, p, 0).r;
       z = z > 0.0 && z < 3.0e38 ? z : 0.0;
       mat4 m = list_merge(keys, vec4(key, 0.0, 0.0, 0.0));

@@ -16,7 +16,12 @@
 // `tolerance`, and welds are transitive (union-find). Copies of one exact position are welded
 // to its first copy without that search (they have the same neighbours): a hostile file of
 // 150,000 triangles on the same three corners made every vertex compare against all earlier
-// ones (quadratic, over a minute; issue 40).
+// ones (quadratic, over a minute; issue 40). Distinct vertices crowded into one cell are the
+// same hang by another road, so a vertex compares against at most `kWeldScanLimit` vertices
+// of a cell; a cell that holds more and that the vertex's tolerance sphere reaches (its box) is
+// welded whole. The guarantee stays: vertices within `tolerance` always share a group; only
+// inside such a crowd (more than 32 distinct vertices within one tolerance-sized cube, which
+// no modelled mesh has) may vertices up to (1 + sqrt 3) x tolerance apart be welded too.
 //
 // Why the fallback: a double-sided part (two triangles with opposite windings on the same
 // positions: a leaf, a fin, a plane seen from both sides) sums to a zero vector; normalising it
@@ -96,6 +101,47 @@ struct CellKeyHash {
   }
 };
 
+// The vertices of one weld cell and their bounding box. `welded_whole`: the cell held more
+// vertices than one search scans, so all of them are one group.
+struct WeldCell {
+  std::vector<uint32_t> vertices;
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  bool welded_whole = false;
+
+  void add(uint32_t index, const Vec3& p) {
+    vertices.push_back(index);
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  }
+  double distance_to_box(const Vec3& p) const {
+    Vec3 outside{};
+    for (int k = 0; k < 3; ++k) outside[k] = std::max({lo[k] - p[k], 0.0, p[k] - hi[k]});
+    return length(outside);
+  }
+};
+
+inline constexpr size_t kWeldScanLimit = 32;
+
+// Unites vertex `i` at `p` with the vertices of `cell` within `tol`, scanning at most
+// kWeldScanLimit of them; past that the whole cell becomes one group with `i` (see the top).
+inline void weld_against_cell(uint32_t i, const Vec3& p, WeldCell& cell,
+                              const std::vector<float>& positions, double tol, UnionFind& sets) {
+  if (!(cell.distance_to_box(p) <= tol)) return;
+  if (cell.welded_whole) {
+    sets.unite(i, cell.vertices.front());
+    return;
+  }
+  if (cell.vertices.size() <= kWeldScanLimit) {
+    for (uint32_t j : cell.vertices)
+      if (length(sub(p, load(positions, j))) <= tol) sets.unite(i, j);
+    return;
+  }
+  for (uint32_t j : cell.vertices) sets.unite(i, j);
+  cell.welded_whole = true;
+}
+
 // A finite position's exact float bits.
 struct ExactKey {
   uint32_t x, y, z;
@@ -126,7 +172,7 @@ inline std::vector<uint32_t> weld_positions(const std::vector<float>& positions,
   const size_t n = positions.size() / 3;
   const double tol = std::max(absolute_tolerance, 1e-30);
   UnionFind sets(n);
-  std::unordered_map<CellKey, std::vector<uint32_t>, CellKeyHash> cells;
+  std::unordered_map<CellKey, WeldCell, CellKeyHash> cells;
   cells.reserve(n);
   std::unordered_map<ExactKey, uint32_t, ExactKeyHash> first_copy;
   first_copy.reserve(n);
@@ -149,12 +195,11 @@ inline std::vector<uint32_t> weld_positions(const std::vector<float>& positions,
       for (int64_t dy = -1; dy <= 1; ++dy)
         for (int64_t dz = -1; dz <= 1; ++dz) {
           auto it = cells.find(CellKey{c.x + dx, c.y + dy, c.z + dz});
-          if (it == cells.end()) continue;
-          for (uint32_t j : it->second) {
-            if (length(sub(p, load(positions, j))) <= tol) sets.unite(i, j);
-          }
+          if (it != cells.end()) weld_against_cell(i, p, it->second, positions, tol, sets);
         }
-    cells[c].push_back(i);
+    WeldCell& own = cells[c];
+    if (own.welded_whole) sets.unite(i, own.vertices.front());
+    own.add(i, p);
   }
   std::vector<uint32_t> group(n);
   std::vector<uint32_t> dense(n, UINT32_MAX);
