@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The README's first command: installs what is missing, builds, and renders the flagship graph
-# headless to underwater.png (pass another output path as the first argument). One still frame,
-# so it renders at `final` (full size, sharp outlines) whatever the graph's default quality,
-# which stays the faster half-size `preview` for animations until `final` is fast enough.
+# headless to underwater.png (pass another output path as the first argument), at `final` (full
+# size, sharp outlines: the graph's default too; `--quality final` keeps it so whatever the graph
+# file says).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-underwater.png}"
