@@ -525,10 +525,11 @@ TEST(Layered, FastMethodStaysNearTheReference) {
   EXPECT_GT(aq::test::max_abs_diff(fast, run(g, p, &paper), 3), 1e-3) << "fast is not exact";
 }
 
-// The default is the fast method, at a quarter resolution for the default σ = 3 px: the node
-// without `method` is not the exact method, and stays near the CPU reference (measured
-// 35.0 dB, mean 4.4e-3, max 0.56 where a shape's rim or a one-pixel tip moves by a pixel).
-TEST(Layered, TheDefaultIsTheFastMethodNearTheReference) {
+// The default is the exact method: the fast one is opt-in (its wet-in-wet feathers are
+// blockier, and a frame it renders after others can differ from the same frame rendered alone:
+// app.chunk_invariance_test failed on layered.json with fast as the default). The node without
+// `method` is the exact method bit for bit, and the fast method is not.
+TEST(Layered, TheDefaultIsTheExactMethod) {
   const GBuffer g = scene(128, 128);
   const ImageF paper = paper_image(128, 128);
   const LayeredParams p = comparable();
@@ -538,19 +539,16 @@ TEST(Layered, TheDefaultIsTheFastMethodNearTheReference) {
   options.width = 128;
   options.height = 128;
   options.precision = "float";
-  auto fast = aq::test::run_node("layered",
-                                 {{"id", g.id},
-                                  {"normal", g.normal},
-                                  {"albedo", g.albedo},
-                                  {"depth", g.depth},
-                                  {"paper", paper}},
-                                 params, options);
-  ASSERT_TRUE(fast.ok()) << fast.message();
-  const ImageF cpu = reference(g, p, &paper);
-  EXPECT_GT(aq::test::max_abs_diff(*fast, run(g, p, &paper), 3), 1e-3) << "exact is not default";
-  EXPECT_GT(aq::test::psnr(*fast, cpu, 1.0, 3), 33.0);
-  EXPECT_LT(aq::test::mean_abs_diff(*fast, cpu, 3), 6e-3);
-  EXPECT_LT(aq::test::max_abs_diff(*fast, cpu, 3), 0.7);
+  auto plain = aq::test::run_node("layered",
+                                  {{"id", g.id},
+                                   {"normal", g.normal},
+                                   {"albedo", g.albedo},
+                                   {"depth", g.depth},
+                                   {"paper", paper}},
+                                  params, options);
+  ASSERT_TRUE(plain.ok()) << plain.message();
+  EXPECT_EQ(aq::test::max_abs_diff(*plain, run(g, p, &paper), 3), 0.0);
+  EXPECT_GT(aq::test::max_abs_diff(*plain, run(g, p, &paper, "float", "fast"), 3), 1e-3);
 }
 
 }  // namespace
