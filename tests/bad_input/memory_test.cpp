@@ -65,6 +65,16 @@ void expect_refused_quickly(const fs::path& dir, const std::string& graph, const
   EXPECT_FALSE(fs::exists(dir / "out.exr"));
 }
 
+// Renders a graph drawing mesh `file` (in `dir`) and checks it is accepted: exit 0, quick, small.
+void expect_renders_quickly(const fs::path& dir, const std::string& file) {
+  write_bytes(dir / "g.json", mesh_graph(file));
+  const MeasuredRun run = aquarelle_measured(
+      60, "render " + (dir / "g.json").string() + " -q -o " + (dir / "out.exr").string());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_LT(run.seconds, 20.0) << run.output;
+  EXPECT_LT(run.peak_kib, kOneGigabyteKib) << run.output;
+}
+
 // 8 KB, 8192x8192 of 1 bit: 2.9 GB once decoded to floats (every channel, every copy).
 TEST(SmallFilesLargeMemory, OneBitPngOf8192SquaredIsBudgetedDecoded) {
   const fs::path dir = scratch_dir("bad_input_mem_onebit_png");
@@ -240,12 +250,7 @@ TEST(SmallFilesLargeMemory, CoincidentTrianglesRenderInSeconds) {
   std::string obj = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\n";
   for (int i = 0; i < 150000; ++i) obj += "f 1 2 3\n";
   write_bytes(dir / "same.obj", obj);
-  write_bytes(dir / "g.json", mesh_graph("same.obj"));
-  const MeasuredRun run = aquarelle_measured(
-      60, "render " + (dir / "g.json").string() + " -q -o " + (dir / "out.exr").string());
-  EXPECT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_LT(run.seconds, 20.0);
-  EXPECT_LT(run.peak_kib, kOneGigabyteKib);
+  expect_renders_quickly(dir, "same.obj");
 }
 
 // Distinct corners instead of shared ones: 150,000 vertices crowded within the weld tolerance
@@ -266,12 +271,7 @@ TEST(SmallFilesLargeMemory, CrowdedDistinctVerticesRenderInSeconds) {
     obj += "f " + std::to_string(5 + i) + " " + std::to_string(6 + i) + " " +
            std::to_string(7 + i) + "\n";
   write_bytes(dir / "crowd.obj", obj);
-  write_bytes(dir / "g.json", mesh_graph("crowd.obj"));
-  const MeasuredRun run = aquarelle_measured(
-      60, "render " + (dir / "g.json").string() + " -q -o " + (dir / "out.exr").string());
-  EXPECT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_LT(run.seconds, 20.0);
-  EXPECT_LT(run.peak_kib, kOneGigabyteKib);
+  expect_renders_quickly(dir, "crowd.obj");
 }
 
 // 400,000 unconnected nodes (11 MB of JSON) took 10 s and 720 MB and printed 400,000 lines;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -238,4 +239,85 @@ TEST(Tremor, DefaultAmplitudeVisiblyWobblesAnArtDirectedOutline) {
     }
   // The outline is ~130 pixels long at 64x64; a 2 px wobble flips a good share of them.
   EXPECT_GT(moved, 15) << "the outline barely moved: is the tremor channel in pixels' units?";
+}
+
+// Seed 002's "things to improve": the hand tremor needs dense geometry. A 12-triangle cube
+// with a tremor, seen from just above its top face (so the top's far edge is the silhouette):
+// before, only the 8 corners moved and the outline stayed a tilted straight line; the node now
+// subdivides the triangles that tremble, so the outline waves along the edge (frequency 3: about
+// three waves across the cube). Counted on the top outline's offset from the still cube's, in
+// output rows per column: its direction changes (sign changes of the offset's slope beyond a
+// pixel of noise).
+namespace {
+
+std::string coarse_cube_graph(double amplitude, int segments) {
+  nlohmann::json nodes;
+  nodes["box"] = {{"type", "object"},
+                  {"params",
+                   {{"source", "cube"},
+                    {"scale", {1.6, 1.0, 1.0}},
+                    {"tremor", 0.12},
+                    {"tremor_frequency", 3.0},
+                    {"color_override", true},
+                    {"color", {0.8, 0.3, 0.2}}}}};
+  nodes["join"] = {
+      {"type", "scene_join"},
+      {"inputs", {{"objects", nlohmann::json::array({"box.object"})}}},
+      {"params", {{"camera_position", {0.0, 0.75, 3.2}}, {"camera_target", {0, 0.2, 0}}}}};
+  nodes["tremor"] = {{"type", "hand_tremor"},
+                     {"inputs", {{"scene", "join.scene"}}},
+                     {"params", {{"amplitude", amplitude}, {"segments", segments}}}};
+  nodes["gbuf"] = {{"type", "gbuffer"}, {"inputs", {{"scene", "tremor.scene"}}}};
+  return nlohmann::json({{"aquarelle", 1}, {"nodes", nodes}, {"output", "gbuf.depth"}}).dump();
+}
+
+// Per column, the first row from the top (image row 0 is the bottom) the cube covers; -1 none.
+std::vector<int> top_outline(const ImageF& depth) {
+  std::vector<int> top(depth.width, -1);
+  for (int x = 0; x < depth.width; ++x)
+    for (int y = depth.height - 1; y >= 0 && top[x] < 0; --y)
+      if (depth.at(x, y, 0) < 100.0f) top[x] = y;
+  return top;
+}
+
+int outline_direction_changes(const std::string& shaken_graph) {
+  aq::test::RenderOptions options;
+  options.width = 160;
+  options.height = 120;
+  options.frame = 7;
+  auto still = aq::test::render_graph(coarse_cube_graph(0.0, 8), options);
+  auto shaken = aq::test::render_graph(shaken_graph, options);
+  EXPECT_TRUE(still.ok() && shaken.ok()) << still.message() << shaken.message();
+  if (!still.ok() || !shaken.ok()) return -1;
+  const std::vector<int> a = top_outline(*still), b = top_outline(*shaken);
+  // The offset where both cover the column, away from the cube's sides.
+  std::vector<int> offset;
+  for (size_t x = 0; x < a.size(); ++x)
+    if (a[x] >= 0 && b[x] >= 0) offset.push_back(b[x] - a[x]);
+  if (offset.size() < 20) return -1;
+  offset = std::vector<int>(offset.begin() + 5, offset.end() - 5);
+  int changes = 0, direction = 0, extreme = offset.front();
+  for (int v : offset) {
+    if (direction >= 0 && v > extreme) {
+      extreme = v, direction = 1;
+    } else if (direction <= 0 && v < extreme) {
+      extreme = v, direction = -1;
+    } else if (std::abs(v - extreme) >= 2) {  // turned by more than a pixel of rounding
+      changes += 1, direction = -direction, extreme = v;
+    }
+  }
+  std::printf("outline offset:");
+  for (int v : offset) std::printf(" %d", v);
+  std::printf("\n  %d direction changes\n", changes);
+  return changes;
+}
+
+}  // namespace
+
+TEST(HandTremor, ACoarseCubeGetsAWavySilhouette) {
+  // Without subdivision (the node as it was: the corners only) the outline is a straight line
+  // moved or tilted: at most one turn.
+  EXPECT_LE(outline_direction_changes(coarse_cube_graph(1.0, 0)), 1);
+  // Subdivided (the default 8 vertices per wave): the outline waves, ~3 waves across the top.
+  EXPECT_GE(outline_direction_changes(coarse_cube_graph(1.0, 8)), 3);
 }

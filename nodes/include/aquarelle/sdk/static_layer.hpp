@@ -306,6 +306,11 @@ class DrawnOverLayer {
   // The pixels record() found the moving meshes may cover.
   const std::vector<PixelRect>& moving() const { return moving_; }
 
+  // Triangles per box: two segments of a seaweed blade, a quarter ring of the fish's body. A
+  // producer of moving meshes (hand_tremor) orders its triangles so each run of kChunk lies
+  // close together: the boxes, and so the redrawn pixels, stay small.
+  static constexpr uint32_t kChunk = 4;
+
   // After the moving meshes (those not `unchanged`) of `scene` were drawn with
   // `view_projection`; `world_boxes` are the scene's meshes' (view_bounds::MeshBoxes). What a
   // moving mesh may cover is the union of its triangle chunks' projected boxes (a swaying
@@ -333,8 +338,6 @@ class DrawnOverLayer {
   }
 
  private:
-  // Triangles per box: two segments of a seaweed blade, a quarter ring of the fish's body.
-  static constexpr uint32_t kChunk = 4;
   bool valid_ = false;
   uint64_t layer_key_ = 0;
   uint64_t layer_textures_ = 0;
