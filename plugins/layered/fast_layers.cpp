@@ -287,7 +287,6 @@ bool FastLayers::peaks_and_edges(aq::Context& ctx, const FastFrame& f, Targets& 
   aq::bind_texture(p, "u_keys", 0, t.lists[0]);
   aq::bind_texture(p, "u_blurred", 1, t.lists[1]);
   aq::set_float(p, "u_edge_threshold", ctx.param_float(kEdgeThreshold));
-  aq::set_float(p, "u_scale", 1.0 / divisor_);
   set_threshold(ctx, p);
   if (!ctx.draw(t.edges)) return false;
   const double sigma = low_sigma(f.edge_sigma, divisor_);
