@@ -120,6 +120,11 @@ TextureRef TexturePool::acquire(int width, int height, uint32_t format, uint64_t
     texture = std::make_unique<PooledTexture>();
     texture->texture = gl::make_texture();
     GLuint id = texture->texture.get();
+    // A node may acquire after binding its inputs: the active unit's texture is put back, or
+    // the node's next draw samples nothing there (the layered node's first frame did; later
+    // frames took a free texture and drew right, so frames depended on the ones before).
+    GLint bound = 0;
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
     glBindTexture(GL_TEXTURE_2D, id);
     texture->image = aq_image{id, width, height, format};
     int32_t texels_x = 0, texels_y = 0;
@@ -132,7 +137,7 @@ TextureRef TexturePool::acquire(int width, int height, uint32_t format, uint64_t
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, integer ? GL_NEAREST : GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glBindTexture(GL_TEXTURE_2D, 0);
+    glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
     ++created_;
     bytes_ += bytes_per_pixel(format) * static_cast<size_t>(width) * height;
   }

@@ -287,7 +287,6 @@ bool FastLayers::peaks_and_edges(aq::Context& ctx, const FastFrame& f, Targets& 
   aq::bind_texture(p, "u_keys", 0, t.lists[0]);
   aq::bind_texture(p, "u_blurred", 1, t.lists[1]);
   aq::set_float(p, "u_edge_threshold", ctx.param_float(kEdgeThreshold));
-  aq::set_float(p, "u_scale", 1.0 / divisor_);
   set_threshold(ctx, p);
   if (!ctx.draw(t.edges)) return false;
   const double sigma = low_sigma(f.edge_sigma, divisor_);
@@ -349,13 +348,15 @@ bool FastLayers::cells(aq::Context& ctx, const FastFrame& f, Targets& t) {
   const GLuint p = fragment(ctx, "layered_fast_cells.frag", cells_text_,
                             shaders::layered_fast_cells_frag, defines(ctx, f));
   if (p == 0) return false;
+  // The target first: a texture made after the inputs are bound could unbind one of them.
+  const aq_image keys = t.lists[0];
+  if (!ctx.scratch(5 * keys.width, keys.height, AQ_FORMAT_RGBA32F, &t.cells)) return false;
   glUseProgram(p);
   aq::bind_texture(p, "u_keys", 0, t.lists[0]);
   aq::bind_texture(p, "u_blur_intensity", 1, t.lists[1]);
   aq::bind_texture(p, "u_blur_diffuse", 2, t.lists[2]);
   aq::bind_texture(p, "u_blur_depth", 3, t.lists[3]);
-  const aq_image keys = t.lists[0];
-  return ctx.scratch(5 * keys.width, keys.height, AQ_FORMAT_RGBA32F, &t.cells) && ctx.draw(t.cells);
+  return ctx.draw(t.cells);
 }
 
 bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& t) {

@@ -122,12 +122,11 @@ constexpr aq_param_desc kParams[] = {
                     "semi-visible to fully shadowed"),
     aq::color_param("shadow_color", 0.35, 0.4, 0.6, "pigment of the shadow glaze (cool)"),
     aq::enum_param(
-        "method", "exact|fast", kExact,
-        "exact (default): every layer at full size, as the CPU reference; fast: all "
-        "layers at once at a quarter (abstraction_sigma >= 2.24 px) or half "
-        "resolution with a short list of the four nearest layers per texel, no "
-        "readback (README: Fast method; opt-in: its green wet-in-wet feathers are blockier "
-        "and a frame rendered after others can differ from the same frame alone)")};
+        "method", "exact|fast", kFast,
+        "fast (default): all layers at once at a quarter (abstraction_sigma >= 2.24 px) or "
+        "half resolution with a short list of the four nearest layers per texel, no "
+        "readback (README: Fast method; an approximation, its error against exact in the "
+        "bench); exact: every layer at full size, as the CPU reference")};
 
 constexpr int kLayersPerRange = 4;
 
