@@ -356,6 +356,7 @@ bool FastLayers::cells(aq::Context& ctx, const FastFrame& f, Targets& t) {
   aq::bind_texture(p, "u_blur_intensity", 1, t.lists[1]);
   aq::bind_texture(p, "u_blur_diffuse", 2, t.lists[2]);
   aq::bind_texture(p, "u_blur_depth", 3, t.lists[3]);
+  aq::bind_texture(p, "u_blur_edges", 4, f.run_edges ? t.blur_edges : t.lists[1]);
   return ctx.draw(t.cells);
 }
 

@@ -102,13 +102,13 @@ Layers interpolate(vec2 frag) {
   vec2 uv = (q + 0.5) / strip;
   vec2 part = vec2(float(size.x) / strip.x, 0.0);
   vec2 st = (q + 0.5) / vec2(size);
-  Layers l = Layers(cell, vec4(0.0), vec4(0.0), vec4(0.0), texture(u_peak, st),
-                    texture(u_blur_edges, st));
+  Layers l = Layers(cell, vec4(0.0), vec4(0.0), vec4(0.0), texture(u_peak, st), vec4(0.0));
   for (int k = 0; k < 4 && cell[k] > 0.5; ++k) {
     vec4 v = texture(u_cells, uv + float(k + 1) * part);
     l.b[k] = v.x;
     l.bd[k] = v.y;
     l.bz[k] = v.z;
+    l.edges[k] = v.w;
   }
   bool merge = cell.x < 0.0 || any(lessThan(base, ivec2(0))) || any(greaterThanEqual(base + 1, size));
   vec2 f = fract(q);
