@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "gbuffer_shaders.h"
+#include "mesh_coverage.hpp"
 
 namespace {
 
@@ -88,6 +89,7 @@ class GBuffer {
     // Damage tracking: where the outputs may differ from what they held (the last and this
     // call's moving meshes over the kept layer; everything otherwise).
     aq::Region damage = aq::Region::everything();
+    uint64_t layer_key = 0;
     if (unchanged_.any() && ctx.param_bool(kCacheStatic)) {
       aq::Fnv1a key;
       unchanged_.mix_into(key);
@@ -109,6 +111,7 @@ class GBuffer {
         layer_.key = key.value;
         layered = true;
       }
+      layer_key = key.value;
       // With the outputs as the last call left them, the layer goes back only where that
       // call's moving meshes were.
       if (layered)
@@ -129,14 +132,12 @@ class GBuffer {
                     glm::dmat4(projection) * glm::dmat4(view), width, height);
       damage.add(drawn_.moving());
     }
-    // Outside the meshes' projected boxes every target holds the background (id 0): the light
-    // needs to redraw only inside them when the shadow map or the caustics change.
-    aq::Region bounds;
+    // Outside the pixels the meshes' triangles may cover every target holds the background
+    // (id 0): the light needs to redraw only there when the shadow map or the caustics change.
     const glm::dmat4 view_projection = glm::dmat4(projection) * glm::dmat4(view);
-    std::vector<aq::PixelRect> covered;
-    for (const aq::view_bounds::Box& box : boxes_.world_boxes(*scene))
-      covered.push_back(aq::covered_pixels(box, view_projection, width, height));
-    bounds.add(covered);
+    const aq::Region bounds =
+        coverage_.covered(*scene, boxes_.world_boxes(*scene), layered ? &unchanged : nullptr,
+                          layer_key, view_projection, width, height);
     for (uint32_t i = 0; i < kOutputCount; ++i) {
       if (!ctx.set_output_bounds(i, bounds)) return AQ_ERROR;
       if (outputs_kept && !ctx.set_output_damage(i, damage)) return AQ_ERROR;
@@ -227,6 +228,7 @@ class GBuffer {
   aq::KeptDepth depth_;
   aq::view_bounds::MeshBoxes boxes_;
   aq::DrawnOverLayer drawn_;
+  gbuffer::MeshCoverage coverage_;
 };
 
 }  // namespace

@@ -92,6 +92,13 @@ TEST(DamageTracking, AnAnimationEqualsEveryFrameFromScratch) {
           EXPECT_LT(share, 0.95) << node << " at frame 4 redrew everything (" << precision << ")";
         }
       }
+      // The light redraws the g-buffer's bounds (the caustics move on every surface): the tiles
+      // its meshes' triangles cover, 69.6 % of this frame; the meshes' boxes covered 72.6 %
+      // (a seaweed cluster's box spans the water between its blades).
+      if (frame == 4) {
+        EXPECT_LT(redrawn(animated, "light"), 0.71)
+            << "the g-buffer's bounds (" << precision << ")";
+      }
       if (frame == 7) {
         EXPECT_EQ(redrawn(animated, "light"), 1.0) << "light.levels changed";
       }
