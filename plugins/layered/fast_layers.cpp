@@ -206,10 +206,10 @@ bool FastLayers::build_table(aq::Context& ctx) {
   return true;
 }
 
-// Per slot: Gooch light and dark colours and (mean depth, wet-in-wet, present, id).
+// Per slot: Gooch light and dark colours (or their K and S), mean depth, id and wet-in-wet.
 bool FastLayers::colours(aq::Context& ctx, const FastFrame& f, Targets& t) {
   const int n = std::max<int>(1, static_cast<int>(f.palette.size() + f.wet_ids.size()));
-  if (!ctx.scratch(kSlots, 7, AQ_FORMAT_RGBA32F, &t.colours) ||
+  if (!ctx.scratch(kSlots, 4, AQ_FORMAT_RGBA32F, &t.colours) ||
       !ctx.scratch(n, 3, AQ_FORMAT_RGBA32F, &t.overrides)) {
     return false;
   }
@@ -356,6 +356,7 @@ bool FastLayers::cells(aq::Context& ctx, const FastFrame& f, Targets& t) {
   aq::bind_texture(p, "u_blur_intensity", 1, t.lists[1]);
   aq::bind_texture(p, "u_blur_diffuse", 2, t.lists[2]);
   aq::bind_texture(p, "u_blur_depth", 3, t.lists[3]);
+  aq::bind_texture(p, "u_blur_edges", 4, f.run_edges ? t.blur_edges : t.lists[1]);
   return ctx.draw(t.cells);
 }
 

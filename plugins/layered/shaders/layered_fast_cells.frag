@@ -2,7 +2,7 @@
 // of the lists wide per texel:
 //   x in [0, W): the cell, a texel's list where it and its +x, +y and +xy neighbours hold the
 //                same keys in the same slots, else -1;
-//   x in [kW, (k+1)W), k = 1..4: slot k-1's (b, bd, bz) of that texel.
+//   x in [kW, (k+1)W), k = 1..4: slot k-1's (b, bd, bz, blurred wet edge) of that texel.
 // A full-size pixel whose four surrounding texels agree reads its cell, then per layer one
 // bilinear fetch of the slot's values (the texture unit interpolates, and the strip's parts
 // never meet inside an agreeing cell) instead of merging four lists of five values.
@@ -12,6 +12,7 @@ uniform sampler2D u_keys;
 uniform sampler2D u_blur_intensity;
 uniform sampler2D u_blur_diffuse;
 uniform sampler2D u_blur_depth;
+uniform sampler2D u_blur_edges;  // the blurred wet edges (the composite's fourth value per slot)
 
 void main() {
   ivec2 size = textureSize(u_keys, 0);
@@ -28,5 +29,5 @@ void main() {
   }
   int slot = part - 1;
   o_value = vec4(texelFetch(u_blur_intensity, p, 0)[slot], texelFetch(u_blur_diffuse, p, 0)[slot],
-                 texelFetch(u_blur_depth, p, 0)[slot], 0.0);
+                 texelFetch(u_blur_depth, p, 0)[slot], texelFetch(u_blur_edges, p, 0)[slot]);
 }

@@ -1,7 +1,8 @@
-// Per slot of the GPU table (layered_table.comp): the layer's Gooch-mixed light (row 0) and
-// dark (row 1) colours, (mean depth, wet-in-wet, present, id) in row 2 and the Kubelka–Munk
-// K and S of light (rows 3, 4) and dark (5, 6), as layer_table.cpp
-// and layered_colours.frag make them for the exact method (README "Lighting colours").
+// Per slot of the GPU table (layered_table.comp), four rows: row 0 (light.rgb, mean depth),
+// row 1 (dark.rgb, id; −id for wet-in-wet), where light and dark are the Gooch-mixed colours as
+// layer_table.cpp and layered_colours.frag make them for the exact method (README "Lighting
+// colours"); with Kubelka–Munk mixing rows 0–3 hold the pigments' K and S instead: K light,
+// S light, K dark, S dark (the depth and id in rows 0 and 1 as before).
 layout(location = 0) out vec4 o_value;
 
 layout(std430, binding = 0) readonly buffer Table { uint entries[]; };
@@ -59,21 +60,19 @@ void main() {
     dark = head.b > 0.5 ? texelFetch(u_overrides, ivec2(i, 2), 0).rgb
                         : pow(light, vec3(u_dark_density / u_light_density));
   }
-  if (p.y == 2) {
-    o_value = vec4(mean_depth, wet ? 1.0 : 0.0, 1.0, id);
-    return;
-  }
-  vec3 c = p.y == 0 || p.y == 3 || p.y == 4 ? pigment_mix(light, u_warm, u_gooch)
-                                            : pigment_mix(dark, u_cool, u_gooch);
-  if (p.y < 2) {
-    o_value = vec4(c, 1.0);
-    return;
-  }
-  // Rows 3–6: the Kubelka–Munk K and S of the light (3, 4) and dark (5, 6) pigments, so the
+  // Row 0 carries the mean depth and row 1 the id (negative: wet-in-wet): the composite orders
+  // its layers from the two rows it reads for their pigments anyway.
+  float order = p.y == 0 ? mean_depth : p.y == 1 ? (wet ? -id : id) : 0.0;
+  vec3 c = p.y == 0 || (AQ_MIX_MODE == 2 && p.y == 1) ? pigment_mix(light, u_warm, u_gooch)
+                                                      : pigment_mix(dark, u_cool, u_gooch);
+#if AQ_MIX_MODE == 2
+  // The Kubelka–Munk K (rows 0, 2) and S (1, 3) of the light and dark pigments, so the
   // composite mixes them without a logarithm per pixel.
   c = aq_pigment_sanitize(c);
   vec2 r = aq_km_ks(c.r, AQ_KM_BLACK_RATIO * c.r);
   vec2 g = aq_km_ks(c.g, AQ_KM_BLACK_RATIO * c.g);
   vec2 b = aq_km_ks(c.b, AQ_KM_BLACK_RATIO * c.b);
-  o_value = p.y == 3 || p.y == 5 ? vec4(r.x, g.x, b.x, 1.0) : vec4(r.y, g.y, b.y, 1.0);
+  c = p.y == 0 || p.y == 2 ? vec3(r.x, g.x, b.x) : vec3(r.y, g.y, b.y);
+#endif
+  o_value = vec4(c, order);
 }

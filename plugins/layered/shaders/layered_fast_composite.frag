@@ -18,7 +18,7 @@ uniform sampler2D u_depth;
 #if AQ_HAS_PAPER
 uniform sampler2D u_paper;
 #endif
-uniform sampler2D u_colours;  // per slot: Gooch light, dark, (mean depth, wet, present, id)
+uniform sampler2D u_colours;  // per slot, 4 rows: layered_fast_colours.frag
 uniform vec2 u_size;
 uniform vec3 u_half;
 uniform float u_shininess;
@@ -102,13 +102,13 @@ Layers interpolate(vec2 frag) {
   vec2 uv = (q + 0.5) / strip;
   vec2 part = vec2(float(size.x) / strip.x, 0.0);
   vec2 st = (q + 0.5) / vec2(size);
-  Layers l = Layers(cell, vec4(0.0), vec4(0.0), vec4(0.0), texture(u_peak, st),
-                    texture(u_blur_edges, st));
+  Layers l = Layers(cell, vec4(0.0), vec4(0.0), vec4(0.0), texture(u_peak, st), vec4(0.0));
   for (int k = 0; k < 4 && cell[k] > 0.5; ++k) {
     vec4 v = texture(u_cells, uv + float(k + 1) * part);
     l.b[k] = v.x;
     l.bd[k] = v.y;
     l.bz[k] = v.z;
+    l.edges[k] = v.w;
   }
   bool merge = cell.x < 0.0 || any(lessThan(base, ivec2(0))) || any(greaterThanEqual(base + 1, size));
   vec2 f = fract(q);
@@ -130,29 +130,25 @@ Layers interpolate(vec2 frag) {
 }
 
 // The wash: d mixes the layer's dark and light pigments, glazed `thickness` thick over
-// `under`. Kubelka–Munk: the K and S of both pigments come from the colours pass (rows 3–6) and
-// are mixed by concentration, and the mixture itself is laid (the exact method lays the pigment
-// whose unit layer looks like the mixture, which is the same pigment at d = 0 and 1 and close to
-// it between; README "Fast method").
-vec3 wash(vec3 under, int slot, float d, float thickness) {
+// `under`; c0 and c1 are the rgb of the layer's rows 0 and 1 (the light and dark colours, or
+// with Kubelka–Munk the light pigment's K and S). Kubelka–Munk: the K and S of both pigments
+// come from the colours pass and are mixed by concentration, and the mixture itself is laid
+// (the exact method lays the pigment whose unit layer looks like the mixture, which is the same
+// pigment at d = 0 and 1 and close to it between; README "Fast method").
+vec3 wash(vec3 under, int slot, float d, float thickness, vec3 c0, vec3 c1) {
 #if AQ_MIX_MODE == 2
-  vec3 k = mix(texelFetch(u_colours, ivec2(slot, 5), 0).rgb,
-               texelFetch(u_colours, ivec2(slot, 3), 0).rgb, d);
-  vec3 s = mix(texelFetch(u_colours, ivec2(slot, 6), 0).rgb,
-               texelFetch(u_colours, ivec2(slot, 4), 0).rgb, d);
+  vec3 k = mix(texelFetch(u_colours, ivec2(slot, 2), 0).rgb, c0, d);
+  vec3 s = mix(texelFetch(u_colours, ivec2(slot, 3), 0).rgb, c1, d);
   return aq_pigment_sanitize(km_over(k, s, thickness, aq_pigment_sanitize(under)));
 #else
-  return glaze(under,
-               pigment_mix(texelFetch(u_colours, ivec2(slot, 1), 0).rgb,
-                           texelFetch(u_colours, ivec2(slot, 0), 0).rgb, d),
-               thickness);
+  return glaze(under, pigment_mix(c1, c0, d), thickness);
 #endif
 }
 
 // One layer's glaze (layered_composite.frag's painting view); a layer that puts down no
 // pigment here (thickness under 1e-5) costs no colour mixing.
 vec3 paint(vec3 under, int slot, bool wet_in_wet, float b, float bd, float bz, float peak,
-           float be, float raw, float t, float front, float granulation) {
+           float be, float raw, float t, float front, float granulation, vec3 c0, vec3 c1) {
   if (!(b > 1.0e-6)) return under;
   float a = layered_abstract(vec4(b), t).x;
   if (u_thin > 0.0) {
@@ -174,13 +170,14 @@ vec3 paint(vec3 under, int slot, bool wet_in_wet, float b, float bd, float bz, f
       has_front ? 1.0 - smoothstep(0.0, max(u_depth_band, 1.0e-6), bz / b - front) : 1.0;
   float thickness = u_density * cover * visible * granulation * (1.0 + extra);
   if (!(thickness > 1.0e-5)) return under;
-  return wash(under, slot, clamp(bd / b, 0.0, 1.0), thickness);
+  return wash(under, slot, clamp(bd / b, 0.0, 1.0), thickness, c0, c1);
 }
 
-// A pixel's layers with their table rows: mean depth, id, wet-in-wet.
+// A pixel's layers with their table rows: mean depth, id, wet-in-wet and the rgb of rows 0 and
+// 1 per channel (vec4s over the layers: a local array indexed by the loop is slow on llvmpipe).
 struct Ordered {
   Layers l;
-  vec4 depth, id, wet;
+  vec4 depth, id, wet, r0, g0, b0, r1, g1, b1;
 };
 
 void swap_component(inout vec4 v, int a, int c) {
@@ -203,6 +200,12 @@ void order_pair(inout Ordered o, int a, int c) {
   swap_component(o.depth, a, c);
   swap_component(o.id, a, c);
   swap_component(o.wet, a, c);
+  swap_component(o.r0, a, c);
+  swap_component(o.g0, a, c);
+  swap_component(o.b0, a, c);
+  swap_component(o.r1, a, c);
+  swap_component(o.g1, a, c);
+  swap_component(o.b1, a, c);
 }
 
 void main() {
@@ -228,12 +231,20 @@ void main() {
   // then the layers in order. llvmpipe runs both sides of a branch under a mask but leaves a
   // loop once no pixel of the group needs another turn, so the loop costs what the group's
   // longest list needs: one layer in most of the image.
-  Ordered o = Ordered(l, vec4(-3.0e38), vec4(0.0), vec4(0.0));
+  Ordered o = Ordered(l, vec4(-3.0e38), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0),
+                      vec4(0.0), vec4(0.0), vec4(0.0));
   for (int k = 0; k < 4 && l.keys[k] > 0.5; ++k) {
-    vec4 row = texelFetch(u_colours, ivec2(int(l.keys[k]) - 1, 2), 0);
-    o.depth[k] = row.r;
-    o.id[k] = row.a;
-    o.wet[k] = row.g;
+    vec4 row0 = texelFetch(u_colours, ivec2(int(l.keys[k]) - 1, 0), 0);
+    vec4 row1 = texelFetch(u_colours, ivec2(int(l.keys[k]) - 1, 1), 0);
+    o.depth[k] = row0.a;
+    o.id[k] = abs(row1.a);
+    o.wet[k] = row1.a < 0.0 ? 1.0 : 0.0;
+    o.r0[k] = row0.r;
+    o.g0[k] = row0.g;
+    o.b0[k] = row0.b;
+    o.r1[k] = row1.r;
+    o.g1[k] = row1.g;
+    o.b1[k] = row1.b;
   }
   order_pair(o, 0, 1);
   order_pair(o, 2, 3);
@@ -243,7 +254,8 @@ void main() {
   for (int i = 0; i < 4 && o.l.keys[i] > 0.5; ++i) {
     float raw = id == o.id[i] ? lit_part : 0.0;
     under = paint(under, int(o.l.keys[i]) - 1, o.wet[i] > 0.5, o.l.b[i], o.l.bd[i], o.l.bz[i],
-                  o.l.peak[i], o.l.edges[i], raw, t, front, granulation);
+                  o.l.peak[i], o.l.edges[i], raw, t, front, granulation,
+                  vec3(o.r0[i], o.g0[i], o.b0[i]), vec3(o.r1[i], o.g1[i], o.b1[i]));
   }
 #if AQ_HAS_SHADOW
   // The shadow layer's sums at the lists' resolution, enlarged bilinearly, on receivers.
