@@ -229,6 +229,39 @@ float aq_worley2(vec2 p, vec2 period) { return aq_worley2_seeded(p, period, 0u);
 // 2^k, amplitude 2^-k and is shifted by k * (17.13, 31.71, 47.37) so the octaves' lattices do
 // not line up at the origin; divided by the total amplitude (range about [-1,1]). Used for
 // object-space variation (seed 002: control maps, dilution turbulence, clouds).
+// Seed 002's cubism: aq_perlin3 (not periodic) with each axis's blend weight
+// smoothstep(bend/2, 1 − bend/2, t) instead of Perlin's fade, the smoothstep called with the
+// wrong edges as in the seed's "accident": with bend near 1 the blend is a step in the middle
+// of each lattice cell, so the noise breaks into flat-faced blocks. bend in (0, 0.95].
+float aq_perlin3_bent(vec3 p, float bend) {
+  ivec3 i = ivec3(floor(p));
+  vec3 f = p - floor(p);
+  vec3 u = smoothstep(vec3(0.5 * bend), vec3(1.0 - 0.5 * bend), f);
+  float v[8];
+  for (int c = 0; c < 8; ++c) {
+    ivec3 corner = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+    v[c] = dot(aq_perlin3_gradient(i + corner), f - vec3(corner));
+  }
+  float x0 = mix(v[0], v[1], u.x), x1 = mix(v[2], v[3], u.x);
+  float x2 = mix(v[4], v[5], u.x), x3 = mix(v[6], v[7], u.x);
+  return mix(mix(x0, x1, u.y), mix(x2, x3, u.y), u.z);
+}
+
+// aq_fbm3 over aq_perlin3_bent (the same octaves, offsets and normalisation).
+float aq_fbm3_bent(vec3 p, int octaves, float bend) {
+  float sum = 0.0;
+  float amplitude = 1.0;
+  float total = 0.0;
+  float frequency = 1.0;
+  for (int k = 0; k < max(octaves, 1); ++k) {
+    sum += amplitude * aq_perlin3_bent(p * frequency + float(k) * vec3(17.13, 31.71, 47.37), bend);
+    total += amplitude;
+    amplitude *= 0.5;
+    frequency *= 2.0;
+  }
+  return sum / total;
+}
+
 float aq_fbm3(vec3 p, int octaves) {
   float sum = 0.0;
   float amplitude = 1.0;

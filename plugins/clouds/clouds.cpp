@@ -140,7 +140,8 @@ class Clouds {
     aq::set_vec3(march, "u_forward", glm::value_ptr(forward));
     set_volume(ctx, march);
     const glm::dmat4 view_projection_d = glm::dmat4(view_projection);
-    aq::Region damage = damaged(ctx, in, depth, has_depth, view_projection_d, cell);
+    const glm::dvec3 eye(camera.position[0], camera.position[1], camera.position[2]);
+    aq::Region damage = damaged(ctx, in, depth, has_depth, view_projection_d, eye, cell);
     if (!ctx.set_draw_region(march_cells(damage, cell, cells_x, cells_y)))
       damage = aq::Region::everything();
     if (!ctx.draw(tau)) return AQ_ERROR;
@@ -168,7 +169,7 @@ class Clouds {
   // sphere, widened by the warp, projected; the whole frame for the other falloffs), or where
   // the fused epilogue changed. Outside the sphere τ is exactly 0 and the pixel its image's.
   aq::Region damaged(aq::Context& ctx, const aq_image& in, const aq_image& depth, bool has_depth,
-                     const glm::dmat4& view_projection, int cell) {
+                     const glm::dmat4& view_projection, const glm::dvec3& eye, int cell) {
     const bool same_camera = view_projection == last_view_projection_;
     last_view_projection_ = view_projection;
     if (!ctx.output_kept(0) || !same_camera) return aq::Region::everything();
@@ -181,13 +182,57 @@ class Clouds {
     const double radius =
         ctx.param_float(kFalloffLength) + std::max(ctx.param_float(kWarp), 0.0) * 1.05;
     const double* centre = ctx.param_vec3(kCentre);
-    aq::view_bounds::Box sphere;
-    sphere.add(glm::dvec3(centre[0] - radius, centre[1] - radius, centre[2] - radius));
-    sphere.add(glm::dvec3(centre[0] + radius, centre[1] + radius, centre[2] + radius));
-    damage.add(aq::Region::of(aq::covered_pixels(sphere, view_projection, in.width, in.height))
+    damage.add(live_cells(view_projection, eye, glm::dvec3(centre[0], centre[1], centre[2]), radius,
+                          cell, in.width, in.height)
                    .dilated(reach, reach, in.width, in.height));
     damage.add(ctx.epilogue_damage());
     return damage.for_drawing();
+  }
+
+  // The pixels of the march cells whose ray (through the cell's centre pixel, as
+  // clouds_march.frag casts it) meets the falloff's sphere: elsewhere the march leaves τ = 0.
+  // Tested as the shader does (the ray against the sphere, in double, the radius widened a
+  // little for the shader's float rounding), one cell row at a time, runs of live cells joined:
+  // the disc the sphere projects to, not the box of its bounding cube's corners (which covered
+  // most of the waterfall's frame).
+  static aq::Region live_cells(const glm::dmat4& view_projection, const glm::dvec3& eye,
+                               const glm::dvec3& centre, double radius, int cell, int width,
+                               int height) {
+    const glm::dmat4 inverse = glm::inverse(view_projection);
+    const double widened = radius * 1.001 + 1e-4;
+    auto unproject = [&](double x, double y, double z) {
+      const glm::dvec4 p = inverse * glm::dvec4(x, y, z, 1.0);
+      return glm::dvec3(p) / p.w;
+    };
+    std::vector<aq::PixelRect> rects;
+    for (int cy = 0; cy * cell < height; ++cy) {
+      const int py = std::min(cy * cell + cell / 2, height - 1);
+      int run = -1;
+      for (int cx = 0;; ++cx) {
+        bool live = false;
+        if (cx * cell < width) {
+          const int px = std::min(cx * cell + cell / 2, width - 1);
+          const double x = (px + 0.5) / width * 2.0 - 1.0, y = (py + 0.5) / height * 2.0 - 1.0;
+          const glm::dvec3 near_point = unproject(x, y, -1.0);
+          const glm::dvec3 d = glm::normalize(unproject(x, y, 1.0) - near_point);
+          const glm::dvec3 oc = eye - centre;  // the shader's ray starts at the camera
+          const double b = glm::dot(oc, d);
+          const double disc = b * b - (glm::dot(oc, oc) - widened * widened);
+          // Not finite (a degenerate camera): live, to be safe.
+          live = !std::isfinite(disc) || (disc > 0.0 && -b + std::sqrt(disc) > 0.0);
+        }
+        if (live && run < 0) run = cx;
+        if (!live && run >= 0) {
+          rects.push_back(aq::PixelRect{run * cell, cy * cell, std::min(cx * cell, width),
+                                        std::min((cy + 1) * cell, height)});
+          run = -1;
+        }
+        if (cx * cell >= width) break;
+      }
+    }
+    aq::Region region;
+    region.add(rects);
+    return region;
   }
 
   // The march cells the composite reads for the pixels of `damage`: a pixel reads the cell

@@ -39,7 +39,8 @@ enum Param : uint32_t {
   kScale,
   kOctaves,
   kPaper,
-  kCangiante
+  kCangiante,
+  kTurbulenceBend
 };
 constexpr aq_param_desc kParams[] = {
     aq::float_param("dilution", 0.8, 0.0, 1.0,
@@ -54,7 +55,12 @@ constexpr aq_param_desc kParams[] = {
     aq::color_param("paper_color", 0.96, 0.93, 0.85, "the paper's colour (linear)"),
     aq::float_param("cangiante", 0.2, 0.0, 1.0,
                     "MNPR's cangiante: how much lighter the colour turns in the light "
-                    "(C + cangiante * lit, before the dilution; 0: off)")};
+                    "(C + cangiante * lit, before the dilution; 0: off)"),
+    aq::float_param("turbulence_bend", 0.0, 0.0, 0.95,
+                    "seed 002's cubism: the turbulence noise blends its lattice with "
+                    "smoothstep(bend/2, 1 - bend/2, t) instead of Perlin's fade (the seed's "
+                    "smoothstep with the wrong edges): towards 0.95 the turbulence breaks into "
+                    "flat-faced blocks; 0: the usual noise")};
 
 struct Dilution {
   int process(aq::Context& ctx) {
@@ -90,6 +96,7 @@ struct Dilution {
     aq::set_float(program, "u_turbulence", anchored ? ctx.param_float(kTurbulence) : 0.0);
     aq::set_float(program, "u_scale", ctx.param_float(kScale));
     aq::set_int(program, "u_octaves", static_cast<int>(ctx.param_int(kOctaves)));
+    aq::set_float(program, "u_bend", ctx.param_float(kTurbulenceBend));
     if (!ctx.bind_targets(targets, kOutputCount)) return AQ_ERROR;
     // Damage tracking: every pixel reads only its own texels, so with the outputs kept and the
     // same light only the pixels whose inputs changed are redrawn (the fish, not the floor's

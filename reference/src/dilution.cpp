@@ -23,7 +23,9 @@ DilutionResult dilution(const ImageF& albedo, const ImageF& normal, const ImageF
       if (anchor != nullptr && p.turbulence > 0.0) {
         const noise::Vec3 q{anchor->at(x, y, 0) * p.scale, anchor->at(x, y, 1) * p.scale,
                             anchor->at(x, y, 2) * p.scale};
-        turbulence = p.turbulence * noise::fbm3(q, p.octaves);
+        turbulence = p.turbulence * (p.turbulence_bend > 0.0
+                                         ? noise::fbm3_bent(q, p.octaves, p.turbulence_bend)
+                                         : noise::fbm3(q, p.octaves));
         if (!std::isfinite(turbulence)) turbulence = 0.0;
       }
       const double dil = std::clamp(p.dilution * lit * (1.0 + turbulence), 0.0, 1.0);

@@ -192,4 +192,41 @@ double fbm3(Vec3 p, int octaves) {
   return sum / total;
 }
 
+double perlin3_bent(Vec3 p, double bend) {
+  const double fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
+  const int64_t ix = int64_t(fx), iy = int64_t(fy), iz = int64_t(fz);
+  const double r[3] = {p.x - fx, p.y - fy, p.z - fz};
+  const double e0 = 0.5 * bend, e1 = 1.0 - 0.5 * bend;
+  double u[3];
+  for (int a = 0; a < 3; ++a) {
+    const double t = std::clamp((r[a] - e0) / (e1 - e0), 0.0, 1.0);
+    u[a] = t * t * (3.0 - 2.0 * t);  // GLSL's smoothstep
+  }
+  double value = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    const int corner[3] = {c & 1, (c >> 1) & 1, (c >> 2) & 1};
+    const Vec3 g = perlin3_gradient(wrap_cell(ix + corner[0], 0.0), wrap_cell(iy + corner[1], 0.0),
+                                    wrap_cell(iz + corner[2], 0.0));
+    const double ramp =
+        g.x * (r[0] - corner[0]) + g.y * (r[1] - corner[1]) + g.z * (r[2] - corner[2]);
+    double weight = 1.0;
+    for (int a = 0; a < 3; ++a) weight *= corner[a] ? u[a] : 1.0 - u[a];
+    value += weight * ramp;
+  }
+  return value;
+}
+
+double fbm3_bent(Vec3 p, int octaves, double bend) {
+  double sum = 0.0, amplitude = 1.0, total = 0.0, frequency = 1.0;
+  for (int k = 0; k < std::max(octaves, 1); ++k) {
+    const Vec3 q{p.x * frequency + k * 17.13, p.y * frequency + k * 31.71,
+                 p.z * frequency + k * 47.37};
+    sum += amplitude * perlin3_bent(q, bend);
+    total += amplitude;
+    amplitude *= 0.5;
+    frequency *= 2.0;
+  }
+  return sum / total;
+}
+
 }  // namespace aq::reference::noise

@@ -42,6 +42,7 @@ aq::Result<ImageF> run(const ImageF& albedo, const ImageF& normal, const ImageF*
                     {"turbulence", p.turbulence},
                     {"scale", p.scale},
                     {"octaves", p.octaves},
+                    {"turbulence_bend", p.turbulence_bend},
                     {"paper_color", {p.paper[0], p.paper[1], p.paper[2]}}}}};
   aq::test::RenderOptions options;
   options.width = albedo.width;
@@ -173,3 +174,26 @@ TEST(Dilution, NaNStaysPut) {
 }
 
 }  // namespace
+
+// Seed 002's cubism: the turbulence noise blended with a bent smoothstep (the seed's smoothstep
+// called with the wrong edges). Against the CPU reference written from that definition, and far
+// from the usual turbulence: the node had no such parameter before (the graph failed).
+TEST(Dilution, CubismBendsTheTurbulenceSmoothstep) {
+  const ImageF albedo = aq::test::constant_image(48, 40, 0.3f, 0.5f, 0.4f);
+  const ImageF up = aq::test::constant_image(48, 40, 0.0f, 1.0f, 0.0f);
+  const ImageF object = aq::test::random_image(48, 40, 61, -3.0f, 3.0f);
+  DilutionParams p;
+  p.dilution = 0.6;
+  p.turbulence = 1.0;
+  p.turbulence_bend = 0.8;
+  const auto expected = aq::reference::dilution(albedo, up, &object, p);
+  auto got = run(albedo, up, &object, p);
+  ASSERT_TRUE(got.ok()) << got.message();
+  // The bent blend's slope is 1.5 / (1 − bend) = 7.5: float rounding grows by as much.
+  EXPECT_LE(aq::test::max_abs_diff(*got, expected.image), 1e-3);
+  DilutionParams usual = p;
+  usual.turbulence_bend = 0.0;
+  const auto smooth = aq::reference::dilution(albedo, up, &object, usual);
+  EXPECT_GT(aq::test::mean_abs_diff(expected.image, smooth.image), 0.01)
+      << "the bent turbulence should differ clearly from the usual one";
+}

@@ -1,7 +1,7 @@
 // Watercolor reflectance (plugins/dilution/README.md), after Montesdeoca et al.:
 //   D = N·L,  lit = clamp((D + a − 1) / a, 0, 1)              a = diffuse_area
 //   C_c = albedo + clamp(cangiante · lit, 0, 1)                (cangiante: lighter in the light)
-//   τ = turbulence · fbm3(object position · scale)
+//   τ = turbulence · fbm3(object position · scale)   (bend > 0: fbm3_bent, seed 002's cubism)
 //   dil = clamp(dilution · lit · (1 + τ), 0, 1)
 //   out = mix(C_c, paper, dil) · (1 − shade · (1 − lit))
 // The background (albedo alpha 0) passes unchanged with dil = 0. Alpha is 1: the painting is opaque.
@@ -23,6 +23,7 @@ uniform float u_shade;
 uniform float u_turbulence;
 uniform float u_scale;
 uniform int u_octaves;
+uniform float u_bend;  // > 0: seed 002's cubism, the turbulence blended by a bent smoothstep
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
@@ -39,7 +40,8 @@ void main() {
   float turbulence = 0.0;
   if (u_turbulence > 0.0) {
     vec3 anchor = texelFetch(u_anchor, p, 0).xyz;
-    turbulence = u_turbulence * aq_fbm3(anchor * u_scale, u_octaves);
+    turbulence = u_turbulence * (u_bend > 0.0 ? aq_fbm3_bent(anchor * u_scale, u_octaves, u_bend)
+                                              : aq_fbm3(anchor * u_scale, u_octaves));
     if (isnan(turbulence) || isinf(turbulence)) turbulence = 0.0;
   }
   float dil = clamp(u_dilution * lit * (1.0 + turbulence), 0.0, 1.0);

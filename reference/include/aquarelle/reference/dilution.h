@@ -18,6 +18,7 @@ struct DilutionParams {
   double turbulence = 0.5;  // used only with an anchor image
   double scale = 3.0;
   int octaves = 4;
+  double turbulence_bend = 0.0;  // > 0: noise::fbm3_bent (seed 002's cubism)
   std::array<double, 3> paper{0.96, 0.93, 0.85};
   std::array<double, 3> to_light{0.0, 1.0, 0.0};  // unit
 };

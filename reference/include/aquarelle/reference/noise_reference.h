@@ -55,4 +55,9 @@ double worley2(Vec2 p, Vec2 period, uint32_t seed = 0);
 // octave k shifted by k·(17.13, 31.71, 47.37), divided by the total amplitude.
 double fbm3(Vec3 p, int octaves);
 
+// aq_perlin3_bent / aq_fbm3_bent (seed 002's cubism): perlin3 (not periodic) blended with
+// smoothstep(bend/2, 1 − bend/2, t) per axis instead of the quintic fade; bend in (0, 0.95].
+double perlin3_bent(Vec3 p, double bend);
+double fbm3_bent(Vec3 p, int octaves, double bend);
+
 }  // namespace aq::reference::noise
