@@ -36,6 +36,9 @@ class Region {
   // What a node draws: every rect is a draw (a scissored triangle), and past a few dozen a few
   // more pixels in fewer rects cost less (for_drawing).
   static constexpr size_t kMaxDrawRects = 64;
+  // for_drawing merges up to this many rects pair by pair (the cheapest merge first); more are
+  // first coarsened to a grid.
+  static constexpr size_t kMaxMergedRects = 256;
 
   static Region everything() {
     Region region;
@@ -92,7 +95,9 @@ class Region {
   // damage (the added pixels are drawn with the values they had).
   Region for_drawing() const {
     Region out = *this;
-    if (!out.all_ && out.rects_.size() > kMaxDrawRects) out.coarsen(kMaxDrawRects);
+    if (out.all_ || out.rects_.size() <= kMaxDrawRects) return out;
+    if (out.rects_.size() > kMaxMergedRects) out.coarsen(kMaxMergedRects);
+    if (out.rects_.size() > kMaxDrawRects) out.merge_cheapest(kMaxDrawRects);
     return out;
   }
 
@@ -168,6 +173,129 @@ class Region {
     }
     rects_ = std::move(out);
     if (rects_.size() > kMaxRects && !coarsening_) coarsen(kMaxRects);
+  }
+
+  // Fewer rects by the merges that add the fewest pixels per rect saved, until at most
+  // `max_rects` remain: two neighbouring spans of a row band joined over the gap between them,
+  // or two neighbouring bands joined into one (over the rows between them) with the union of
+  // their spans. A grid (coarsen) grows every rect to the grid; this grows only where rects
+  // are close (a region of 8-pixel tiles cut to 64 rects: 64.6 % of a 720p frame instead of
+  // 69 % on a grid of 32).
+  void merge_cheapest(size_t max_rects) {
+    using Spans = std::vector<std::pair<int, int>>;
+    struct Band {
+      int y0, y1;
+      Spans spans;
+      double gap_cost = 0;     // the cheapest merge of two of its spans (pixels added)
+      size_t gap = 0;          // which: spans gap and gap + 1
+      double join_cost = 0;    // joining it with the next band, per rect saved
+      bool join_hull = false;  // ... into the one span around both bands' spans
+    };
+    std::vector<Band> bands;
+    for (const PixelRect& r : rects_) {
+      if (bands.empty() || bands.back().y0 != r.y0 || bands.back().y1 != r.y1)
+        bands.push_back(Band{r.y0, r.y1, {}});
+      bands.back().spans.emplace_back(r.x0, r.x1);
+    }
+    constexpr double kNone = 1e300;
+    auto union_of = [](const Spans& a, const Spans& b) {
+      Spans all = a;
+      all.insert(all.end(), b.begin(), b.end());
+      std::sort(all.begin(), all.end());
+      Spans merged;
+      for (const auto& span : all) {
+        if (!merged.empty() && span.first <= merged.back().second) {
+          merged.back().second = std::max(merged.back().second, span.second);
+        } else {
+          merged.push_back(span);
+        }
+      }
+      return merged;
+    };
+    auto width_of = [](const Spans& spans) {
+      int64_t sum = 0;
+      for (const auto& [x0, x1] : spans) sum += x1 - x0;
+      return static_cast<double>(sum);
+    };
+    auto update_gap = [&](size_t b) {
+      Band& band = bands[b];
+      band.gap_cost = kNone;
+      for (size_t i = 0; i + 1 < band.spans.size(); ++i) {
+        const double cost = static_cast<double>(band.spans[i + 1].first - band.spans[i].second) *
+                            (band.y1 - band.y0);
+        if (cost < band.gap_cost) {
+          band.gap_cost = cost;
+          band.gap = i;
+        }
+      }
+    };
+    auto update_join = [&](size_t b) {
+      Band& band = bands[b];
+      band.join_cost = kNone;
+      if (b + 1 >= bands.size()) return;
+      const Band& next = bands[b + 1];
+      const double own =
+          width_of(band.spans) * (band.y1 - band.y0) + width_of(next.spans) * (next.y1 - next.y0);
+      const double height = next.y1 - band.y0;
+      const size_t spans = band.spans.size() + next.spans.size();
+      // Joined with the union of the spans, or (where they do not overlap, diagonal neighbours)
+      // with the one span around them all.
+      const Spans joined = union_of(band.spans, next.spans);
+      const double by_union = joined.size() < spans ? (width_of(joined) * height - own) /
+                                                          static_cast<double>(spans - joined.size())
+                                                    : kNone;
+      const double hull = std::max(band.spans.back().second, next.spans.back().second) -
+                          std::min(band.spans.front().first, next.spans.front().first);
+      const double by_hull = (hull * height - own) / static_cast<double>(spans - 1);
+      band.join_hull = by_hull < by_union;
+      band.join_cost = std::min(by_union, by_hull);
+    };
+    for (size_t b = 0; b < bands.size(); ++b) {
+      update_gap(b);
+      update_join(b);
+    }
+    size_t count = rects_.size();
+    while (count > max_rects) {
+      double best = kNone;
+      size_t at = 0;
+      bool join = false;
+      for (size_t b = 0; b < bands.size(); ++b) {
+        if (bands[b].gap_cost < best) {
+          best = bands[b].gap_cost;
+          at = b;
+          join = false;
+        }
+        if (bands[b].join_cost < best) {
+          best = bands[b].join_cost;
+          at = b;
+          join = true;
+        }
+      }
+      if (best == kNone) break;  // a single span left: nothing to merge
+      Band& band = bands[at];
+      const size_t before = band.spans.size();
+      if (join) {
+        const size_t next_count = bands[at + 1].spans.size();
+        band.spans = union_of(band.spans, bands[at + 1].spans);
+        if (band.join_hull)
+          band.spans = Spans{{band.spans.front().first, band.spans.back().second}};
+        band.y1 = bands[at + 1].y1;
+        bands.erase(bands.begin() + static_cast<std::ptrdiff_t>(at) + 1);
+        count -= before + next_count - band.spans.size();
+      } else {
+        band.spans[band.gap].second = band.spans[band.gap + 1].second;
+        band.spans.erase(band.spans.begin() + static_cast<std::ptrdiff_t>(band.gap) + 1);
+        --count;
+      }
+      update_gap(at);
+      update_join(at);
+      if (at > 0) update_join(at - 1);
+    }
+    rects_.clear();
+    for (const Band& band : bands) {
+      for (const auto& [x0, x1] : band.spans) rects_.push_back(PixelRect{x0, band.y0, x1, band.y1});
+    }
+    if (rects_.size() > max_rects) coarsen(max_rects);
   }
 
   // Out to a grid of 16, 32, 64 ... pixels (not past the exact rects' bounding box) until few
