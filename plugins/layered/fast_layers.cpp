@@ -156,6 +156,9 @@ bool FastLayers::run(aq::Context& ctx, const FastFrame& f) {
     if (table_program_ == 0) return false;
   }
   Targets t;
+  // Forgotten unless this run reaches the kept texture (threshold_map).
+  const std::array<double, 5> drawn_with = threshold_key_;
+  forget_kept();
   divisor_ = divisor_for(f.sigma);
   const int hw = (f.w + divisor_ - 1) / divisor_, hh = (f.h + divisor_ - 1) / divisor_;
   const uint32_t f32 = AQ_FORMAT_RGBA32F;
@@ -181,8 +184,8 @@ bool FastLayers::run(aq::Context& ctx, const FastFrame& f) {
   const bool ok = build_table(ctx) && lap("table") && colours(ctx, f, t) && lap("colours") &&
                   segment_and_blur(ctx, f, t) && lap("segment+blur") &&
                   peaks_and_edges(ctx, f, t) && lap("peaks+edges") && cells(ctx, f, t) &&
-                  threshold_map(ctx, f, t) && lap("cells") && composite(ctx, f, t) &&
-                  lap("composite");
+                  lap("cells") && threshold_map(ctx, f, t, drawn_with) && lap("threshold") &&
+                  composite(ctx, f, t) && lap("composite");
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
   aq::unbind_textures(16);
   return ok;
@@ -329,24 +332,33 @@ bool FastLayers::gather(aq::Context& ctx, int mode, const aq_image& keys, const 
   return true;
 }
 
-// layered_threshold per pixel, drawn again only when the size, the context or the threshold's
-// parameters change (the noise depends on nothing else).
-bool FastLayers::threshold_map(aq::Context& ctx, const FastFrame& f, Targets& t) {
-  const std::array<double, 4> key = {
+// Per pixel (layered_threshold, paper height h) in one kept texture, drawn again only when the
+// size, the context, the threshold's parameters or the paper change (the noise depends on
+// nothing else): the composite reads one texel for both.
+bool FastLayers::threshold_map(aq::Context& ctx, const FastFrame& f, Targets& t,
+                               const std::array<double, 5>& drawn_with) {
+  const std::array<double, 5> key = {
       ctx.param_float(kThreshold), ctx.param_float(kEdgeNoise),
-      std::max(1e-3, ctx.param_float(kNoiseScale) * ctx.render_scale()),
-      ctx.param_float(kSoftness)};
+      std::max(1e-3, ctx.param_float(kNoiseScale) * ctx.render_scale()), ctx.param_float(kSoftness),
+      f.has_paper ? 1.0 : 0.0};
   bool kept = false;
-  t.threshold = {threshold_.get(ctx.raw()->gl_generation, f.w, f.h, GL_R32F, &kept), f.w, f.h,
-                 AQ_FORMAT_R32F};
-  if (kept && key == threshold_key_) return true;
-  threshold_key_ = key;
+  t.threshold = {threshold_.get(ctx.raw()->gl_generation, f.w, f.h, GL_RGBA32F, &kept), f.w, f.h,
+                 AQ_FORMAT_RGBA32F};
+  const bool paper_changed = f.has_paper && !ctx.input_damage(kPaper).empty();
+  if (kept && key == drawn_with && !paper_changed) {
+    threshold_key_ = key;
+    return true;
+  }
   const GLuint p = fragment(ctx, "layered_fast_threshold.frag", threshold_text_,
                             shaders::layered_fast_threshold_frag, defines(ctx, f));
   if (p == 0) return false;
   glUseProgram(p);
   set_threshold(ctx, p);
-  return ctx.draw(t.threshold);
+  if (f.has_paper) aq::bind_texture(p, "u_paper", 0, ctx.input_image(kPaper));
+  aq::set_vec2(p, "u_size", f.w, f.h);
+  if (!ctx.draw(t.threshold)) return false;
+  threshold_key_ = key;
+  return true;
 }
 
 // The cells' merged, ordered lists, then their 2 x 2 blocks of re-keyed corner values
@@ -392,7 +404,6 @@ bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& 
   aq::bind_texture(p, "u_slot3", 4, t.blocks[3]);
   aq::bind_texture(p, "u_block_peak", 5, t.blocks[4]);
   aq::bind_texture(p, "u_pixels", 6, t.pixels);
-  if (f.has_paper) aq::bind_texture(p, "u_paper", 9, ctx.input_image(kPaper));
   aq::bind_texture(p, "u_colours", 10, t.colours);
   if (!bilinear_) {
     const GLuint s = bilinear_.create();

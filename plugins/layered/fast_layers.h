@@ -8,6 +8,7 @@
 #include <aquarelle/sdk/gl_raii.hpp>
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,10 @@ class FastLayers {
   static bool applies(double sigma, double edge_sigma);
   // Paints into f.out; false after ctx.fail.
   bool run(aq::Context& ctx, const FastFrame& f);
+  // Draws the kept (threshold, paper) texture again on the next run: the node's last call did
+  // not run this method, so the paper's damage since then does not say what changed since it
+  // was drawn.
+  void forget_kept() { threshold_key_.fill(std::nan("")); }
 
  private:
   struct Targets {
@@ -60,7 +65,8 @@ class FastLayers {
   bool segment_and_blur(aq::Context& ctx, const FastFrame& f, Targets& t);
   bool peaks_and_edges(aq::Context& ctx, const FastFrame& f, Targets& t);
   bool cells(aq::Context& ctx, const FastFrame& f, Targets& t);
-  bool threshold_map(aq::Context& ctx, const FastFrame& f, Targets& t);
+  bool threshold_map(aq::Context& ctx, const FastFrame& f, Targets& t,
+                     const std::array<double, 5>& drawn_with);
   static void set_threshold(aq::Context& ctx, GLuint program);
   bool composite(aq::Context& ctx, const FastFrame& f, const Targets& t);
   bool gather(aq::Context& ctx, int mode, const aq_image& keys, const aq_image* values, int axis,
@@ -75,8 +81,8 @@ class FastLayers {
   int divisor_ = 2;  // this frame's, divisor_for(σ)
   std::string segment_text_, gather_text_[3], edges_text_, colours_text_, composite_text_,
       cells_text_, blocks_text_, threshold_text_;
-  aq::gl::KeptTexture threshold_;          // layered_threshold per pixel
-  std::array<double, 4> threshold_key_{};  // the parameters it was drawn with
+  aq::gl::KeptTexture threshold_;          // (layered_threshold, paper height) per pixel
+  std::array<double, 5> threshold_key_{};  // the parameters it was drawn with
   aq::gl::Sampler bilinear_;  // for the composite's interpolation inside agreeing cells
   std::vector<float> overrides_;
 };

@@ -209,11 +209,21 @@ struct Layered {
   }
 
   int process(aq::Context& ctx) {
+    bool ran_fast = false;
+    const int result = paint(ctx, ran_fast);
+    // The fast method keeps a texture drawn from the paper, trusting the paper's damage since
+    // the node's last call: a call that did not run it makes it forget that texture.
+    if (!ran_fast) fast.forget_kept();
+    return result;
+  }
+
+  int paint(aq::Context& ctx, bool& ran_fast) {
     Frame f;
     if (!check_sizes(ctx) || !shadow_inputs(ctx, f) || !parse_settings(ctx, f)) return AQ_ERROR;
     light_and_view(ctx, f);
     if (ctx.param_enum(kMethod) == kFast && ctx.param_enum(kView) == 0 &&
         layered::FastLayers::applies(f.sigma, f.edge_sigma)) {
+      ran_fast = true;
       return run_fast(ctx, f) ? AQ_OK : AQ_ERROR;
     }
     if (!build_layers(ctx, f)) return AQ_ERROR;

@@ -5,9 +5,12 @@
 // feathers into the paper where the wet-to-dry cubes stop.
 #include <gtest/gtest.h>
 
+#include <aquarelle/core/evaluator.h>
 #include <aquarelle/core/graph_io.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "support/harness.h"
 
@@ -155,6 +158,37 @@ TEST(LayeredGraphs, ShippedGraphsMixWithCmykAndKubelkaMunk) {
       aq::test::render_graph_file(aq::test::source_path("graphs/three_cubes_cmyk.json"), small());
   ASSERT_TRUE(a.ok() && b.ok());
   EXPECT_GT(aq::test::max_abs_diff(*a, *b, 3), 0.1);
+}
+
+// The fast method keeps (threshold, paper height) per pixel between calls and trusts the
+// paper's damage: a node instance that painted with one paper and then gets another must paint
+// what a fresh instance paints with the new paper, bit for bit.
+TEST(LayeredGraphs, FastMethodFollowsAPaperChange) {
+  auto context = aq::create_headless_context(aq::GlBackend::kAuto);
+  ASSERT_TRUE(context.ok()) << context.message();
+  std::ifstream file(aq::test::source_path("graphs/three_cubes.json"));
+  std::stringstream text;
+  text << file.rdbuf();
+  aq::Evaluator kept(**context, aq::test::registry());
+  aq::Evaluator fresh(**context, aq::test::registry());
+  auto render = [&](aq::Evaluator& evaluator, double roughness) {
+    auto pixels = aq::test::evaluate_text(evaluator, text.str(), 1, [&](aq::Graph& graph) {
+      graph.settings.width = 128;
+      graph.settings.height = 72;
+      graph.settings.quality = "final";
+      graph.nodes["paper"].params["roughness"] = roughness;
+      graph.nodes["paper"].params["grain_scale"] = 20.0;
+      graph.nodes["layered"].params["method"] = "fast";
+    });
+    EXPECT_TRUE(pixels.ok()) << pixels.message();
+    return pixels.ok() ? *pixels : aq::ImageF();
+  };
+  const aq::ImageF before = render(kept, 0.1);
+  const aq::ImageF after = render(kept, 1.0);
+  const aq::ImageF expected = render(fresh, 1.0);
+  ASSERT_FALSE(before.empty() || after.empty() || expected.empty());
+  EXPECT_GT(aq::test::max_abs_diff(before, expected, 3), 0.01) << "the paper does not show";
+  EXPECT_EQ(aq::test::max_abs_diff(after, expected, 3), 0.0) << "painted on the old paper";
 }
 
 }  // namespace

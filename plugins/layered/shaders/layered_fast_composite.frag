@@ -6,7 +6,7 @@
 // shadow layer last.
 layout(location = 0) out vec4 o_color;
 
-uniform sampler2D u_threshold_map;  // layered_threshold per pixel (layered_fast_threshold.frag)
+uniform sampler2D u_threshold_map;  // (layered_threshold, paper height) per pixel, kept
 uniform sampler2D u_cells;  // per cell its merged keys, far to near (layered_fast_cells.frag)
 uniform sampler2D u_slot0;  // per cell a 2 x 2 block per slot (layered_fast_blocks.frag)
 uniform sampler2D u_slot1;
@@ -14,9 +14,6 @@ uniform sampler2D u_slot2;
 uniform sampler2D u_slot3;
 uniform sampler2D u_block_peak;  // the four slots' peaks, in the same blocks
 uniform sampler2D u_pixels;  // per pixel (id, 1 − highlight, depth, 0): layered_fast_segment.frag
-#if AQ_HAS_PAPER
-uniform sampler2D u_paper;
-#endif
 uniform sampler2D u_colours;  // per slot, 4 rows: layered_fast_colours.frag
 uniform vec2 u_size;
 uniform float u_thin;
@@ -137,12 +134,9 @@ vec3 layer(vec3 under, float key, vec4 v, float peak, float id, float lit_part, 
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-#if AQ_HAS_PAPER
-  float h = texture(u_paper, gl_FragCoord.xy / u_size).r;
-  h = h >= 0.0 ? min(h, 1.0) : 0.5;
-#else
-  float h = 0.5;
-#endif
+  // layered_threshold and the paper's height, kept between frames (layered_fast_threshold.frag)
+  vec2 kept = texelFetch(u_threshold_map, p, 0).rg;
+  float t = kept.x, h = kept.y;
   vec3 under = u_paper_color * (1.0 + u_paper_relief * (h - 0.5));
   float granulation = mix(1.0, 2.0 * (1.0 - h), u_granulation);
   // The cell around this pixel (between the texels at base and base + 1) and the position in
@@ -155,7 +149,6 @@ void main() {
   vec4 peak = texture(u_block_peak, uv);
   vec4 pixel = texelFetch(u_pixels, p, 0);  // the segmentation's (id, 1 − highlight, depth)
   float id = pixel.x, lit_part = pixel.y, front = pixel.z;
-  float t = texelFetch(u_threshold_map, p, 0).r;  // layered_threshold, kept between frames
   // The cell's layers in order. llvmpipe runs both sides of a branch under a mask but leaves
   // a loop once no pixel of the group needs another turn: a layer costs only where a pixel of
   // the group lists it (one layer in most of the image).

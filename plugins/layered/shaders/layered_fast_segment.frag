@@ -41,6 +41,7 @@ void main() {
   ivec2 size = textureSize(u_id, 0);
   ivec2 base = AQ_DIVISOR * ivec2(gl_FragCoord.xy);
   vec4 keys = vec4(0.0), intensity = vec4(0.0), diffuse = vec4(0.0), depth = vec4(0.0);
+  float last_id = -1.0, last_key = 0.0;  // the table's key of the last id looked up
   for (int j = 0; j < AQ_DIVISOR; ++j) {
     for (int i = 0; i < AQ_DIVISOR; ++i) {
       ivec2 p = list_clamp(base + ivec2(i, j), size);
@@ -52,7 +53,13 @@ void main() {
       float front = texelFetch(u_depth, p, 0).r;
       imageStore(u_pixels, p, vec4(id, lit_part, front, 0.0));
       if (!(id >= 1.0 && id < 16777216.0 && floor(id) == id)) continue;
-      float key = table_key(id);
+      // A texel's pixels mostly hold one id: look it up only when it changes (a loop, so that
+      // llvmpipe skips it where no pixel of the group needs it).
+      for (int once = 0; once < 1 && id != last_id; ++once) {
+        last_key = table_key(id);
+        last_id = id;
+      }
+      float key = last_key;
       if (key < 0.5) continue;
       float lit = clamp(dot(n, u_light), 0.0, 1.0);
       float I = lit_part / float(AQ_DIVISOR * AQ_DIVISOR);
