@@ -159,6 +159,7 @@ bool FastLayers::run(aq::Context& ctx, const FastFrame& f) {
   divisor_ = divisor_for(f.sigma);
   const int hw = (f.w + divisor_ - 1) / divisor_, hh = (f.h + divisor_ - 1) / divisor_;
   const uint32_t f32 = AQ_FORMAT_RGBA32F;
+  if (!ctx.scratch(f.w, f.h, f32, &t.pixels)) return false;
   for (aq_image* image :
        {&t.lists[0], &t.lists[1], &t.lists[2], &t.lists[3], &t.spare[0], &t.spare[1], &t.spare[2],
         &t.spare[3], &t.peak, &t.spare_one, &t.edges, &t.blur_edges}) {
@@ -261,8 +262,12 @@ bool FastLayers::segment_and_blur(aq::Context& ctx, const FastFrame& f, Targets&
   aq::set_float(p, "u_shininess", ctx.param_float(kShininess));
   aq::set_float(p, "u_specular_threshold", ctx.param_float(kSpecularThreshold));
   aq::set_int(p, "u_slots", kSlots);
+  aq::set_int(p, "u_pixels", 0);
+  glBindImageTexture(0, t.pixels.texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   if (!ctx.bind_targets(t.lists, 4)) return false;
   ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   const double sigma = low_sigma(f.sigma, divisor_);
   const int radius = radius_of(sigma);
   return gather(ctx, 0, t.lists[0], &t.lists[1], 0, sigma, radius, t.spare, 4) &&
@@ -344,20 +349,35 @@ bool FastLayers::threshold_map(aq::Context& ctx, const FastFrame& f, Targets& t)
   return ctx.draw(t.threshold);
 }
 
+// The cells' merged, ordered lists, then their 2 x 2 blocks of re-keyed corner values
+// (layered_fast_cells.frag, layered_fast_blocks.frag): (W + 1) x (H + 1) cells of the lists.
 bool FastLayers::cells(aq::Context& ctx, const FastFrame& f, Targets& t) {
   const GLuint p = fragment(ctx, "layered_fast_cells.frag", cells_text_,
                             shaders::layered_fast_cells_frag, defines(ctx, f));
-  if (p == 0) return false;
-  // The target first: a texture made after the inputs are bound could unbind one of them.
-  const aq_image keys = t.lists[0];
-  if (!ctx.scratch(5 * keys.width, keys.height, AQ_FORMAT_RGBA32F, &t.cells)) return false;
+  const GLuint b = fragment(ctx, "layered_fast_blocks.frag", blocks_text_,
+                            shaders::layered_fast_blocks_frag, defines(ctx, f));
+  if (p == 0 || b == 0) return false;
+  // The targets first: a texture made after the inputs are bound could unbind one of them.
+  const int cw = t.lists[0].width + 1, ch = t.lists[0].height + 1;
+  if (!ctx.scratch(cw, ch, AQ_FORMAT_RGBA32F, &t.cells)) return false;
+  for (aq_image& block : t.blocks) {
+    if (!ctx.scratch(2 * cw, 2 * ch, AQ_FORMAT_RGBA32F, &block)) return false;
+  }
   glUseProgram(p);
   aq::bind_texture(p, "u_keys", 0, t.lists[0]);
-  aq::bind_texture(p, "u_blur_intensity", 1, t.lists[1]);
-  aq::bind_texture(p, "u_blur_diffuse", 2, t.lists[2]);
-  aq::bind_texture(p, "u_blur_depth", 3, t.lists[3]);
-  aq::bind_texture(p, "u_blur_edges", 4, f.run_edges ? t.blur_edges : t.lists[1]);
-  return ctx.draw(t.cells);
+  aq::bind_texture(p, "u_colours", 1, t.colours);
+  if (!ctx.draw(t.cells)) return false;
+  glUseProgram(b);
+  aq::bind_texture(b, "u_cells", 0, t.cells);
+  aq::bind_texture(b, "u_keys", 1, t.lists[0]);
+  aq::bind_texture(b, "u_blur_intensity", 2, t.lists[1]);
+  aq::bind_texture(b, "u_blur_diffuse", 3, t.lists[2]);
+  aq::bind_texture(b, "u_blur_depth", 4, t.lists[3]);
+  aq::bind_texture(b, "u_blur_edges", 5, f.run_edges ? t.blur_edges : t.lists[1]);
+  aq::bind_texture(b, "u_peak", 6, f.thin ? t.peak : t.lists[1]);
+  if (!ctx.bind_targets(t.blocks, 5)) return false;
+  ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+  return true;
 }
 
 bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& t) {
@@ -365,18 +385,15 @@ bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& 
                             shaders::layered_fast_composite_frag, defines(ctx, f));
   if (p == 0) return false;
   glUseProgram(p);
-  aq::bind_texture(p, "u_keys", 0, t.lists[0]);
-  aq::bind_texture(p, "u_blur_intensity", 1, t.lists[1]);
-  aq::bind_texture(p, "u_blur_diffuse", 2, t.lists[2]);
-  aq::bind_texture(p, "u_blur_depth", 3, t.lists[3]);
-  aq::bind_texture(p, "u_peak", 4, f.thin ? t.peak : t.lists[1]);
-  aq::bind_texture(p, "u_blur_edges", 5, f.run_edges ? t.blur_edges : t.lists[1]);
-  aq::bind_texture(p, "u_id", 6, ctx.input_image(kId));
-  aq::bind_texture(p, "u_normal", 7, ctx.input_image(kNormal));
-  aq::bind_texture(p, "u_depth", 8, ctx.input_image(kDepth));
+  aq::bind_texture(p, "u_cells", 0, t.cells);
+  aq::bind_texture(p, "u_slot0", 1, t.blocks[0]);
+  aq::bind_texture(p, "u_slot1", 2, t.blocks[1]);
+  aq::bind_texture(p, "u_slot2", 3, t.blocks[2]);
+  aq::bind_texture(p, "u_slot3", 4, t.blocks[3]);
+  aq::bind_texture(p, "u_block_peak", 5, t.blocks[4]);
+  aq::bind_texture(p, "u_pixels", 6, t.pixels);
   if (f.has_paper) aq::bind_texture(p, "u_paper", 9, ctx.input_image(kPaper));
   aq::bind_texture(p, "u_colours", 10, t.colours);
-  aq::bind_texture(p, "u_cells", 13, t.cells);
   if (!bilinear_) {
     const GLuint s = bilinear_.create();
     glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -384,7 +401,7 @@ bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& 
     glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   }
-  for (GLuint unit : {1u, 2u, 3u, 4u, 5u, 13u}) glBindSampler(unit, bilinear_.get());
+  for (GLuint unit : {1u, 2u, 3u, 4u, 5u}) glBindSampler(unit, bilinear_.get());
   if (f.has_shadow) {
     aq::bind_texture(p, "u_shadow_layer", 11, f.shadow_blur);
     glBindSampler(11, bilinear_.get());
@@ -398,9 +415,6 @@ bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& 
   aq::bind_texture(p, "u_threshold_map", 12, t.threshold);
   set_threshold(ctx, p);
   aq::set_vec2(p, "u_size", f.w, f.h);
-  aq::set_vec3(p, "u_half", f.half);
-  aq::set_float(p, "u_shininess", ctx.param_float(kShininess));
-  aq::set_float(p, "u_specular_threshold", ctx.param_float(kSpecularThreshold));
   aq::set_float(p, "u_thin", f.thin ? ctx.param_float(kThinShapes) : 0.0);
   // b / m is 1 on a thin shape's ridge at full size; interpolated from texels four pixels apart
   // it dips between them, so the quarter resolution takes a lower step (a wide shape's

@@ -53,7 +53,7 @@ class FastLayers {
  private:
   struct Targets {
     aq_image lists[4]{}, spare[4]{}, peak{}, spare_one{}, edges{}, blur_edges{}, colours{},
-        overrides{}, cells{}, threshold{};
+        overrides{}, cells{}, blocks[5]{}, threshold{}, pixels{};
   };
   bool build_table(aq::Context& ctx);
   bool colours(aq::Context& ctx, const FastFrame& f, Targets& t);
@@ -74,7 +74,7 @@ class FastLayers {
   uint32_t generation_ = 0;
   int divisor_ = 2;  // this frame's, divisor_for(σ)
   std::string segment_text_, gather_text_[3], edges_text_, colours_text_, composite_text_,
-      cells_text_, threshold_text_;
+      cells_text_, blocks_text_, threshold_text_;
   aq::gl::KeptTexture threshold_;          // layered_threshold per pixel
   std::array<double, 4> threshold_key_{};  // the parameters it was drawn with
   aq::gl::Sampler bilinear_;  // for the composite's interpolation inside agreeing cells

@@ -1,28 +1,24 @@
-// The `fast` method's composite at full size (README "Fast method"): the half-resolution
-// lists of blurred intensity, diffuse, depth, peak and wet edges interpolated bilinearly per
-// layer (layered_lists.glsl), then the glazes of layered_composite.frag, far to near in the
-// table's order (mean depth descending, then id), on the paper, and the shadow layer last.
+// The `fast` method's composite at full size (README "Fast method"): per pixel its cell's
+// merged list of layers, already far to near in the table's order (mean depth descending,
+// then id; layered_fast_cells.frag), each layer's blurred intensity, diffuse, depth, wet edge
+// and peak interpolated bilinearly by the texture unit inside the cell's block
+// (layered_fast_blocks.frag), then the glazes of layered_composite.frag on the paper, and the
+// shadow layer last.
 layout(location = 0) out vec4 o_color;
 
-uniform sampler2D u_keys;
 uniform sampler2D u_threshold_map;  // layered_threshold per pixel (layered_fast_threshold.frag)
-uniform sampler2D u_cells;  // a texel's list where it and its +x, +y, +xy neighbours agree, else -1
-uniform sampler2D u_blur_intensity;
-uniform sampler2D u_blur_diffuse;
-uniform sampler2D u_blur_depth;
-uniform sampler2D u_peak;
-uniform sampler2D u_blur_edges;
-uniform sampler2D u_id;
-uniform sampler2D u_normal;
-uniform sampler2D u_depth;
+uniform sampler2D u_cells;  // per cell its merged keys, far to near (layered_fast_cells.frag)
+uniform sampler2D u_slot0;  // per cell a 2 x 2 block per slot (layered_fast_blocks.frag)
+uniform sampler2D u_slot1;
+uniform sampler2D u_slot2;
+uniform sampler2D u_slot3;
+uniform sampler2D u_block_peak;  // the four slots' peaks, in the same blocks
+uniform sampler2D u_pixels;  // per pixel (id, 1 − highlight, depth, 0): layered_fast_segment.frag
 #if AQ_HAS_PAPER
 uniform sampler2D u_paper;
 #endif
 uniform sampler2D u_colours;  // per slot, 4 rows: layered_fast_colours.frag
 uniform vec2 u_size;
-uniform vec3 u_half;
-uniform float u_shininess;
-uniform float u_specular_threshold;
 uniform float u_thin;
 uniform vec2 u_ridge;  // the ridge test's smooth step on b / m (README "Fast method")
 uniform float u_line_width_scale;
@@ -83,52 +79,6 @@ vec3 glaze(vec3 under, vec3 colour, float thickness) {
 #endif
 }
 
-struct Layers {
-  vec4 keys, b, bd, bz, peak, edges;
-};
-
-// The four low-resolution texels around p, bilinearly. Where they hold the same list
-// (u_cells, layered_fast_cells.frag: most of the image) the texture unit's bilinear filter
-// does it, one fetch per layer of the list; elsewhere each corner's layers are moved to the
-// slots of a merged list, the nearest corner first. Both are loops whose condition is per
-// pixel: llvmpipe runs both sides of a branch under a mask, but leaves a loop as soon as no
-// pixel of the group needs another turn.
-Layers interpolate(vec2 frag) {
-  ivec2 size = textureSize(u_keys, 0);
-  vec2 q = frag / float(AQ_DIVISOR) - 0.5;
-  ivec2 base = ivec2(floor(q));
-  vec4 cell = texelFetch(u_cells, clamp(base, ivec2(0), size - 1), 0);
-  vec2 strip = vec2(textureSize(u_cells, 0));
-  vec2 uv = (q + 0.5) / strip;
-  vec2 part = vec2(float(size.x) / strip.x, 0.0);
-  vec2 st = (q + 0.5) / vec2(size);
-  Layers l = Layers(cell, vec4(0.0), vec4(0.0), vec4(0.0), texture(u_peak, st), vec4(0.0));
-  for (int k = 0; k < 4 && cell[k] > 0.5; ++k) {
-    vec4 v = texture(u_cells, uv + float(k + 1) * part);
-    l.b[k] = v.x;
-    l.bd[k] = v.y;
-    l.bz[k] = v.z;
-    l.edges[k] = v.w;
-  }
-  bool merge = cell.x < 0.0 || any(lessThan(base, ivec2(0))) || any(greaterThanEqual(base + 1, size));
-  vec2 f = fract(q);
-  ivec2 near = ivec2(step(0.5, f));  // the nearest corner
-  for (int n = 0; merge && n < 4; ++n) {
-    if (n == 0) l = Layers(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
-    ivec2 corner = ivec2(n & 1, n >> 1) ^ near;  // n = 0 is the nearest
-    vec2 w2 = mix(1.0 - f, f, vec2(corner));
-    float w = w2.x * w2.y;
-    ivec2 t = list_clamp(base + corner, size);
-    mat4 m = list_merge(l.keys, texelFetch(u_keys, t, 0));
-    l.b += w * (m * texelFetch(u_blur_intensity, t, 0));
-    l.bd += w * (m * texelFetch(u_blur_diffuse, t, 0));
-    l.bz += w * (m * texelFetch(u_blur_depth, t, 0));
-    l.peak += w * (m * texelFetch(u_peak, t, 0));
-    l.edges += w * (m * texelFetch(u_blur_edges, t, 0));
-  }
-  return l;
-}
-
 // The wash: d mixes the layer's dark and light pigments, glazed `thickness` thick over
 // `under`; c0 and c1 are the rgb of the layer's rows 0 and 1 (the light and dark colours, or
 // with Kubelka–Munk the light pigment's K and S). Kubelka–Munk: the K and S of both pigments
@@ -173,39 +123,16 @@ vec3 paint(vec3 under, int slot, bool wet_in_wet, float b, float bd, float bz, f
   return wash(under, slot, clamp(bd / b, 0.0, 1.0), thickness, c0, c1);
 }
 
-// A pixel's layers with their table rows: mean depth, id, wet-in-wet and the rgb of rows 0 and
-// 1 per channel (vec4s over the layers: a local array indexed by the loop is slow on llvmpipe).
-struct Ordered {
-  Layers l;
-  vec4 depth, id, wet, r0, g0, b0, r1, g1, b1;
-};
-
-void swap_component(inout vec4 v, int a, int c) {
-  float x = v[a];
-  v[a] = v[c];
-  v[c] = x;
-}
-
-// Puts layers a < c (constant components) far to near: c first if it lies farther, or as far
-// with a smaller id; empty slots (depth −3e38) stay behind.
-void order_pair(inout Ordered o, int a, int c) {
-  bool swap = o.depth[c] > o.depth[a] || (o.depth[c] == o.depth[a] && o.id[c] < o.id[a]);
-  if (!swap) return;
-  swap_component(o.l.keys, a, c);
-  swap_component(o.l.b, a, c);
-  swap_component(o.l.bd, a, c);
-  swap_component(o.l.bz, a, c);
-  swap_component(o.l.peak, a, c);
-  swap_component(o.l.edges, a, c);
-  swap_component(o.depth, a, c);
-  swap_component(o.id, a, c);
-  swap_component(o.wet, a, c);
-  swap_component(o.r0, a, c);
-  swap_component(o.g0, a, c);
-  swap_component(o.b0, a, c);
-  swap_component(o.r1, a, c);
-  swap_component(o.g1, a, c);
-  swap_component(o.b1, a, c);
+// One listed layer's glaze: its pigments and id from the table (rows 0 and 1), its values
+// from the cell's block, interpolated by the texture unit (v: blurred I, D, Z and wet edge).
+vec3 layer(vec3 under, float key, vec4 v, float peak, float id, float lit_part, float t,
+           float front, float granulation) {
+  int slot = int(key) - 1;
+  vec4 row0 = texelFetch(u_colours, ivec2(slot, 0), 0);
+  vec4 row1 = texelFetch(u_colours, ivec2(slot, 1), 0);
+  float raw = id == abs(row1.a) ? lit_part : 0.0;
+  return paint(under, slot, row1.a < 0.0, v.x, v.y, v.z, peak, v.w, raw, t, front, granulation,
+               row0.rgb, row1.rgb);
 }
 
 void main() {
@@ -218,44 +145,31 @@ void main() {
 #endif
   vec3 under = u_paper_color * (1.0 + u_paper_relief * (h - 0.5));
   float granulation = mix(1.0, 2.0 * (1.0 - h), u_granulation);
-  Layers l = interpolate(gl_FragCoord.xy);
-  float id = texelFetch(u_id, p, 0).r;
-  vec3 n = texelFetch(u_normal, p, 0).xyz;
-  float len = length(n);
-  n = len > 1.0e-6 && len < 1.0e30 ? n / len : vec3(0.0);
-  float lit_part = pow(max(dot(n, u_half), 0.0), u_shininess) >= u_specular_threshold ? 0.0 : 1.0;
-  float front = texelFetch(u_depth, p, 0).r;
+  // The cell around this pixel (between the texels at base and base + 1) and the position in
+  // its 2 x 2 block that interpolates the four corners bilinearly.
+  vec2 q = gl_FragCoord.xy / float(AQ_DIVISOR) - 0.5;
+  vec2 base = floor(q);
+  ivec2 cell = ivec2(base) + 1;
+  vec4 keys = texelFetch(u_cells, cell, 0);  // far to near, empty slots last
+  vec2 uv = (2.0 * vec2(cell) + 0.5 + (q - base)) / vec2(textureSize(u_slot0, 0));
+  vec4 peak = texture(u_block_peak, uv);
+  vec4 pixel = texelFetch(u_pixels, p, 0);  // the segmentation's (id, 1 − highlight, depth)
+  float id = pixel.x, lit_part = pixel.y, front = pixel.z;
   float t = texelFetch(u_threshold_map, p, 0).r;  // layered_threshold, kept between frames
-  // Far to near: mean depth descending, then id ascending, empty slots last. A sorting network
-  // with fixed components (indexing a local array by a computed index is slow on llvmpipe);
-  // then the layers in order. llvmpipe runs both sides of a branch under a mask but leaves a
-  // loop once no pixel of the group needs another turn, so the loop costs what the group's
-  // longest list needs: one layer in most of the image.
-  Ordered o = Ordered(l, vec4(-3.0e38), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0),
-                      vec4(0.0), vec4(0.0), vec4(0.0));
-  for (int k = 0; k < 4 && l.keys[k] > 0.5; ++k) {
-    vec4 row0 = texelFetch(u_colours, ivec2(int(l.keys[k]) - 1, 0), 0);
-    vec4 row1 = texelFetch(u_colours, ivec2(int(l.keys[k]) - 1, 1), 0);
-    o.depth[k] = row0.a;
-    o.id[k] = abs(row1.a);
-    o.wet[k] = row1.a < 0.0 ? 1.0 : 0.0;
-    o.r0[k] = row0.r;
-    o.g0[k] = row0.g;
-    o.b0[k] = row0.b;
-    o.r1[k] = row1.r;
-    o.g1[k] = row1.g;
-    o.b1[k] = row1.b;
+  // The cell's layers in order. llvmpipe runs both sides of a branch under a mask but leaves
+  // a loop once no pixel of the group needs another turn: a layer costs only where a pixel of
+  // the group lists it (one layer in most of the image).
+  for (int once = 0; once < 1 && keys.x > 0.5; ++once) {
+    under = layer(under, keys.x, texture(u_slot0, uv), peak.x, id, lit_part, t, front, granulation);
   }
-  order_pair(o, 0, 1);
-  order_pair(o, 2, 3);
-  order_pair(o, 0, 2);
-  order_pair(o, 1, 3);
-  order_pair(o, 1, 2);
-  for (int i = 0; i < 4 && o.l.keys[i] > 0.5; ++i) {
-    float raw = id == o.id[i] ? lit_part : 0.0;
-    under = paint(under, int(o.l.keys[i]) - 1, o.wet[i] > 0.5, o.l.b[i], o.l.bd[i], o.l.bz[i],
-                  o.l.peak[i], o.l.edges[i], raw, t, front, granulation,
-                  vec3(o.r0[i], o.g0[i], o.b0[i]), vec3(o.r1[i], o.g1[i], o.b1[i]));
+  for (int once = 0; once < 1 && keys.y > 0.5; ++once) {
+    under = layer(under, keys.y, texture(u_slot1, uv), peak.y, id, lit_part, t, front, granulation);
+  }
+  for (int once = 0; once < 1 && keys.z > 0.5; ++once) {
+    under = layer(under, keys.z, texture(u_slot2, uv), peak.z, id, lit_part, t, front, granulation);
+  }
+  for (int once = 0; once < 1 && keys.w > 0.5; ++once) {
+    under = layer(under, keys.w, texture(u_slot3, uv), peak.w, id, lit_part, t, front, granulation);
   }
 #if AQ_HAS_SHADOW
   // The shadow layer's sums at the lists' resolution, enlarged bilinearly, on receivers.

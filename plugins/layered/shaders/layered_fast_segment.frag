@@ -1,7 +1,9 @@
 // Segmentation and lighting of the `fast` method at half resolution: each texel averages its
 // 2x2 pixels' intensity I = mask · (1 − highlight), diffuse D = I · n·l and depth Z = I · z
 // (README "Layer lighting") per layer, for up to four layers (layered_lists.glsl); the layer
-// is found in the GPU table by its id.
+// is found in the GPU table by its id. It also stores, per full-size pixel, what the
+// composite needs of the g-buffer there, (id, 1 − highlight, depth, 0), so the composite reads
+// one texel instead of the id, normal and depth and does not light the pixel again.
 layout(location = 0) out vec4 o_keys;
 layout(location = 1) out vec4 o_intensity;
 layout(location = 2) out vec4 o_diffuse;
@@ -17,6 +19,7 @@ uniform vec3 u_half;
 uniform float u_shininess;
 uniform float u_specular_threshold;
 uniform int u_slots;
+layout(rgba32f) uniform writeonly image2D u_pixels;  // per pixel (id, 1 − highlight, depth, 0)
 
 const int kWords = 12;
 
@@ -42,17 +45,18 @@ void main() {
     for (int i = 0; i < AQ_DIVISOR; ++i) {
       ivec2 p = list_clamp(base + ivec2(i, j), size);
       float id = texelFetch(u_id, p, 0).r;
-      if (!(id >= 1.0 && id < 16777216.0 && floor(id) == id)) continue;
-      float key = table_key(id);
-      if (key < 0.5) continue;
       vec3 n = texelFetch(u_normal, p, 0).xyz;
       float len = length(n);
       n = len > 1.0e-6 && len < 1.0e30 ? n / len : vec3(0.0);
+      float lit_part = pow(max(dot(n, u_half), 0.0), u_shininess) >= u_specular_threshold ? 0.0 : 1.0;
+      float front = texelFetch(u_depth, p, 0).r;
+      imageStore(u_pixels, p, vec4(id, lit_part, front, 0.0));
+      if (!(id >= 1.0 && id < 16777216.0 && floor(id) == id)) continue;
+      float key = table_key(id);
+      if (key < 0.5) continue;
       float lit = clamp(dot(n, u_light), 0.0, 1.0);
-      float specular = pow(max(dot(n, u_half), 0.0), u_shininess);
-      float I = specular >= u_specular_threshold ? 0.0 : 1.0 / float(AQ_DIVISOR * AQ_DIVISOR);
-      float z = texelFetch(u_depth, p, 0).r;
-      z = z > 0.0 && z < 3.0e38 ? z : 0.0;
+      float I = lit_part / float(AQ_DIVISOR * AQ_DIVISOR);
+      float z = front > 0.0 && front < 3.0e38 ? front : 0.0;
       mat4 m = list_merge(keys, vec4(key, 0.0, 0.0, 0.0));
       intensity += m * vec4(I, 0.0, 0.0, 0.0);
       diffuse += m * vec4(I * lit, 0.0, 0.0, 0.0);
