@@ -118,8 +118,7 @@ class Clouds {
       return AQ_ERROR;
     }
     const GLuint march = ctx.program(shaders::clouds_march_frag);
-    const GLuint composite = ctx.program(shaders::clouds_composite_frag);
-    if (march == 0 || composite == 0) return AQ_ERROR;
+    if (march == 0) return AQ_ERROR;
     const aq_camera& camera = scene->camera;
     const glm::mat4 view_projection =
         aq::scene_math::camera_projection(
@@ -141,12 +140,54 @@ class Clouds {
     set_volume(ctx, march);
     const glm::dmat4 view_projection_d = glm::dmat4(view_projection);
     const glm::dvec3 eye(camera.position[0], camera.position[1], camera.position[2]);
-    aq::Region damage = damaged(ctx, in, depth, has_depth, view_projection_d, eye, cell);
-    if (!ctx.set_draw_region(march_cells(damage, cell, cells_x, cells_y)))
+    const aq::Region live = live_pixels(ctx, view_projection_d, eye, cell, in.width, in.height);
+    aq::Region damage = damaged(ctx, in, depth, has_depth, view_projection_d, live, cell);
+    const Split split = split_of(damage, live, in.width, in.height);
+    if (!ctx.set_draw_region(march_cells(split.composite, cell, cells_x, cells_y)))
       damage = aq::Region::everything();
     if (!ctx.draw(tau)) return AQ_ERROR;
-    ctx.set_draw_region(damage);
+    // Drawn even when nothing changed: the host learns that the draw applies the epilogue.
+    const bool drawn = composite_into(ctx, out, in, tau, depth, has_depth, cell, split);
+    ctx.set_draw_region(aq::Region::everything());
+    aq::unbind_textures(3);
+    return drawn && ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
+  }
 
+ private:
+  // The composite's two programs draw the two parts of what changed: where a live march cell is
+  // near, τ upsampled; elsewhere τ is exactly 0, and the clear program writes the image through
+  // the epilogue (the same expression, without reading τ and depth: most of the paper relief's
+  // pixels in the art-directed graphs). Rects grown for drawing may cover live pixels with the
+  // clear program: the composite's region takes those too and is drawn after it.
+  struct Split {
+    aq::Region clear, composite;
+  };
+  static Split split_of(const aq::Region& damage, const aq::Region& live, int width, int height) {
+    Split split;
+    if (live.all()) {
+      split.composite = damage;
+      return split;
+    }
+    split.clear = aq::combined(damage, live, false, width, height).for_drawing();
+    aq::Region composite = aq::combined(damage, live, true, width, height);
+    composite.add(aq::combined(split.clear, live, true, width, height));
+    split.composite = composite.for_drawing();
+    return split;
+  }
+
+  bool composite_into(aq::Context& ctx, const aq_image& out, const aq_image& in,
+                      const aq_image& tau, const aq_image& depth, bool has_depth, int cell,
+                      const Split& split) {
+    if (!split.clear.empty() && ctx.set_draw_region(split.clear)) {
+      const GLuint clear =
+          ctx.program(aq_shader_source{"clouds_composite.frag", clear_text_.c_str(), nullptr});
+      if (clear == 0) return false;
+      glUseProgram(clear);
+      aq::bind_texture(clear, "u_image", 0, in);
+      if (!ctx.draw(out)) return false;
+    }
+    const GLuint composite = ctx.program(shaders::clouds_composite_frag);
+    if (composite == 0) return false;
     glUseProgram(composite);
     aq::bind_texture(composite, "u_image", 0, in);
     aq::bind_texture(composite, "u_tau", 1, tau);
@@ -155,51 +196,78 @@ class Clouds {
     aq::set_int(composite, "u_cell", cell);
     aq::set_float(composite, "u_max_distance", ctx.param_float(kMaxDistance));
     aq::set_vec3(composite, "u_light_color", ctx.param_vec3(kLightColor));
-    // Drawn even when nothing changed: the host learns that the draw applies the epilogue.
-    const bool drawn = ctx.draw(out);
-    ctx.set_draw_region(aq::Region::everything());
-    aq::unbind_textures(3);
-    return drawn && ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
+    ctx.set_draw_region(split.composite);
+    return ctx.draw(out);
   }
 
- private:
   // Damage tracking: with the output kept and the same camera, a pixel can change where its
   // image texel changed, where a depth its four cells' rays or its own weights read changed
-  // (two cells around), where the volume can be (it drifts with time: the distance falloff's
-  // sphere, widened by the warp, projected; the whole frame for the other falloffs), or where
-  // the fused epilogue changed. Outside the sphere τ is exactly 0 and the pixel its image's.
+  // (two cells around), where the volume can be (`live`: it drifts with time), or where the
+  // fused epilogue changed. Elsewhere τ is exactly 0 and the pixel its image's.
   aq::Region damaged(aq::Context& ctx, const aq_image& in, const aq_image& depth, bool has_depth,
-                     const glm::dmat4& view_projection, const glm::dvec3& eye, int cell) {
+                     const glm::dmat4& view_projection, const aq::Region& live, int cell) {
     const bool same_camera = view_projection == last_view_projection_;
     last_view_projection_ = view_projection;
-    if (!ctx.output_kept(0) || !same_camera) return aq::Region::everything();
+    if (!ctx.output_kept(0) || !same_camera || live.all()) return aq::Region::everything();
     if (has_depth && (depth.width != in.width || depth.height != in.height))
       return aq::Region::everything();
     const int reach = 2 * cell + 1;
     aq::Region damage = ctx.input_damage(kImage);
     if (has_depth) damage.add(ctx.input_damage(kDepth).dilated(reach, reach, in.width, in.height));
-    if (ctx.param_enum(kFalloff) != 2) return aq::Region::everything();
-    const double radius =
-        ctx.param_float(kFalloffLength) + std::max(ctx.param_float(kWarp), 0.0) * 1.05;
-    const double* centre = ctx.param_vec3(kCentre);
-    damage.add(live_cells(view_projection, eye, glm::dvec3(centre[0], centre[1], centre[2]), radius,
-                          cell, in.width, in.height)
-                   .dilated(reach, reach, in.width, in.height));
+    damage.add(live);
     damage.add(ctx.epilogue_damage());
     return damage.for_drawing();
   }
 
+  // The pixels whose composite may read a march cell with τ > 0: the cells whose ray can meet
+  // the falloff's non-zero part within max_distance, dilated by the composite's reach (two
+  // cells). Everything without a falloff. Kept while the camera and the falloff stay.
+  const aq::Region& live_pixels(aq::Context& ctx, const glm::dmat4& view_projection,
+                                const glm::dvec3& eye, int cell, int width, int height) {
+    const int64_t falloff = ctx.param_enum(kFalloff);
+    const double start = ctx.param_float(kFalloffStart), length = ctx.param_float(kFalloffLength);
+    const double warp = std::max(ctx.param_float(kWarp), 0.0);
+    const double far = ctx.param_float(kMaxDistance);
+    const double* c = ctx.param_vec3(kCentre);
+    const glm::dvec3 centre(c[0], c[1], c[2]);
+    aq::Fnv1a key;
+    for (const auto& v : {falloff, int64_t{cell}, int64_t{width}, int64_t{height}}) key.mix(v);
+    for (const double v : {start, length, warp, far}) key.mix(v);
+    key.mix(view_projection);
+    key.mix(eye);
+    key.mix(centre);
+    if (key.value == live_key_) return live_;
+    live_key_ = key.value;
+    const int reach = 2 * cell + 1;
+    if (falloff == 2) {
+      const double radius = (length + warp * 1.05) * 1.001 + 1e-4;  // the shader's, widened
+      const glm::dvec3 oc = eye - centre;  // the shader's ray starts at the camera
+      live_ = live_cells(view_projection, cell, width, height, [&](const glm::dvec3& d) {
+        const double b = glm::dot(oc, d);
+        const double disc = b * b - (glm::dot(oc, oc) - radius * radius);
+        return !std::isfinite(disc) || (disc > 0.0 && -b + std::sqrt(disc) > 0.0);
+      });
+    } else if (falloff == 1) {
+      // Above the ramp's start within max_distance (the march's t_end is never farther).
+      const double slack = 1e-4 * (1.0 + std::abs(start));
+      live_ = live_cells(view_projection, cell, width, height, [&](const glm::dvec3& d) {
+        if (eye.y > start - slack) return true;
+        return d.y > 0.0 && (start - eye.y) / d.y < far * 1.001 + 1e-3;
+      });
+    } else {
+      live_ = aq::Region::everything();
+    }
+    live_ = live_.dilated(reach, reach, width, height);
+    return live_;
+  }
+
   // The pixels of the march cells whose ray (through the cell's centre pixel, as
-  // clouds_march.frag casts it) meets the falloff's sphere: elsewhere the march leaves τ = 0.
-  // Tested as the shader does (the ray against the sphere, in double, the radius widened a
-  // little for the shader's float rounding), one cell row at a time, runs of live cells joined:
-  // the disc the sphere projects to, not the box of its bounding cube's corners (which covered
-  // most of the waterfall's frame).
-  static aq::Region live_cells(const glm::dmat4& view_projection, const glm::dvec3& eye,
-                               const glm::dvec3& centre, double radius, int cell, int width,
-                               int height) {
+  // clouds_march.frag casts it, its direction `d` unit) passes `live(d)`, tested in double one
+  // cell row at a time, runs of live cells joined (a non-finite direction counts as live).
+  template <typename Live>
+  static aq::Region live_cells(const glm::dmat4& view_projection, int cell, int width, int height,
+                               const Live& live) {
     const glm::dmat4 inverse = glm::inverse(view_projection);
-    const double widened = radius * 1.001 + 1e-4;
     auto unproject = [&](double x, double y, double z) {
       const glm::dvec4 p = inverse * glm::dvec4(x, y, z, 1.0);
       return glm::dvec3(p) / p.w;
@@ -209,20 +277,16 @@ class Clouds {
       const int py = std::min(cy * cell + cell / 2, height - 1);
       int run = -1;
       for (int cx = 0;; ++cx) {
-        bool live = false;
+        bool is_live = false;
         if (cx * cell < width) {
           const int px = std::min(cx * cell + cell / 2, width - 1);
           const double x = (px + 0.5) / width * 2.0 - 1.0, y = (py + 0.5) / height * 2.0 - 1.0;
           const glm::dvec3 near_point = unproject(x, y, -1.0);
           const glm::dvec3 d = glm::normalize(unproject(x, y, 1.0) - near_point);
-          const glm::dvec3 oc = eye - centre;  // the shader's ray starts at the camera
-          const double b = glm::dot(oc, d);
-          const double disc = b * b - (glm::dot(oc, oc) - widened * widened);
-          // Not finite (a degenerate camera): live, to be safe.
-          live = !std::isfinite(disc) || (disc > 0.0 && -b + std::sqrt(disc) > 0.0);
+          is_live = !std::isfinite(d.x + d.y + d.z) || live(d);
         }
-        if (live && run < 0) run = cx;
-        if (!live && run >= 0) {
+        if (is_live && run < 0) run = cx;
+        if (!is_live && run >= 0) {
           rects.push_back(aq::PixelRect{run * cell, cy * cell, std::min(cx * cell, width),
                                         std::min((cy + 1) * cell, height)});
           run = -1;
@@ -251,6 +315,10 @@ class Clouds {
   }
 
   glm::dmat4 last_view_projection_{0.0};
+  uint64_t live_key_ = 0;
+  aq::Region live_;
+  const std::string clear_text_ =
+      std::string("#define AQ_CLOUDS_CLEAR 1\n") + shaders::clouds_composite_frag.text;
 };
 
 }  // namespace

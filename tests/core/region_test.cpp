@@ -86,6 +86,32 @@ TEST(Region, DilationIsThePixelwiseOneClippedToTheImage) {
   }
 }
 
+// combined(): the pixels of one region in (or not in) another, as a node splits its damage
+// between two programs (clouds: the volume's composite where a live cell is near, the image
+// through the epilogue elsewhere); everything() stands for the whole image on either side.
+TEST(Region, CombinedIsThePixelwiseIntersectionAndDifference) {
+  std::mt19937 rng(8);
+  for (int trial = 0; trial < 40; ++trial) {
+    aq::Region a, b;
+    a.add(random_rects(rng, 1 + trial % 7, 24));
+    b.add(random_rects(rng, 1 + trial % 5, 24));
+    if (trial == 0) a = aq::Region::everything();
+    if (trial == 1) b = aq::Region::everything();
+    const Pixels pa = pixels_of(a), pb = pixels_of(b);
+    Pixels both(kW * kH, false), only_a(kW * kH, false);
+    for (int i = 0; i < kW * kH; ++i) {
+      both[i] = pa[i] && pb[i];
+      only_a[i] = pa[i] && !pb[i];
+    }
+    const aq::Region in = aq::combined(a, b, true, kW, kH);
+    const aq::Region out = aq::combined(a, b, false, kW, kH);
+    EXPECT_EQ(pixels_of(in), both) << "trial " << trial;
+    EXPECT_EQ(pixels_of(out), only_a) << "trial " << trial;
+    EXPECT_EQ(overlap_count(in), 0);
+    EXPECT_EQ(overlap_count(out), 0);
+  }
+}
+
 TEST(Region, CoversAndEverything) {
   aq::Region small = aq::Region::of(aq::PixelRect{2, 2, 6, 6});
   aq::Region big = aq::Region::of(aq::PixelRect{0, 0, 10, 10});

@@ -2,6 +2,8 @@
 // (joint bilateral: the four nearest cells' bilinear weights times how close the depth their
 // ray ended at is to this pixel's), then C · T + light · (1 − T), T = exp(−τ). τ = 0 returns C
 // unchanged. With one pixel per cell the pixel's own cell has weight 1: the exact march.
+// AQ_CLOUDS_CLEAR (defined by clouds.cpp for the pixels no live march cell reaches, where τ is
+// exactly 0): the same result without reading τ or depth, C through the epilogue.
 // aq_epilogue: the pointwise nodes after the clouds (paper relief, tint) when the host fuses
 // them into this pass (AQ_NODE_EPILOGUE), else the identity.
 in vec2 v_uv;
@@ -18,6 +20,10 @@ uniform vec3 u_light_color;
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 c = texelFetch(u_image, px, 0);
+#ifdef AQ_CLOUDS_CLEAR
+  o_color = aq_epilogue(c);
+  return;
+#endif
   ivec2 size = textureSize(u_image, 0);
   ivec2 cells = textureSize(u_tau, 0);
   float tau = 0.0;

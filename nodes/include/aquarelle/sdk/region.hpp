@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace aq {
@@ -332,6 +333,51 @@ class Region {
   bool coarsening_ = false;
   std::vector<PixelRect> rects_;
 };
+
+// The pixels of `a` that are in `b` (keep_in_b) or that are not (!keep_in_b), within a
+// width x height image (everything() stands for the whole image). Exact: the rows are cut into
+// bands at every rect's top and bottom, and each band's column intervals are intersected or
+// subtracted. What a node draws two ways (clouds: the march's composite where a live cell is
+// near, the image through the epilogue elsewhere) splits its damage with it.
+inline Region combined(const Region& a, const Region& b, bool keep_in_b, int width, int height) {
+  const PixelRect whole{0, 0, width, height};
+  const std::vector<PixelRect> as = a.all() ? std::vector<PixelRect>{whole} : a.rects();
+  const std::vector<PixelRect> bs = b.all() ? std::vector<PixelRect>{whole} : b.rects();
+  std::vector<int> edges;
+  for (const auto* list : {&as, &bs})
+    for (const PixelRect& r : *list) {
+      edges.push_back(r.y0);
+      edges.push_back(r.y1);
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<PixelRect> out;
+  for (size_t e = 0; e + 1 < edges.size(); ++e) {
+    const int y0 = edges[e], y1 = edges[e + 1];
+    std::vector<std::pair<int, int>> cut;  // b's columns in this band (disjoint: b is a Region)
+    for (const PixelRect& r : bs)
+      if (r.y0 <= y0 && r.y1 >= y1 && !r.empty()) cut.emplace_back(r.x0, r.x1);
+    std::sort(cut.begin(), cut.end());
+    for (const PixelRect& r : as) {
+      if (!(r.y0 <= y0 && r.y1 >= y1) || r.empty()) continue;
+      int x = r.x0;  // a's columns from x on are not yet emitted or dropped
+      for (const auto& [c0, c1] : cut) {
+        if (c1 <= x || c0 >= r.x1) continue;
+        const int inside0 = std::max(c0, x), inside1 = std::min(c1, r.x1);
+        if (keep_in_b) {
+          out.push_back(PixelRect{inside0, y0, inside1, y1});
+        } else if (inside0 > x) {
+          out.push_back(PixelRect{x, y0, inside0, y1});
+        }
+        x = inside1;
+      }
+      if (!keep_in_b && x < r.x1) out.push_back(PixelRect{x, y0, r.x1, y1});
+    }
+  }
+  Region region;
+  region.add(out);
+  return region;
+}
 
 // The ABI's rects (aq_host::input_damage, set_output_damage ...) and back.
 inline Region region_of(const aq_rect* rects, size_t count) {
