@@ -398,11 +398,8 @@ bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& 
   if (p == 0) return false;
   glUseProgram(p);
   aq::bind_texture(p, "u_cells", 0, t.cells);
-  aq::bind_texture(p, "u_slot0", 1, t.blocks[0]);
-  aq::bind_texture(p, "u_slot1", 2, t.blocks[1]);
-  aq::bind_texture(p, "u_slot2", 3, t.blocks[2]);
-  aq::bind_texture(p, "u_slot3", 4, t.blocks[3]);
-  aq::bind_texture(p, "u_block_peak", 5, t.blocks[4]);
+  const char* blocks[] = {"u_slot0", "u_slot1", "u_slot2", "u_slot3", "u_block_peak"};
+  for (GLuint i = 0; i < 5; ++i) aq::bind_texture(p, blocks[i], 1 + i, t.blocks[i]);
   aq::bind_texture(p, "u_pixels", 6, t.pixels);
   aq::bind_texture(p, "u_colours", 10, t.colours);
   if (!bilinear_) {
