@@ -194,9 +194,9 @@ void print_report(const BenchReport& r, std::FILE* out) {
       if (candidate.id == n.id) c = &candidate;
     }
     char cached[64] = "-";
-    if (n.fused) {
-      std::fprintf(out, "%-14s %-12s %36s\n", n.id.c_str(), n.type.c_str(),
-                   "fused into its reader's pass");
+    if (n.fused) {  // its time is in its reader's row; its error is its own
+      std::fprintf(out, "%-14s %-12s %36s %27s %10s %s\n", n.id.c_str(), n.type.c_str(),
+                   "fused into its reader's pass", "", "", error_cell(r.node_errors, n.id).c_str());
       continue;
     }
     if (c != nullptr) {

@@ -117,6 +117,31 @@ TEST(ArtDirectedBench, TheNodeTableGivesEachApproximationItsErrorAgainstTheExact
   EXPECT_TRUE(exact_rows["bleeding"]["error"]["exact"].get<bool>());
 }
 
+// The text table gives a node fused into its reader's pass its error too: the spray's row used
+// to say only "fused into its reader's pass", so the clouds' error was in the JSON alone.
+TEST(ArtDirectedBench, AFusedNodesRowInTheTableStatesItsError) {
+  const auto dir = aq::test::scratch_dir("node_error_fused_text");
+  auto result = aq::test::run_command("{ " + std::string(AQ_APP_PATH) + " bench " +
+                                      aq::test::source_path("graphs/waterfall.json") +
+                                      " --no-sweep --size 64x36 --frames 1 --warmup 0 -q 2>" +
+                                      (dir / "stderr.txt").string() + "; }");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  std::istringstream lines(result.output);
+  std::string line, spray;
+  while (std::getline(lines, line))
+    if (line.rfind("spray ", 0) == 0) spray = line;
+  const std::string fused = "fused into its reader's pass";
+  const size_t at = spray.find(fused);
+  ASSERT_NE(at, std::string::npos) << "the spray is fused into the relief's pass:\n"
+                                   << result.output;
+  std::istringstream cells(spray.substr(at + fused.size()));
+  double mean_abs = -1.0, max_abs = -1.0;
+  cells >> mean_abs >> max_abs;
+  ASSERT_FALSE(cells.fail()) << "no error after the fused row: " << spray;
+  EXPECT_GT(mean_abs, 0.0) << spray;
+  EXPECT_GE(max_abs, mean_abs) << spray;
+}
+
 // A node whose exact setting changes its output's size (the shadow map at 4096) is compared
 // after resampling, and the bench still reports: it used to stop with "output is 1024x1024 but
 // the reference is 4096x4096".
