@@ -60,6 +60,22 @@ TEST(PaperRelief, MatchesReference) {
   EXPECT_GT(aq::test::max_abs_diff(*run(image, *paper, nullptr, {}), image), 0.01);  // relief shows
 }
 
+// Inputs of other sizes are read at x · their width / the image's width (integer division, as
+// the reference does). The shader no longer divides integers (aquarelle/integer_division.glsl: a
+// float estimate and a correction); at these widths the products pass 2^24, where the estimate
+// alone is one off for some pixels and the correction must make it exact.
+TEST(PaperRelief, WideInputsOfOtherSizesAreReadAtTheExactTexel) {
+  const ImageF image = aq::test::random_image(16001, 1, 31);
+  const ImageF paper = aq::test::random_image(16383, 3, 32);
+  const ImageF mask = aq::test::random_image(12289, 1, 33, 0.0f, 1.0f);
+  PaperReliefParams p;
+  p.bump = 6.0;
+  const ImageF expected = aq::reference::paper_relief(image, paper, &mask, p);
+  auto got = run(image, paper, &mask, p);
+  ASSERT_TRUE(got.ok()) << got.message();
+  EXPECT_LE(aq::test::max_abs_diff(*got, expected), 5e-6);
+}
+
 TEST(PaperRelief, FlatPaperAndZeroReliefAreExact) {
   const ImageF image = aq::test::random_image(33, 17, 24, 0.0f, 2.0f);
   const ImageF flat = aq::test::constant_image(16, 16, 0.5f, 0.5f, 0.5f);

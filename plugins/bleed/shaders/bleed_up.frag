@@ -6,6 +6,8 @@
 // in and the weights sum to 1: two bilinear reads give B and A, the same sums. bleed_inputs.glsl
 // is prepended: the pixel's depth and id are read from the node's inputs. With extrusion, a
 // pixel whose own cell the extruded geometry covers takes that geometry's colour, id and depth.
+#include "aquarelle/integer_division.glsl"
+
 in vec2 v_uv;
 out vec4 o_color;
 
@@ -30,7 +32,7 @@ void main() {
   bool covered = false;
   float covered_depth = 0.0;
   if (u_extruded != 0) {
-    ivec2 own = min(x / u_cell, cells - 1);
+    ivec2 own = min(aq_floor_divide(x, ivec2(u_cell)), cells - 1);
     vec4 source_key = texelFetch(u_cell_source_key, own, 0);
     if (source_key.w > 0.5 && source_key.z != id && source_key.y < bleed_depth(x)) {
       covered = true;

@@ -17,12 +17,9 @@ layout(r32ui, binding = 0) uniform coherent uimage2D u_counts;
 layout(location = 0) out vec4 o_color;
 
 // Integer division and remainder are not SIMD instructions on the CPU (llvmpipe runs each
-// lane's alone, and they dominated this pass): the quotient is taken in float and corrected.
-int floor_divide(int i, int n) {
-  int q = int(floor(float(i) / float(n)));
-  int r = i - q * n;
-  return q + (r < 0 ? -1 : 0) + (r >= n ? 1 : 0);
-}
+// lane's alone, and they dominated this pass): aq_floor_divide takes the quotient in float and
+// corrects it.
+#include "aquarelle/integer_division.glsl"
 
 // Floor displacement of grid vertex v (0 <= v <= u_grid) in texels; the grid is periodic.
 vec2 displacement_of(ivec2 v) {
@@ -31,7 +28,7 @@ vec2 displacement_of(ivec2 v) {
   return float(u_resolution) * texelFetch(u_displacement, wrapped, 0).xy;
 }
 
-int wrap_texel(int i) { return i - floor_divide(i, u_resolution) * u_resolution; }
+int wrap_texel(int i) { return i - aq_floor_divide(i, u_resolution) * u_resolution; }
 
 void add_light(ivec2 texel, uint counts) {
   if (counts != 0u) {
@@ -201,7 +198,7 @@ void main() {
   // Positions relative to the texel `base` holding the cell's corner, so that the floats stay
   // small whatever the texture size.
   ivec2 scaled = cell * u_resolution;
-  ivec2 base = ivec2(floor_divide(scaled.x, u_grid), floor_divide(scaled.y, u_grid));
+  ivec2 base = aq_floor_divide(scaled, ivec2(u_grid));
   vec2 corner = vec2(scaled - base * u_grid) / float(u_grid);
   float texels_per_cell = float(u_resolution) / float(u_grid);
   vec2 p00 = corner + displacement_of(cell);

@@ -6,6 +6,8 @@
 // exactly 0): the same result without reading τ or depth, C through the epilogue.
 // aq_epilogue: the pointwise nodes after the clouds (paper relief, tint) when the host fuses
 // them into this pass (AQ_NODE_EPILOGUE), else the identity.
+#include "aquarelle/integer_division.glsl"
+
 in vec2 v_uv;
 out vec4 o_color;
 
@@ -34,7 +36,7 @@ void main() {
     float depth = u_max_distance;
     if (u_has_depth != 0) {
       ivec2 dsize = textureSize(u_depth, 0);
-      float d = texelFetch(u_depth, min(px * dsize / size, dsize - 1), 0).r;
+      float d = texelFetch(u_depth, min(aq_scaled_texel(px, size, dsize), dsize - 1), 0).r;
       if (d >= 0.0) depth = min(d, u_max_distance);
     }
     // Cell k's centre pixel is k·cell + cell/2: its position in cell units.

@@ -10,6 +10,7 @@
 // outside it the density is exactly 0, so clipping the march there is no approximation, and a
 // ray that never enters it (or meets the scene first) costs nothing.
 #include "aquarelle/noise.glsl"
+#include "aquarelle/integer_division.glsl"
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_tau;
@@ -92,7 +93,7 @@ void main() {
   float depth = u_max_distance;
   if (u_has_depth != 0) {
     ivec2 dsize = textureSize(u_depth, 0);
-    depth = texelFetch(u_depth, min(px * dsize / u_size, dsize - 1), 0).r;
+    depth = texelFetch(u_depth, min(aq_scaled_texel(px, u_size, dsize), dsize - 1), 0).r;
     float along = depth / max(dot(direction, u_forward), 1e-6);
     if (along >= 0.0) t_end = min(t_end, along);  // NaN depth: the full march
   }

@@ -7,6 +7,8 @@
 // thin geometry and blots at corners.
 // d at or under the dead zone (the rounding of a blurred constant) and non-finite d are 0, so a
 // flat area is returned bit-exact and a NaN neighbour never spreads.
+#include "aquarelle/integer_division.glsl"
+
 in vec2 v_uv;
 out vec4 o_color;
 
@@ -23,7 +25,8 @@ uniform float u_max_exponent;
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec4 c = texelFetch(u_image, p, 0);
-  ivec2 ps = min(p * textureSize(u_source, 0) / textureSize(u_image, 0), textureSize(u_source, 0) - 1);
+  ivec2 ps = min(aq_scaled_texel(p, textureSize(u_image, 0), textureSize(u_source, 0)),
+                 textureSize(u_source, 0) - 1);
   vec3 s = texelFetch(u_source, ps, 0).rgb;
   vec3 b = texture(u_blurred, (vec2(ps) + 0.5) / vec2(textureSize(u_source, 0))).rgb;
   vec3 diff = abs(b - s);
@@ -32,7 +35,7 @@ void main() {
   if (!(d > u_dead_zone * scale) || isinf(d)) d = 0.0;  // also NaN
   float k = u_strength;
   if (u_has_control != 0) {
-    ivec2 pc = min(p * textureSize(u_control, 0) / textureSize(u_image, 0),
+    ivec2 pc = min(aq_scaled_texel(p, textureSize(u_image, 0), textureSize(u_control, 0)),
                    textureSize(u_control, 0) - 1);
     vec4 control = texelFetch(u_control, pc, 0);
     vec2 centre = (vec2(pc) + 0.5) / vec2(textureSize(u_control, 0));

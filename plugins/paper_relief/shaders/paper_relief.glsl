@@ -6,8 +6,9 @@
 //   out   = base · (1 + relief · (s − 1))        flat paper: s = 1 exactly, out = base
 // The node's own pass and the host's fused passes both call it (aq_pointwise_desc): the colour
 // is the image at the pixel, paper and mask samplers read at the pixel under it (the paper one
-// pixel around). Everything stays inside AQ_APPLY (no helper functions), so two relief stages
-// can share one fused shader.
+// pixel around). Everything stays inside AQ_APPLY (no helper functions but the guarded library's),
+// so two relief stages can share one fused shader.
+#include "aquarelle/integer_division.glsl"
 uniform sampler2D AQ_UNIFORM(paper);  // height in r
 uniform sampler2D AQ_UNIFORM(mask);   // how much paper shows, in r
 uniform int AQ_UNIFORM(has_mask);
@@ -23,14 +24,15 @@ vec4 AQ_APPLY(vec4 c, vec2 pixel, vec2 size) {
   vec3 base = c.rgb;
   if (AQ_UNIFORM(has_mask) != 0) {
     ivec2 mask_size = textureSize(AQ_UNIFORM(mask), 0);
-    float m = texelFetch(AQ_UNIFORM(mask), min(p * mask_size / image_size, mask_size - 1), 0).r;
+    ivec2 under = min(aq_scaled_texel(p, image_size, mask_size), mask_size - 1);
+    float m = texelFetch(AQ_UNIFORM(mask), under, 0).r;
     if (isnan(m)) m = 0.0;
     float show = clamp(AQ_UNIFORM(show) * m, 0.0, 1.0);
     if (show > 0.0) base = mix(base, AQ_UNIFORM(paper_color), show);
   }
   ivec2 paper_size = textureSize(AQ_UNIFORM(paper), 0);
   ivec2 last = paper_size - 1;
-  ivec2 q = p * paper_size / image_size;
+  ivec2 q = aq_scaled_texel(p, image_size, paper_size);
   float dx = 0.5 * (texelFetch(AQ_UNIFORM(paper), clamp(q + ivec2(1, 0), ivec2(0), last), 0).r -
                     texelFetch(AQ_UNIFORM(paper), clamp(q - ivec2(1, 0), ivec2(0), last), 0).r);
   float dy = 0.5 * (texelFetch(AQ_UNIFORM(paper), clamp(q + ivec2(0, 1), ivec2(0), last), 0).r -

@@ -5,6 +5,7 @@
 // aq_epilogue: the pointwise nodes after the tremor (paper relief, tint) when the host fuses
 // them into this pass (AQ_NODE_EPILOGUE), else the identity.
 #include "aquarelle/noise.glsl"
+#include "aquarelle/integer_division.glsl"
 
 in vec2 v_uv;
 out vec4 o_color;
@@ -23,7 +24,7 @@ void main() {
   float m = 1.0;
   if (u_has_control != 0) {
     ivec2 csize = textureSize(u_control, 0);
-    m = texelFetch(u_control, min(p * csize / size, csize - 1), 0).a;
+    m = texelFetch(u_control, min(aq_scaled_texel(p, size, csize), csize - 1), 0).a;
     if (!(m > 0.0) || isinf(m)) m = 0.0;
     m = min(m, u_max_mask);
   }
