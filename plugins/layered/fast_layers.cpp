@@ -392,10 +392,48 @@ bool FastLayers::cells(aq::Context& ctx, const FastFrame& f, Targets& t) {
   return true;
 }
 
+// The composite in five draws, one per class of pixels by the last layer their cell lists (0 to
+// 4): the classes pass writes the class into a depth buffer, and each draw, compiled for its
+// number of layers, is let in by the depth test EQUAL at its class's depth (the depth range
+// [d, d] puts the full-screen triangle there). llvmpipe tests depth before the shader and skips
+// the groups of pixels that all fail, so a pixel pays for the layers its cell may list, not
+// for four (a loop per layer did not: llvmpipe ran it for every pixel).
 bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& t) {
-  const GLuint p = fragment(ctx, "layered_fast_composite.frag", composite_text_,
-                            shaders::layered_fast_composite_frag, defines(ctx, f));
-  if (p == 0) return false;
+  const GLuint classes = fragment(ctx, "layered_fast_classes.frag", classes_text_,
+                                  shaders::layered_fast_classes_frag, defines(ctx, f));
+  if (classes == 0) return false;
+  bool kept = false;
+  const aq_image depth = class_depth_.get(ctx.raw()->gl_generation, f.w, f.h, &kept);
+  glUseProgram(classes);
+  aq::bind_texture(classes, "u_cells", 0, t.cells);
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_ALWAYS);
+  bool ok = ctx.bind_targets(&f.out, 1, &depth);
+  if (ok) ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+  glDepthMask(GL_FALSE);
+  glDepthFunc(GL_EQUAL);
+  for (int layers = 0; layers <= 4 && ok; ++layers) {
+    const double class_depth = (layers + 1) / 8.0;
+    const GLuint p = fragment(ctx, "layered_fast_composite.frag", composite_texts_[layers],
+                              shaders::layered_fast_composite_frag,
+                              defines(ctx, f) + define("AQ_LAYER_COUNT", layers));
+    ok = p != 0 && set_composite_inputs(ctx, f, t, p) && ctx.bind_targets(&f.out, 1, &depth);
+    if (!ok) break;
+    glDepthRange(class_depth, class_depth);
+    ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
+  }
+  glDepthRange(0.0, 1.0);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_DEPTH_TEST);
+  for (GLuint unit = 1; unit <= 13; ++unit) glBindSampler(unit, 0);
+  return ok;
+}
+
+// The composite program's textures, samplers and uniforms.
+bool FastLayers::set_composite_inputs(aq::Context& ctx, const FastFrame& f, const Targets& t,
+                                      GLuint p) {
   glUseProgram(p);
   aq::bind_texture(p, "u_cells", 0, t.cells);
   const char* blocks[] = {"u_slot0", "u_slot1", "u_slot2", "u_slot3", "u_block_peak"};
@@ -442,9 +480,7 @@ bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& 
   aq::set_float(p, "u_density", ctx.param_float(kDensity));
   aq::set_vec3(p, "u_paper_color", ctx.param_vec3(kPaperColor));
   aq::set_float(p, "u_paper_relief", ctx.param_float(kPaperRelief));
-  const bool ok = ctx.draw(f.out);
-  for (GLuint unit = 1; unit <= 13; ++unit) glBindSampler(unit, 0);
-  return ok;
+  return true;
 }
 
 }  // namespace layered

@@ -6,6 +6,7 @@
 
 #include <aquarelle/plugin.hpp>
 #include <aquarelle/sdk/gl_raii.hpp>
+#include <aquarelle/sdk/static_layer.hpp>
 
 #include <array>
 #include <cmath>
@@ -69,6 +70,7 @@ class FastLayers {
                      const std::array<double, 5>& drawn_with);
   static void set_threshold(aq::Context& ctx, GLuint program);
   bool composite(aq::Context& ctx, const FastFrame& f, const Targets& t);
+  bool set_composite_inputs(aq::Context& ctx, const FastFrame& f, const Targets& t, GLuint p);
   bool gather(aq::Context& ctx, int mode, const aq_image& keys, const aq_image* values, int axis,
               double sigma, int radius, const aq_image* targets, int target_count);
   GLuint fragment(aq::Context& ctx, const char* name, std::string& text,
@@ -79,10 +81,12 @@ class FastLayers {
   GLuint table_program_ = 0;
   uint32_t generation_ = 0;
   int divisor_ = 2;  // this frame's, divisor_for(σ)
-  std::string segment_text_, gather_text_[3], edges_text_, colours_text_, composite_text_,
+  std::string segment_text_, gather_text_[3], edges_text_, colours_text_, classes_text_,
       cells_text_, blocks_text_, threshold_text_;
-  aq::gl::KeptTexture threshold_;          // (layered_threshold, paper height) per pixel
-  std::array<double, 5> threshold_key_{};  // the parameters it was drawn with
+  std::array<std::string, 5> composite_texts_;  // one per class (0 to 4 layers)
+  aq::KeptDepth class_depth_;                   // the composite's classes (composite())
+  aq::gl::KeptTexture threshold_;               // (layered_threshold, paper height) per pixel
+  std::array<double, 5> threshold_key_{};       // the parameters it was drawn with
   aq::gl::Sampler bilinear_;  // for the composite's interpolation inside agreeing cells
   std::vector<float> overrides_;
 };

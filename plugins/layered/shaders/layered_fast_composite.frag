@@ -6,6 +6,10 @@
 // shadow layer last.
 layout(location = 0) out vec4 o_color;
 
+#ifndef AQ_LAYER_COUNT
+#define AQ_LAYER_COUNT 4  // every slot (a draw without the classes)
+#endif
+
 uniform sampler2D u_threshold_map;  // (layered_threshold, paper height) per pixel, kept
 uniform sampler2D u_cells;  // per cell its merged keys, far to near (layered_fast_cells.frag)
 uniform sampler2D u_slot0;  // per cell a 2 x 2 block per slot (layered_fast_blocks.frag)
@@ -149,21 +153,27 @@ void main() {
   vec4 peak = texture(u_block_peak, uv);
   vec4 pixel = texelFetch(u_pixels, p, 0);  // the segmentation's (id, 1 − highlight, depth)
   float id = pixel.x, lit_part = pixel.y, front = pixel.z;
-  // The cell's layers in order. llvmpipe runs both sides of a branch under a mask but leaves
-  // a loop once no pixel of the group needs another turn: a layer costs only where a pixel of
-  // the group lists it (one layer in most of the image).
-  for (int once = 0; once < 1 && keys.x > 0.5; ++once) {
+  // The cell's layers in order, up to the last listed one of this draw's pixels (AQ_LAYER_COUNT:
+  // layered_fast_classes.frag sorted the pixels into classes by it, and the depth test lets
+  // only this class in). llvmpipe runs every call below for every pixel of a group, listed or
+  // not (neither a branch nor a loop is skipped, measured), so the classes are what keep a
+  // pixel with one layer from paying for four.
+#if AQ_LAYER_COUNT > 0
+  if (keys.x > 0.5)
     under = layer(under, keys.x, texture(u_slot0, uv), peak.x, id, lit_part, t, front, granulation);
-  }
-  for (int once = 0; once < 1 && keys.y > 0.5; ++once) {
+#endif
+#if AQ_LAYER_COUNT > 1
+  if (keys.y > 0.5)
     under = layer(under, keys.y, texture(u_slot1, uv), peak.y, id, lit_part, t, front, granulation);
-  }
-  for (int once = 0; once < 1 && keys.z > 0.5; ++once) {
+#endif
+#if AQ_LAYER_COUNT > 2
+  if (keys.z > 0.5)
     under = layer(under, keys.z, texture(u_slot2, uv), peak.z, id, lit_part, t, front, granulation);
-  }
-  for (int once = 0; once < 1 && keys.w > 0.5; ++once) {
+#endif
+#if AQ_LAYER_COUNT > 3
+  if (keys.w > 0.5)
     under = layer(under, keys.w, texture(u_slot3, uv), peak.w, id, lit_part, t, front, granulation);
-  }
+#endif
 #if AQ_HAS_SHADOW
   // The shadow layer's sums at the lists' resolution, enlarged bilinearly, on receivers.
   vec2 s = texture(u_shadow_layer, gl_FragCoord.xy / (float(AQ_DIVISOR) * vec2(textureSize(u_shadow_layer, 0)))).rg;
