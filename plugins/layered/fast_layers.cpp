@@ -308,7 +308,9 @@ bool FastLayers::peaks_and_edges(aq::Context& ctx, const FastFrame& f, Targets& 
 bool FastLayers::gather(aq::Context& ctx, int mode, const aq_image& keys, const aq_image* values,
                         int axis, double sigma, int radius, const aq_image* targets,
                         int target_count) {
-  const std::string defs = define("AQ_GATHER", mode);
+  // Small radii compiled in (layered_fast_gather.frag); a few programs per graph.
+  const std::string defs =
+      define("AQ_GATHER", mode) + (radius <= kUnrolledRadius ? define("AQ_RADIUS", radius) : "");
   const GLuint p = fragment(ctx, "layered_fast_gather.frag", gather_text_[mode],
                             shaders::layered_fast_gather_frag, defs);
   if (p == 0) return false;
@@ -322,7 +324,7 @@ bool FastLayers::gather(aq::Context& ctx, int mode, const aq_image& keys, const 
     aq::bind_texture(p, "u_values", 1, values[0]);
   }
   glUniform2i(glGetUniformLocation(p, "u_axis"), axis == 0 ? 1 : 0, axis == 0 ? 0 : 1);
-  aq::set_int(p, "u_radius", radius);
+  if (radius > kUnrolledRadius) aq::set_int(p, "u_radius", radius);
   if (mode != 2) {
     const std::vector<float> w = gaussian_weights(sigma, radius);
     glUniform1fv(glGetUniformLocation(p, "u_weights"), static_cast<GLsizei>(w.size()), w.data());

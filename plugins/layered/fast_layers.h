@@ -34,7 +34,8 @@ class FastLayers {
  public:
   // Slots of the GPU table: ids beyond this many in one frame are left out.
   static constexpr int kSlots = 4096;
-  static constexpr int kMaxRadius = 63;  // Gaussian taps per side the passes hold
+  static constexpr int kMaxRadius = 63;       // Gaussian taps per side the passes hold
+  static constexpr int kUnrolledRadius = 16;  // larger radii loop over a uniform
 
   FastLayers() = default;
   FastLayers(const FastLayers&) = delete;

@@ -16,7 +16,14 @@ uniform sampler2D u_depth;
 uniform sampler2D u_keys;    // the lists' keys (for AQ_GATHER 1 and 2: of the fixed lists)
 uniform sampler2D u_values;  // AQ_GATHER 1 and 2: one value per key
 uniform ivec2 u_axis;
+#ifdef AQ_RADIUS
+// The radius compiled in (fast_layers.cpp does for small radii): llvmpipe then unrolls the taps
+// and reads each weight at a constant index instead of one lane at a time.
+const int kRadius = AQ_RADIUS;
+#else
 uniform int u_radius;
+#define kRadius u_radius
+#endif
 uniform float u_weights[64];  // Gaussian weights by distance (AQ_GATHER 0 and 1)
 
 void main() {
@@ -28,7 +35,7 @@ void main() {
   vec4 keys = texelFetch(u_keys, p, 0);
   vec4 acc = vec4(0.0);
 #endif
-  for (int n = 0; n <= 2 * u_radius; ++n) {
+  for (int n = 0; n <= 2 * kRadius; ++n) {
     int offset = (n + 1) / 2 * (n % 2 == 1 ? 1 : -1);  // 0, 1, -1, 2, -2, ...
     ivec2 q = list_clamp(p + offset * u_axis, size);
     vec4 tap_keys = texelFetch(u_keys, q, 0);
