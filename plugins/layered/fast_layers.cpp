@@ -394,12 +394,12 @@ bool FastLayers::cells(aq::Context& ctx, const FastFrame& f, Targets& t) {
   return true;
 }
 
-// The composite in five draws, one per class of pixels by the last layer their cell lists (0 to
-// 4): the classes pass writes the class into a depth buffer, and each draw, compiled for its
-// number of layers, is let in by the depth test EQUAL at its class's depth (the depth range
-// [d, d] puts the full-screen triangle there). llvmpipe tests depth before the shader and skips
-// the groups of pixels that all fail, so a pixel pays for the layers its cell may list, not
-// for four (a loop per layer did not: llvmpipe ran it for every pixel).
+// The composite in four draws, one per class of pixels by the last layer their cell lists (0 to
+// 2, and 3 or 4 together): the classes pass writes the class into a depth buffer, and each draw,
+// compiled for its number of layers, is let in by the depth test EQUAL at its class's depth (the
+// depth range [d, d] puts the full-screen triangle there). llvmpipe tests depth before the shader
+// and skips the groups of pixels that all fail, so a pixel pays for the layers its cell may list,
+// not for four (a loop per layer did not: llvmpipe ran it for every pixel).
 bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& t) {
   const GLuint classes = fragment(ctx, "layered_fast_classes.frag", classes_text_,
                                   shaders::layered_fast_classes_frag, defines(ctx, f));
@@ -415,9 +415,10 @@ bool FastLayers::composite(aq::Context& ctx, const FastFrame& f, const Targets& 
   if (ok) ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
   glDepthMask(GL_FALSE);
   glDepthFunc(GL_EQUAL);
-  for (int layers = 0; layers <= 4 && ok; ++layers) {
-    const double class_depth = (layers + 1) / 8.0;
-    const GLuint p = fragment(ctx, "layered_fast_composite.frag", composite_texts_[layers],
+  for (int layer_class = 0; layer_class <= 3 && ok; ++layer_class) {
+    const double class_depth = (layer_class + 1) / 8.0;
+    const int layers = layer_class == 3 ? 4 : layer_class;
+    const GLuint p = fragment(ctx, "layered_fast_composite.frag", composite_texts_[layer_class],
                               shaders::layered_fast_composite_frag,
                               defines(ctx, f) + define("AQ_LAYER_COUNT", layers));
     ok = p != 0 && set_composite_inputs(ctx, f, t, p) && ctx.bind_targets(&f.out, 1, &depth);

@@ -84,7 +84,7 @@ class FastLayers {
   int divisor_ = 2;  // this frame's, divisor_for(σ)
   std::string segment_text_, gather_text_[3], edges_text_, colours_text_, classes_text_,
       cells_text_, blocks_text_, threshold_text_;
-  std::array<std::string, 5> composite_texts_;  // one per class (0 to 4 layers)
+  std::array<std::string, 4> composite_texts_;  // one per class (0, 1, 2, 3 or 4 layers)
   aq::KeptDepth class_depth_;                   // the composite's classes (composite())
   aq::gl::KeptTexture threshold_;               // (layered_threshold, paper height) per pixel
   std::array<double, 5> threshold_key_{};       // the parameters it was drawn with
