@@ -39,7 +39,9 @@ smoothing iterations, half or float precision) measuring time and error (max abs
 PSNR) against a reference: the double-precision CPU references of reference/ where they
 exist, exact values where they are known (smoothing: the sphere a bumpy mesh stands for), else
 the node at its highest quality in float; and the graph's quality presets against a float
-reference render.)";
+reference render. With --baseline, also times GRAPH's frames and another graph's alternately in
+the same run and reports their ratio (on a shared machine, the figure to quote: two separate
+runs see different loads).)";
 
 struct Arguments {
   std::vector<std::string> graphs;
@@ -56,6 +58,7 @@ struct Arguments {
   std::string precision;
   std::string quality;
   std::vector<std::string> sets;
+  std::string baseline;
   std::string csv;
   std::string plot;
   std::string plot_from;
@@ -101,6 +104,12 @@ void declare_options(CLI::App& command, Arguments& args) {
                   "to time a graph with one optimisation switched off")
       ->type_name("NODE.PARAM=VALUE")
       ->allow_extra_args(false);
+  command
+      .add_option("--baseline", args.baseline,
+                  "also time this graph's frames alternately with GRAPH's (same --size,\n"
+                  "--quality and --precision; --set applies to GRAPH only) and report\n"
+                  "GRAPH's frame over the baseline's, e.g. graphs/underwater.json")
+      ->type_name("GRAPH2");
   command.add_option("--csv", args.csv, "write every measurement as CSV")->type_name("OUT.csv");
   command
       .add_option("--plot", args.plot,
@@ -206,9 +215,10 @@ int refuse(const std::string& message, int code = kExitBadInput) {
   return code;
 }
 
-// The graph to time, with --size, --precision, --quality and --set applied; every --node type
-// must be installed.
-std::optional<int> load_graph(const Arguments& args, const Registry& registry, Graph* graph) {
+// The graph at `path` to time, with --size, --precision and --quality applied, and --set when
+// `with_sets` (the baseline's node ids are its own); every --node type must be installed.
+std::optional<int> load_graph(const Arguments& args, const Registry& registry,
+                              const std::string& path, bool with_sets, Graph* graph) {
   for (const auto& type : args.node_types) {
     if (registry.find(type) == nullptr) {
       std::string names;
@@ -216,9 +226,10 @@ std::optional<int> load_graph(const Arguments& args, const Registry& registry, G
       return refuse("--node '" + type + "': no such node type (installed: " + names + ")");
     }
   }
-  ReadResult read = read_graph_file(args.graph_path, registry);
+  ReadResult read = read_graph_file(path, registry);
   if (!read.ok()) {
-    std::fprintf(stderr, "%s\n", format_problems(read.problems).c_str());
+    std::fprintf(stderr, "%s%s\n", with_sets ? "" : "aquarelle bench: --baseline: ",
+                 format_problems(read.problems).c_str());
     return kExitBadInput;
   }
   *graph = std::move(read.graph);
@@ -226,6 +237,7 @@ std::optional<int> load_graph(const Arguments& args, const Registry& registry, G
     return refuse(s.message());
   if (!args.precision.empty()) graph->settings.precision = args.precision;
   if (!args.quality.empty()) graph->settings.quality = args.quality;
+  if (!with_sets) return std::nullopt;
   for (const auto& assignment : args.sets) {
     if (auto s = apply_setting(*graph, registry, assignment); !s.ok())
       return refuse("--set: " + s.message());
@@ -236,7 +248,7 @@ std::optional<int> load_graph(const Arguments& args, const Registry& registry, G
 // The yardstick and the graph's timings: copy-pass batches before the graph runs and between
 // its frames, all in one median; every node running, and static nodes cached.
 std::optional<int> time_graph(const Arguments& args, GlContext& context, const Registry& registry,
-                              const Graph& graph, BenchReport* report) {
+                              const Graph& graph, const Graph* baseline, BenchReport* report) {
   progress(args, "timing a full-screen copy pass");
   const uint32_t format =
       graph.settings.precision == "float" ? AQ_FORMAT_RGBA32F : AQ_FORMAT_RGBA16F;
@@ -267,6 +279,13 @@ std::optional<int> time_graph(const Arguments& args, GlContext& context, const R
     copy_timestamp.push_back(sample.timestamp_ms);
   }
   report->copy_pass = CopyPassTiming{summarize(copy_wall), summarize(copy_timestamp)};
+  if (baseline != nullptr) {
+    progress(args, "timing the graph's frames and the baseline's, alternately");
+    auto side_by_side = time_side_by_side(context, registry, graph, *baseline, timing_plan);
+    if (!side_by_side.ok()) return refuse(args.graph_path + ": " + side_by_side.message());
+    report->baseline_graph = args.baseline;
+    report->baseline = *side_by_side;
+  }
   progress(args, "measuring each approximating node against its exact setting");
   report->node_errors = node_errors(context, registry, graph);
   return std::nullopt;
@@ -335,7 +354,12 @@ int run_bench(Arguments& args) {
   if (!plugins.ok()) return refuse(plugins.message(), kExitEnvironment);
   const Registry& registry = (*plugins)->registry;
   Graph graph;
-  if (auto stop = load_graph(args, registry, &graph)) return *stop;
+  if (auto stop = load_graph(args, registry, args.graph_path, true, &graph)) return *stop;
+  std::optional<Graph> baseline;
+  if (!args.baseline.empty()) {
+    baseline.emplace();
+    if (auto stop = load_graph(args, registry, args.baseline, false, &*baseline)) return *stop;
+  }
 
   auto context = create_headless_context(*backend, args.gl_device);
   if (!context.ok()) return refuse(context.message(), kExitEnvironment);
@@ -352,7 +376,9 @@ int run_bench(Arguments& args) {
   report.warmup = args.warmup;
   report.cpu_references = have_cpu_references();
   if (!args.quiet) std::fprintf(stderr, "aquarelle bench: %s\n", report.gl.c_str());
-  if (auto stop = time_graph(args, **context, registry, graph, &report)) return *stop;
+  if (auto stop =
+          time_graph(args, **context, registry, graph, baseline ? &*baseline : nullptr, &report))
+    return *stop;
   if (args.sweep) {
     if (auto stop = sweep(args, **context, registry, graph, &report)) return *stop;
   }

@@ -119,6 +119,43 @@ Result<PipelineTimings> time_pipeline(GlContext& context, const Registry& regist
   return timings;
 }
 
+Result<SideBySide> time_side_by_side(GlContext& context, const Registry& registry,
+                                     const Graph& graph, const Graph& baseline,
+                                     const TimingPlan& plan) {
+  Evaluator graph_evaluator(context, registry), baseline_evaluator(context, registry);
+  std::vector<double> graph_ms, baseline_ms, ratios;
+  auto frame_ms = [](Evaluator& evaluator, const Graph& g, int frame) -> Result<double> {
+    EvalOptions options;
+    options.frame = frame;
+    options.retain_outputs = false;
+    options.retain_static_outputs = true;
+    options.measure_gpu_time = false;
+    glFinish();
+    const auto start = std::chrono::steady_clock::now();
+    auto result = evaluator.evaluate(g, options);
+    if (!result.ok()) return frame_error(frame, result).error();
+    glFinish();
+    return elapsed_ms(start);
+  };
+  for (int i = 0; i < plan.warmup + plan.frames; ++i) {
+    // Which graph goes first alternates, so neither always follows the other's frame.
+    double pair[2] = {0.0, 0.0};
+    for (int k = 0; k < 2; ++k) {
+      const bool is_graph = (k == 0) == (i % 2 == 0);
+      const Graph& g = is_graph ? graph : baseline;
+      auto ms =
+          frame_ms(is_graph ? graph_evaluator : baseline_evaluator, g, g.settings.first_frame + i);
+      if (!ms.ok()) return make_error((is_graph ? "" : "baseline: ") + ms.message());
+      pair[is_graph ? 0 : 1] = *ms;
+    }
+    if (i < plan.warmup) continue;
+    graph_ms.push_back(pair[0]);
+    baseline_ms.push_back(pair[1]);
+    ratios.push_back(pair[1] > 0.0 ? pair[0] / pair[1] : 0.0);
+  }
+  return SideBySide{summarize(graph_ms), summarize(baseline_ms), summarize(ratios)};
+}
+
 Result<FrameRun> run_frames(Evaluator& evaluator, const Graph& graph, int frames, int warmup) {
   FrameRun run;
   const int first = graph.settings.first_frame;

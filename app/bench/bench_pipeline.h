@@ -62,6 +62,18 @@ Result<PipelineTimings> time_pipeline(GlContext& context, const Registry& regist
                                       const Graph& graph, const TimingPlan& plan,
                                       CopyPass& copy_pass);
 
+// `bench --baseline`: a graph's frame and a baseline graph's, timed alternately frame by frame
+// in one process (static nodes' outputs kept, as `aquarelle render` runs), so both see the same
+// machine: on a shared host the ratio of two separate runs moves with the load between them.
+struct SideBySide {
+  Spread graph_ms;     // the graph's frames
+  Spread baseline_ms;  // the baseline's frames
+  Spread pair_ratio;   // per pair of frames (the same frame number): graph / baseline
+};
+Result<SideBySide> time_side_by_side(GlContext& context, const Registry& registry,
+                                     const Graph& graph, const Graph& baseline,
+                                     const TimingPlan& plan);
+
 // Wall time of evaluate() + glFinish over `frames` frames after `warmup`, static nodes' outputs
 // kept between frames (as `aquarelle render` runs); the warm-up frame's output is read back to
 // `first`.

@@ -104,6 +104,17 @@ std::string csv_number(double value) {
   return buffer;
 }
 
+// --baseline's figures, null without it.
+json baseline_json(const BenchReport& r) {
+  if (!r.baseline) return nullptr;
+  return {{"graph", r.baseline_graph},
+          {"frame_ms", spread_json(r.baseline->graph_ms)},
+          {"baseline_frame_ms", spread_json(r.baseline->baseline_ms)},
+          {"ratio_of_medians",
+           number(ratio(r.baseline->graph_ms.median, r.baseline->baseline_ms.median))},
+          {"pair_ratio", spread_json(r.baseline->pair_ratio)}};
+}
+
 }  // namespace
 
 double BenchReport::copy_passes_per_frame() const {
@@ -165,7 +176,8 @@ json report_json(const BenchReport& r) {
                               ? "CPU references linked (reference/, aquarelle_reference)"
                               : "no CPU references in this build: node accuracy sweeps skipped "
                                 "(reconfigure with -DAQUARELLE_BUILD_REFERENCES=ON)"},
-      {"sweeps", sweeps}};
+      {"sweeps", sweeps},
+      {"baseline", baseline_json(r)}};
 }
 
 void print_report(const BenchReport& r, std::FILE* out) {
@@ -224,6 +236,15 @@ void print_report(const BenchReport& r, std::FILE* out) {
       ratio(r.every_node_runs.node_wall_sum_ms.median, copy_ms), r.cached.node_wall_sum_ms.median,
       ratio(r.cached.node_wall_sum_ms.median, copy_ms));
   std::fprintf(out, "copy_passes_per_frame = %.2f\n", r.copy_passes_per_frame());
+  if (r.baseline) {
+    const SideBySide& b = *r.baseline;
+    std::fprintf(out,
+                 "against %s (frames alternated in this run, static nodes cached): %.3f ms / "
+                 "%.3f ms = %.2f; per pair of frames %.2f [%.2f .. %.2f]\n",
+                 r.baseline_graph.c_str(), b.graph_ms.median, b.baseline_ms.median,
+                 ratio(b.graph_ms.median, b.baseline_ms.median), b.pair_ratio.median,
+                 b.pair_ratio.min, b.pair_ratio.max);
+  }
 
   if (!r.cpu_references)
     std::fprintf(out,

@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ struct BenchReport {
   std::map<std::string, NodeError> node_errors;
   bool cpu_references = false;
   std::vector<Sweep> sweeps;
+  // --baseline: that graph's path and the two graphs' frames timed alternately in this run.
+  std::string baseline_graph;
+  std::optional<SideBySide> baseline;
 
   // The cached pipeline's median frame time over the copy pass's median (both wall
   // time).

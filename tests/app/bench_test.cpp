@@ -281,6 +281,50 @@ TEST(Bench, TimesTheQualityPresetAsked) {
   EXPECT_EQ(bad_set.exit_code, 1);
 }
 
+// --baseline: both graphs' frames timed alternately in one run. The baseline is the graph
+// itself with a far heavier node (a blur of sigma 40 at 256x256 does dozens of passes more than a
+// tint), so the tint graph's frame must come out as a fraction of it whatever the load.
+TEST(Bench, BaselineTimesBothGraphsInOneRunAndGivesTheirRatio) {
+  const auto dir = aq::test::scratch_dir("bench_baseline");
+  const std::string heavy = (dir / "heavy.json").string();
+  {
+    std::string text = small_graph("blur");
+    const std::string marker = R"("inputs": { "image": "gbuf.albedo" })";
+    text.replace(text.find(marker), marker.size(),
+                 R"("params": { "sigma": 40.0 }, "inputs": { "image": "gbuf.albedo" })");
+    std::ofstream(heavy) << text;
+  }
+  auto run =
+      bench_json("tint", "--size 256x256 --frames 3 --warmup 1 --no-sweep --baseline " + heavy,
+                 "bench_baseline_run");
+  ASSERT_EQ(run.exit_code, 0) << run.errors;
+  ASSERT_TRUE(run.report.is_object()) << run.errors;
+  const json& baseline = run.report["baseline"];
+  ASSERT_TRUE(baseline.is_object()) << run.report.dump(2);
+  EXPECT_EQ(baseline["graph"], heavy);
+  EXPECT_EQ(baseline["frame_ms"]["count"], 3);
+  EXPECT_EQ(baseline["baseline_frame_ms"]["count"], 3);
+  EXPECT_EQ(baseline["pair_ratio"]["count"], 3);
+  ASSERT_TRUE(finite_number(baseline["ratio_of_medians"]));
+  const double ratio = baseline["ratio_of_medians"].get<double>();
+  EXPECT_GT(ratio, 0.0);
+  EXPECT_LT(ratio, 0.8) << "a tint cannot cost what a sigma-40 blur does";
+  EXPECT_NEAR(ratio,
+              baseline["frame_ms"]["median"].get<double>() /
+                  baseline["baseline_frame_ms"]["median"].get<double>(),
+              1e-9);
+
+  // Without --baseline the report says so; a baseline that cannot be read names the option.
+  auto plain =
+      bench_json("tint", "--size 64x64 --frames 1 --warmup 0 --no-sweep", "bench_baseline_none");
+  ASSERT_EQ(plain.exit_code, 0) << plain.errors;
+  EXPECT_TRUE(plain.report["baseline"].is_null());
+  auto missing = aq::test::aquarelle("bench " + aq::test::source_path("graphs/tint.json") +
+                                     " --no-sweep --baseline /nonexistent/base.json");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.output.find("--baseline"), std::string::npos) << missing.output;
+}
+
 TEST(Bench, HelpDescribesTheCommand) {
   auto help = aq::test::aquarelle("bench --help");
   EXPECT_EQ(help.exit_code, 0);
