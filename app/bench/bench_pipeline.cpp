@@ -57,6 +57,28 @@ Status frame_error(int frame, const Result<TextureRef>& result) {
   return make_error("frame " + std::to_string(frame) + ": " + result.message());
 }
 
+// One frame's wall time, evaluate() + glFinish, with node timing off (timer queries make the CPU
+// wait for each node, which would inflate the frame); outputs not kept except static nodes' when
+// `retain_static` (as `aquarelle render` runs).
+struct TimedFrame {
+  TextureRef output;
+  double ms = 0;
+};
+Result<TimedFrame> timed_frame(Evaluator& evaluator, const Graph& graph, int frame,
+                               bool retain_static) {
+  EvalOptions options;
+  options.frame = frame;
+  options.retain_outputs = false;
+  options.retain_static_outputs = retain_static;
+  options.measure_gpu_time = false;
+  glFinish();
+  const auto start = std::chrono::steady_clock::now();
+  auto result = evaluator.evaluate(graph, options);
+  if (!result.ok()) return frame_error(frame, result).error();
+  glFinish();
+  return TimedFrame{*result, elapsed_ms(start)};
+}
+
 }  // namespace
 
 Result<PipelineTimings> time_pipeline(GlContext& context, const Registry& registry,
@@ -96,21 +118,10 @@ Result<PipelineTimings> time_pipeline(GlContext& context, const Registry& regist
   std::vector<double> every_ms, cached_ms;
   for (int i = 0; i < plan.warmup + plan.frames; ++i) {
     for (bool retain : {false, true}) {
-      EvalOptions options;
-      options.frame = first + i;
-      options.retain_outputs = false;
-      options.retain_static_outputs = retain;
-      options.measure_gpu_time = false;
-      glFinish();
-      auto start = std::chrono::steady_clock::now();
-      {
-        auto result = (retain ? cached : every).evaluate(graph, options);
-        if (!result.ok()) return frame_error(options.frame, result).error();
-        glFinish();
-      }
-      const double ms = elapsed_ms(start);
+      auto frame = timed_frame(retain ? cached : every, graph, first + i, retain);
+      if (!frame.ok()) return frame.error();
       if (i < plan.warmup) continue;
-      (retain ? cached_ms : every_ms).push_back(ms);
+      (retain ? cached_ms : every_ms).push_back(frame->ms);
       timings.copy_samples.push_back(copy_pass.run_batch());
     }
   }
@@ -124,29 +135,16 @@ Result<SideBySide> time_side_by_side(GlContext& context, const Registry& registr
                                      const TimingPlan& plan) {
   Evaluator graph_evaluator(context, registry), baseline_evaluator(context, registry);
   std::vector<double> graph_ms, baseline_ms, ratios;
-  auto frame_ms = [](Evaluator& evaluator, const Graph& g, int frame) -> Result<double> {
-    EvalOptions options;
-    options.frame = frame;
-    options.retain_outputs = false;
-    options.retain_static_outputs = true;
-    options.measure_gpu_time = false;
-    glFinish();
-    const auto start = std::chrono::steady_clock::now();
-    auto result = evaluator.evaluate(g, options);
-    if (!result.ok()) return frame_error(frame, result).error();
-    glFinish();
-    return elapsed_ms(start);
-  };
   for (int i = 0; i < plan.warmup + plan.frames; ++i) {
     // Which graph goes first alternates, so neither always follows the other's frame.
     double pair[2] = {0.0, 0.0};
     for (int k = 0; k < 2; ++k) {
       const bool is_graph = (k == 0) == (i % 2 == 0);
       const Graph& g = is_graph ? graph : baseline;
-      auto ms =
-          frame_ms(is_graph ? graph_evaluator : baseline_evaluator, g, g.settings.first_frame + i);
-      if (!ms.ok()) return make_error((is_graph ? "" : "baseline: ") + ms.message());
-      pair[is_graph ? 0 : 1] = *ms;
+      auto frame = timed_frame(is_graph ? graph_evaluator : baseline_evaluator, g,
+                               g.settings.first_frame + i, true);
+      if (!frame.ok()) return make_error((is_graph ? "" : "baseline: ") + frame.message());
+      pair[is_graph ? 0 : 1] = frame->ms;
     }
     if (i < plan.warmup) continue;
     graph_ms.push_back(pair[0]);
@@ -161,24 +159,14 @@ Result<FrameRun> run_frames(Evaluator& evaluator, const Graph& graph, int frames
   const int first = graph.settings.first_frame;
   std::vector<double> frame_ms;
   for (int i = 0; i < std::max(warmup, 1) + frames; ++i) {
-    EvalOptions options;
-    options.frame = first + i;
-    options.retain_outputs = false;  // as `aquarelle render`: static nodes' outputs kept
-    options.retain_static_outputs = true;
-    options.measure_gpu_time = false;
-    glFinish();
-    auto start = std::chrono::steady_clock::now();
-    auto result = evaluator.evaluate(graph, options);
-    if (!result.ok())
-      return make_error("frame " + std::to_string(options.frame) + ": " + result.message());
-    glFinish();
-    const double ms = elapsed_ms(start);
+    auto frame = timed_frame(evaluator, graph, first + i, true);
+    if (!frame.ok()) return frame.error();
     if (i == 0) {
-      auto pixels = evaluator.read_back(*result);
+      auto pixels = evaluator.read_back(frame->output);
       if (!pixels.ok()) return pixels.error();
       run.first = std::move(*pixels);
     }
-    if (i >= std::max(warmup, 1)) frame_ms.push_back(ms);
+    if (i >= std::max(warmup, 1)) frame_ms.push_back(frame->ms);
   }
   run.frame_ms = summarize(frame_ms);
   return run;
