@@ -1,5 +1,6 @@
 #include "image_limits.h"
 
+#include <aquarelle/core/image_io.h>
 #include <aquarelle/sdk/regular_file.hpp>
 
 #include <sys/stat.h>
@@ -201,6 +202,19 @@ Status check_exr_header(const std::string& path) {
       if (declared < 0 || static_cast<uint64_t>(declared) > size - at) {
         return refuse("declares " + std::to_string(declared) + " bytes for attribute '" + name +
                       "' but only " + std::to_string(size - at) + " bytes follow");
+      }
+      if (name == "dataWindow" && type == "box2i" && declared == 16) {
+        // OpenEXR sizes its line buffers by the data window when it opens the file, before
+        // OIIO's size checks see it (a 613-byte file declaring 8388612 x 3 pixels made it
+        // allocate gigabytes): the window is held to the sides any image may have.
+        int32_t box[4] = {};
+        if (!header.read(box, sizeof(box), at)) return refuse("ends inside " + name);
+        const int64_t w = int64_t{box[2]} - box[0] + 1, h = int64_t{box[3]} - box[1] + 1;
+        if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide) {
+          return refuse("declares a " + std::to_string(w) + "x" + std::to_string(h) +
+                        " data window; an image may have 1 to " + std::to_string(kMaxImageSide) +
+                        " pixels a side");
+        }
       }
       if (type == "chlist" || type == "stringvector" || type == "preview") {
         std::string value(static_cast<size_t>(declared), '\0');

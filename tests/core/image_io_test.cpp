@@ -13,8 +13,10 @@
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -365,6 +367,28 @@ TEST_F(ImageIo, TruncatedExrIsAnError) {
   ASSERT_TRUE(aq::write_image(file, random_image(96, 96, 4, 0.0f, 1.0f, 9)).ok());
   fs::resize_file(file, fs::file_size(file) / 2);
   expect_error_naming(as_status(aq::read_image(file, config())), file, "truncated");
+}
+
+// The fuzzer's case: a small EXR whose data window declares 8388612 pixels a row. OpenEXR sized
+// its line buffers by it while opening the file; the header walk refuses it first.
+TEST_F(ImageIo, ExrDataWindowBeyondTheSideLimitIsRefusedBeforeOpening) {
+  const std::string file = path("wide.exr");
+  ASSERT_TRUE(aq::write_image(file, random_image(4, 3, 3, 0.0f, 1.0f, 11)).ok());
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string marker("dataWindow\0box2i\0", 17);
+  const size_t at = bytes.find(marker);
+  ASSERT_NE(at, std::string::npos);
+  const int32_t x_max = 8388611;  // xMin 0: 8388612 pixels a row
+  std::memcpy(bytes.data() + at + marker.size() + 4 + 8, &x_max, 4);
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  const aq::Status read = as_status(aq::read_image(file, config()));
+  expect_error_naming(read, file, "8388612x3 data window");
+  EXPECT_NE(read.message().find("OpenEXR header"), std::string::npos)
+      << "refused by the header walk, before OpenEXR opened the file: " << read.message();
 }
 
 TEST_F(ImageIo, CorruptHeaderIsAnError) {
