@@ -40,10 +40,6 @@ namespace {
 
 using json = nlohmann::json;
 
-double number(const json& value, double fallback) {
-  return value.is_number() ? value.get<double>() : fallback;
-}
-
 // The camera the scene-reading sweeps look through (environment: sideways and a little down;
 // terrain and swimming: from above).
 const json kSideEye = {0.3, 0.4, 2.5}, kSideTarget = {0.0, 0.3, 0.0};
@@ -188,20 +184,6 @@ Result<Sweep> environment_sweep(GlContext& context, const Registry& registry, co
 // reference on a 512 grid (8 cells per texel).
 constexpr int kCausticResolution = 64, kCausticGrid = 128, kCausticReferenceGrid = 512;
 
-reference::CausticsParams seed_caustics_params(const Graph& graph, const Registry& registry) {
-  reference::CausticsParams p;
-  p.resolution = kCausticResolution;
-  p.depth = number(graph_param(graph, registry, "caustics", "depth"), p.depth);
-  p.amplitude = number(graph_param(graph, registry, "caustics", "amplitude"), p.amplitude);
-  p.wave_scale = static_cast<int>(
-      number(graph_param(graph, registry, "caustics", "wave_scale"), p.wave_scale));
-  p.speed = number(graph_param(graph, registry, "caustics", "speed"), p.speed);
-  p.eta = number(graph_param(graph, registry, "caustics", "eta"), p.eta);
-  p.max_intensity =
-      number(graph_param(graph, registry, "caustics", "max_intensity"), p.max_intensity);
-  return p;
-}
-
 // The blended reference: Σ w_k E(t − k·interval) / Σ w_k + shift, the flux of each time
 // computed once (`cache`, by time).
 ImageF blended_flux(reference::CausticsParams p, int count, double interval, const double shift[3],
@@ -231,7 +213,7 @@ ImageF blended_flux(reference::CausticsParams p, int count, double interval, con
 
 Result<std::vector<Sweep>> caustics_seed_sweeps(GlContext& context, const Registry& registry,
                                                 const Graph& graph, const SweepPlan& plan) {
-  const reference::CausticsParams p = seed_caustics_params(graph, registry);
+  const reference::CausticsParams p = caustics_params_of(graph, registry, kCausticResolution);
   const json base = {{"resolution", p.resolution},
                      {"grid", kCausticGrid},
                      {"estimator", "coverage"},

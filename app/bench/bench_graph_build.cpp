@@ -49,6 +49,25 @@ nlohmann::json graph_param(const Graph& graph, const Registry& registry, const s
   return param_value_or_default(node, *info);
 }
 
+double number(const nlohmann::json& value, double fallback) {
+  return value.is_number() ? value.get<double>() : fallback;
+}
+
+reference::CausticsParams caustics_params_of(const Graph& graph, const Registry& registry,
+                                             int resolution) {
+  reference::CausticsParams p;
+  p.resolution = resolution;
+  p.depth = number(graph_param(graph, registry, "caustics", "depth"), p.depth);
+  p.amplitude = number(graph_param(graph, registry, "caustics", "amplitude"), p.amplitude);
+  p.wave_scale = static_cast<int>(
+      number(graph_param(graph, registry, "caustics", "wave_scale"), p.wave_scale));
+  p.speed = number(graph_param(graph, registry, "caustics", "speed"), p.speed);
+  p.eta = number(graph_param(graph, registry, "caustics", "eta"), p.eta);
+  p.max_intensity =
+      number(graph_param(graph, registry, "caustics", "max_intensity"), p.max_intensity);
+  return p;
+}
+
 std::string first_node_of_type(const Graph& graph, const std::string& type) {
   for (const auto& [id, node] : graph.nodes) {
     if (node.type == type) return id;

@@ -6,6 +6,7 @@
 #include <aquarelle/core/graph.h>
 #include <aquarelle/core/image.h>
 #include <aquarelle/core/registry.h>
+#include <aquarelle/reference/caustics_reference.h>
 
 #include <nlohmann/json.hpp>
 
@@ -31,6 +32,14 @@ nlohmann::json graph_param(const Graph& graph, const Registry& registry, const s
 
 // Id of the first node of `type` in `graph` (by id order), empty when none.
 std::string first_node_of_type(const Graph& graph, const std::string& type);
+
+// A parameter value as a number, `fallback` when it is not one (absent, null).
+double number(const nlohmann::json& value, double fallback);
+
+// The caustics parameters of `graph` (its first `caustics` node, else the type's defaults) for
+// the CPU reference at `resolution` texels.
+reference::CausticsParams caustics_params_of(const Graph& graph, const Registry& registry,
+                                             int resolution);
 
 // The fixed colour test input: smooth gradients, hashed pixel noise and hard-edged squares, in
 // [0, 1], deterministic.

@@ -52,10 +52,6 @@ using Config = ReferenceConfig;
 
 const char* const kPrecisions[] = {"half", "float"};
 
-double number(const json& value, double fallback) {
-  return value.is_number() ? value.get<double>() : fallback;
-}
-
 // Blur, uniform σ (no depth input: strength 1 everywhere) against the exact Gaussian, and
 // depth-varying σ against the ideal per-pixel Gaussian.
 Result<std::vector<Sweep>> blur_sweeps(GlContext& context, const Registry& registry,
@@ -169,22 +165,6 @@ Result<std::vector<Sweep>> blur_sweeps(GlContext& context, const Registry& regis
   }
   sweeps.push_back(wide);
   return sweeps;
-}
-
-// The graph's caustics parameters, for the CPU reference at `resolution`.
-reference::CausticsParams caustics_params_of(const Graph& graph, const Registry& registry,
-                                             int resolution) {
-  reference::CausticsParams p;
-  p.resolution = resolution;
-  p.depth = number(graph_param(graph, registry, "caustics", "depth"), p.depth);
-  p.amplitude = number(graph_param(graph, registry, "caustics", "amplitude"), p.amplitude);
-  p.wave_scale = static_cast<int>(
-      number(graph_param(graph, registry, "caustics", "wave_scale"), p.wave_scale));
-  p.speed = number(graph_param(graph, registry, "caustics", "speed"), p.speed);
-  p.eta = number(graph_param(graph, registry, "caustics", "eta"), p.eta);
-  p.max_intensity =
-      number(graph_param(graph, registry, "caustics", "max_intensity"), p.max_intensity);
-  return p;
 }
 
 // The caustic texture size the graph's caustics node renders at the sweep's size (its footprint
