@@ -166,7 +166,14 @@ TEST_F(EditorWindowTest, UiKeepsDrawingWhileTheFlagshipGraphPlays) {
   std::ofstream(dir_ / "script.json") << R"([{"do": "play", "frames": 3}])";
   std::string log;
   ASSERT_EQ(run_editor("graph.json --script script.json --quit --size 1280x720", &log), 0) << log;
-  EXPECT_NE(log.find("(play): played to frame 4"), std::string::npos) << log;
+  // Playback keeps the graph's pace and drops frames it cannot show in time (as Nuke's and
+  // Blender's do), so on a loaded machine the clock may have moved past frame 4 by the time it is
+  // on screen: at least three frames on from the first.
+  const size_t played = log.find("(play): played to frame ");
+  ASSERT_NE(played, std::string::npos) << log;
+  int reached = 0;
+  ASSERT_EQ(std::sscanf(log.c_str() + played, "(play): played to frame %d", &reached), 1) << log;
+  EXPECT_GE(reached, 4) << log;
   const size_t at = log.find("UI frames: ");
   ASSERT_NE(at, std::string::npos) << log;
   int frames = 0;
