@@ -160,8 +160,7 @@ Result<Sweep> quality_param_sweep(GlContext& context, const Registry& registry, 
 // against the graph's output with amplitude 0 (the node hands the scene on untouched).
 Result<Sweep> hand_tremor_sweep(GlContext& context, const Registry& registry, const Graph& graph,
                                 const SweepPlan& plan, const std::string& node_id) {
-  const json graph_amplitude = graph_param(graph, registry, "hand_tremor", "amplitude");
-  const double amplitude = graph_amplitude.is_number() ? graph_amplitude.get<double>() : 1.0;
+  const double amplitude = number(graph_param(graph, registry, "hand_tremor", "amplitude"), 1.0);
   Sweep sweep;
   sweep.series = "hand_tremor amplitude";
   sweep.node_type = "hand_tremor";
