@@ -4,6 +4,7 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 #include "shader_library_sources.h"
@@ -129,6 +130,16 @@ Result<GLuint> ShaderCache::program(const aq_shader_source* vertex,
                                     const aq_shader_source* fragment) {
   if (fragment == nullptr) return make_error("no fragment shader given");
   const aq_shader_source& vs = vertex != nullptr ? *vertex : kFullscreenSource;
+  std::string given;
+  if (!hot_reload_) {
+    // Both texts with their lengths: no pair of sources can produce another pair's key.
+    const std::string_view vs_given = vs.text != nullptr ? vs.text : "";
+    const std::string_view fs_given = fragment->text != nullptr ? fragment->text : "";
+    given.reserve(vs_given.size() + fs_given.size() + 24);
+    given.append(std::to_string(vs_given.size())).append(1, ':').append(vs_given);
+    given.append(fs_given);
+    if (auto it = by_given_source_.find(given); it != by_given_source_.end()) return it->second;
+  }
   Expanded vs_text, fs_text;
   if (auto s = expand(vs.name ? vs.name : "vertex", read_text(vs, hot_reload_), vs_text,
                       hot_reload_, 0);
@@ -141,7 +152,10 @@ Result<GLuint> ShaderCache::program(const aq_shader_source* vertex,
     return s.error();
   }
   std::string key = vs_text.text + "\n//----\n" + fs_text.text;
-  if (auto it = programs_.find(key); it != programs_.end()) return it->second.get();
+  if (auto it = programs_.find(key); it != programs_.end()) {
+    if (!hot_reload_) by_given_source_.emplace(std::move(given), it->second.get());
+    return it->second.get();
+  }
 
   auto vs_shader = compile(GL_VERTEX_SHADER, vs_text);
   if (!vs_shader.ok()) return vs_shader.error();
@@ -165,6 +179,7 @@ Result<GLuint> ShaderCache::program(const aq_shader_source* vertex,
   }
   GLuint id = program.get();
   programs_.emplace(std::move(key), std::move(program));
+  if (!hot_reload_) by_given_source_.emplace(std::move(given), id);
   return id;
 }
 

@@ -124,6 +124,16 @@ class SceneNode {
       smooth(mesh, static_cast<int>(key.smoothing));
       static_meshes_.push_back({std::move(mesh), new_geometry_revision()});
     }
+    // The static meshes' world bounds, once: every frame's scene bounds start from them.
+    static_bounds_min_ = glm::vec3(1e30f);
+    static_bounds_max_ = glm::vec3(-1e30f);
+    for (const PublishedMesh& mesh : static_meshes_) {
+      for (uint32_t v = 0; v < mesh.data.vertex_count(); ++v) {
+        glm::vec3 p = glm::vec3(mesh.data.model * glm::vec4(mesh.data.position(v), 1.0f));
+        static_bounds_min_ = glm::min(static_bounds_min_, p);
+        static_bounds_max_ = glm::max(static_bounds_max_, p);
+      }
+    }
     animated_objects_ = std::move(preset.animated);
     animated_meshes_.assign(animated_objects_.size(), PublishedMesh{});
     animated_valid_ = false;
@@ -180,16 +190,11 @@ class SceneNode {
 
   void publish(aq::Context& ctx) {
     meshes_.clear();
-    glm::vec3 lo(1e30f), hi(-1e30f);
+    glm::vec3 lo = static_bounds_min_, hi = static_bounds_max_;
     surfaces_.clear();
     for (const PublishedMesh& mesh : static_meshes_) {
       meshes_.push_back(describe(mesh));
       surfaces_.push_back(surface_of(mesh));
-      for (uint32_t v = 0; v < mesh.data.vertex_count(); ++v) {
-        glm::vec3 p = glm::vec3(mesh.data.model * glm::vec4(mesh.data.position(v), 1.0f));
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-      }
     }
     // Animated objects contribute their whole range of motion, so the bounds (and the
     // shadow map fitted to them) stay put while the fish swims.
@@ -224,6 +229,7 @@ class SceneNode {
   bool built_ = false;
   StaticKey static_key_;
   std::vector<PublishedMesh> static_meshes_;
+  glm::vec3 static_bounds_min_{1e30f}, static_bounds_max_{-1e30f};
   std::vector<scene::AnimatedObject> animated_objects_;
   std::vector<PublishedMesh> animated_meshes_;
   bool animated_valid_ = false;
