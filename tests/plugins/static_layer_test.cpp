@@ -177,8 +177,7 @@ TEST(DrawnOverLayer, AMovingMeshCoversItsTrianglesNotItsWholeBox) {
   const CachedTargets layer;  // record() reads only its key; no GL
   DrawnOverLayer drawn;
   drawn.record(layer, scene, boxes.world_boxes(scene), {false}, view_projection, 256, 128);
-  Region covered;
-  covered.add(drawn.moving());
+  Region covered = drawn.moving();
   ASSERT_FALSE(covered.empty());
   for (size_t v = 0; v < positions.size() / 3; ++v) {
     const glm::dvec4 clip = view_projection * glm::dvec4(positions[3 * v], positions[3 * v + 1],
@@ -191,6 +190,54 @@ TEST(DrawnOverLayer, AMovingMeshCoversItsTrianglesNotItsWholeBox) {
   EXPECT_FALSE(covered.covers(Region::of(PixelRect{128, 64, 129, 65})))
       << "the gap between the blades is marked as covered";
   EXPECT_LT(covered.area(256, 128), 256 * 128 / 8);
+}
+
+// More moving pieces than a node draws rects (a meadow of blades): the layer is copied back in
+// at most Region::kMaxDrawRects merged rects, but the damage declared downstream is the pixels
+// the pieces' boxes cover, not the merged rects around them (the fish's box, merged with the
+// seaweed's, made every later pass redraw open water).
+TEST(DrawnOverLayer, TheDamageIsThePiecesBoxesNotTheRectsTheLayerIsCopiedIn) {
+  const glm::mat4 projection = glm::perspective(glm::radians(50.0f), 2.0f, 0.1f, 100.0f);
+  const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
+  const glm::dmat4 view_projection = glm::dmat4(projection * view);
+  std::vector<float> positions;
+  std::vector<uint32_t> indices;
+  for (int blade = 0; blade < 100; ++blade) {
+    // Short blades on a staggered grid: 10 columns by 10 rows, none touching another.
+    const float x = -4.0f + 0.8f * static_cast<float>(blade % 10) + 0.3f * ((blade / 10) % 2);
+    const float y = -2.0f + 0.4f * static_cast<float>(blade / 10);
+    const uint32_t base = static_cast<uint32_t>(positions.size() / 3);
+    // Two segments, four triangles: one chunk (DrawnOverLayer::kChunk) per blade.
+    for (int k = 0; k <= 2; ++k) {
+      const float yk = y + 0.075f * static_cast<float>(k);
+      positions.insert(positions.end(), {x, yk, 0.0f, x + 0.03f, yk, 0.0f});
+    }
+    for (uint32_t k = 0; k < 2; ++k) {
+      const uint32_t a = base + 2 * k;
+      indices.insert(indices.end(), {a, a + 1, a + 2, a + 1, a + 3, a + 2});
+    }
+  }
+  const aq_mesh mesh = mesh_of(positions, glm::mat4(1.0f), &indices);
+  const aq_scene scene = scene_of(mesh);
+  view_bounds::MeshBoxes boxes;
+  const CachedTargets layer;
+  DrawnOverLayer drawn;
+  drawn.record(layer, scene, boxes.world_boxes(scene), {false}, view_projection, 512, 256);
+  const Region& damage = drawn.moving();
+  ASSERT_GT(damage.rects().size(), Region::kMaxDrawRects);
+  const Region merged = damage.for_drawing();
+  EXPECT_TRUE(merged.covers(damage));
+  EXPECT_LT(damage.area(512, 256), merged.area(512, 256) * 3 / 4)
+      << "the declared damage is (nearly) the merged rects";
+  for (size_t v = 0; v < positions.size() / 3; ++v) {
+    const glm::dvec4 clip = view_projection * glm::dvec4(positions[3 * v], positions[3 * v + 1],
+                                                         positions[3 * v + 2], 1);
+    const int x = static_cast<int>(std::floor((clip.x / clip.w * 0.5 + 0.5) * 512));
+    const int y = static_cast<int>(std::floor((clip.y / clip.w * 0.5 + 0.5) * 256));
+    if (x < 0 || y < 0 || x >= 512 || y >= 256) continue;
+    EXPECT_TRUE(damage.covers(Region::of(PixelRect{x, y, x + 1, y + 1})))
+        << "vertex " << v << " at pixel " << x << ", " << y;
+  }
 }
 
 }  // namespace

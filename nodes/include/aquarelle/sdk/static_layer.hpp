@@ -293,8 +293,10 @@ class DrawnOverLayer {
     Region changed;
     if (outputs_kept && valid_ && layer_key_ == layer.key &&
         layer_textures_ == layer.textures_made()) {
+      // The copies cover more than covered_ (merged rects), but outside covered_ the targets
+      // already hold the layer: only covered_ can change.
       for (const PixelRect& rect : moving_) layer.copy_rect_to(targets, count, depth, rect);
-      changed.add(moving_);
+      changed = covered_;
     } else {
       layer.copy_to(targets, count, depth);
       changed = Region::everything();
@@ -303,8 +305,9 @@ class DrawnOverLayer {
     return changed;
   }
 
-  // The pixels record() found the moving meshes may cover.
-  const std::vector<PixelRect>& moving() const { return moving_; }
+  // The pixels record() found the moving meshes may cover: their pieces' boxes, up to
+  // Region::kMaxRects rects (the damage to declare; the copies use a merged superset).
+  const Region& moving() const { return covered_; }
 
   // Triangles per box: two segments of a seaweed blade, a quarter ring of the fish's body. A
   // producer of moving meshes (hand_tremor) orders its triangles so each run of kChunk lies
@@ -332,6 +335,7 @@ class DrawnOverLayer {
     Region region;
     region.add(covered);
     moving_ = region.for_drawing().rects();
+    covered_ = region;
     layer_key_ = layer.key;
     layer_textures_ = layer.textures_made();
     valid_ = true;
@@ -342,6 +346,7 @@ class DrawnOverLayer {
   uint64_t layer_key_ = 0;
   uint64_t layer_textures_ = 0;
   std::vector<PixelRect> moving_;
+  Region covered_;
 };
 
 }  // namespace aq
