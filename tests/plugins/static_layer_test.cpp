@@ -151,6 +151,30 @@ TEST(CoveredPixels, AcrossTheWholeViewIsTheWholeTargetAndNoVerticesIsNothing) {
   EXPECT_LE(off.x1 - off.x0, 0);
 }
 
+// Appends an upright blade of `segments` quads (two triangles each) at (x, y, 0) to a mesh.
+void add_blade(std::vector<float>* positions, std::vector<uint32_t>* indices, float x, float y,
+               float width, int segments, float segment_height) {
+  const uint32_t base = static_cast<uint32_t>(positions->size() / 3);
+  for (int k = 0; k <= segments; ++k) {
+    const float yk = y + segment_height * static_cast<float>(k);
+    positions->insert(positions->end(), {x, yk, 0.0f, x + width, yk, 0.0f});
+  }
+  for (uint32_t k = 0; k < static_cast<uint32_t>(segments); ++k) {
+    const uint32_t a = base + 2 * k;
+    indices->insert(indices->end(), {a, a + 1, a + 2, a + 1, a + 3, a + 2});
+  }
+}
+
+// The pixel vertex v of `positions` projects into in a width x height target.
+PixelRect pixel_of_vertex(const glm::dmat4& view_projection, const std::vector<float>& positions,
+                          size_t v, int width, int height) {
+  const glm::dvec4 clip =
+      view_projection * glm::dvec4(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2], 1);
+  const int x = static_cast<int>(std::floor((clip.x / clip.w * 0.5 + 0.5) * width));
+  const int y = static_cast<int>(std::floor((clip.y / clip.w * 0.5 + 0.5) * height));
+  return PixelRect{x, y, x + 1, y + 1};
+}
+
 // A moving mesh of two thin upright blades at either side of the view (a seaweed cluster): what
 // record() says may be covered holds every pixel of each blade's vertices, and not the open
 // space between them, which the mesh's one box would span.
@@ -160,17 +184,7 @@ TEST(DrawnOverLayer, AMovingMeshCoversItsTrianglesNotItsWholeBox) {
   const glm::dmat4 view_projection = glm::dmat4(projection * view);
   std::vector<float> positions;
   std::vector<uint32_t> indices;
-  for (float x : {-3.0f, 3.0f}) {
-    const uint32_t base = static_cast<uint32_t>(positions.size() / 3);
-    for (int k = 0; k <= 4; ++k) {
-      const float y = -1.0f + 0.5f * static_cast<float>(k);
-      positions.insert(positions.end(), {x, y, 0.0f, x + 0.05f, y, 0.0f});
-    }
-    for (uint32_t k = 0; k < 4; ++k) {
-      const uint32_t a = base + 2 * k;
-      indices.insert(indices.end(), {a, a + 1, a + 2, a + 1, a + 3, a + 2});
-    }
-  }
+  for (float x : {-3.0f, 3.0f}) add_blade(&positions, &indices, x, -1.0f, 0.05f, 4, 0.5f);
   const aq_mesh mesh = mesh_of(positions, glm::mat4(1.0f), &indices);
   const aq_scene scene = scene_of(mesh);
   view_bounds::MeshBoxes boxes;
@@ -180,12 +194,9 @@ TEST(DrawnOverLayer, AMovingMeshCoversItsTrianglesNotItsWholeBox) {
   Region covered = drawn.moving();
   ASSERT_FALSE(covered.empty());
   for (size_t v = 0; v < positions.size() / 3; ++v) {
-    const glm::dvec4 clip = view_projection * glm::dvec4(positions[3 * v], positions[3 * v + 1],
-                                                         positions[3 * v + 2], 1);
-    const int x = static_cast<int>(std::floor((clip.x / clip.w * 0.5 + 0.5) * 256));
-    const int y = static_cast<int>(std::floor((clip.y / clip.w * 0.5 + 0.5) * 128));
-    EXPECT_TRUE(covered.covers(Region::of(PixelRect{x, y, x + 1, y + 1})))
-        << "vertex " << v << " at pixel " << x << ", " << y;
+    const PixelRect pixel = pixel_of_vertex(view_projection, positions, v, 256, 128);
+    EXPECT_TRUE(covered.covers(Region::of(pixel)))
+        << "vertex " << v << " at pixel " << pixel.x0 << ", " << pixel.y0;
   }
   EXPECT_FALSE(covered.covers(Region::of(PixelRect{128, 64, 129, 65})))
       << "the gap between the blades is marked as covered";
@@ -206,16 +217,8 @@ TEST(DrawnOverLayer, TheDamageIsThePiecesBoxesNotTheRectsTheLayerIsCopiedIn) {
     // Short blades on a staggered grid: 10 columns by 10 rows, none touching another.
     const float x = -4.0f + 0.8f * static_cast<float>(blade % 10) + 0.3f * ((blade / 10) % 2);
     const float y = -2.0f + 0.4f * static_cast<float>(blade / 10);
-    const uint32_t base = static_cast<uint32_t>(positions.size() / 3);
     // Two segments, four triangles: one chunk (DrawnOverLayer::kChunk) per blade.
-    for (int k = 0; k <= 2; ++k) {
-      const float yk = y + 0.075f * static_cast<float>(k);
-      positions.insert(positions.end(), {x, yk, 0.0f, x + 0.03f, yk, 0.0f});
-    }
-    for (uint32_t k = 0; k < 2; ++k) {
-      const uint32_t a = base + 2 * k;
-      indices.insert(indices.end(), {a, a + 1, a + 2, a + 1, a + 3, a + 2});
-    }
+    add_blade(&positions, &indices, x, y, 0.03f, 2, 0.075f);
   }
   const aq_mesh mesh = mesh_of(positions, glm::mat4(1.0f), &indices);
   const aq_scene scene = scene_of(mesh);
@@ -230,13 +233,10 @@ TEST(DrawnOverLayer, TheDamageIsThePiecesBoxesNotTheRectsTheLayerIsCopiedIn) {
   EXPECT_LT(damage.area(512, 256), merged.area(512, 256) * 3 / 4)
       << "the declared damage is (nearly) the merged rects";
   for (size_t v = 0; v < positions.size() / 3; ++v) {
-    const glm::dvec4 clip = view_projection * glm::dvec4(positions[3 * v], positions[3 * v + 1],
-                                                         positions[3 * v + 2], 1);
-    const int x = static_cast<int>(std::floor((clip.x / clip.w * 0.5 + 0.5) * 512));
-    const int y = static_cast<int>(std::floor((clip.y / clip.w * 0.5 + 0.5) * 256));
-    if (x < 0 || y < 0 || x >= 512 || y >= 256) continue;
-    EXPECT_TRUE(damage.covers(Region::of(PixelRect{x, y, x + 1, y + 1})))
-        << "vertex " << v << " at pixel " << x << ", " << y;
+    const PixelRect pixel = pixel_of_vertex(view_projection, positions, v, 512, 256);
+    if (pixel.x0 < 0 || pixel.y0 < 0 || pixel.x0 >= 512 || pixel.y0 >= 256) continue;
+    EXPECT_TRUE(damage.covers(Region::of(pixel)))
+        << "vertex " << v << " at pixel " << pixel.x0 << ", " << pixel.y0;
   }
 }
 
