@@ -165,6 +165,13 @@ void add_blade(std::vector<float>* positions, std::vector<uint32_t>* indices, fl
   }
 }
 
+// A camera 5 units in front of the blades' plane, a 2:1 view of 50 degrees.
+glm::dmat4 blades_view_projection() {
+  const glm::mat4 projection = glm::perspective(glm::radians(50.0f), 2.0f, 0.1f, 100.0f);
+  const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
+  return glm::dmat4(projection * view);
+}
+
 // The pixel vertex v of `positions` projects into in a width x height target.
 PixelRect pixel_of_vertex(const glm::dmat4& view_projection, const std::vector<float>& positions,
                           size_t v, int width, int height) {
@@ -179,9 +186,7 @@ PixelRect pixel_of_vertex(const glm::dmat4& view_projection, const std::vector<f
 // record() says may be covered holds every pixel of each blade's vertices, and not the open
 // space between them, which the mesh's one box would span.
 TEST(DrawnOverLayer, AMovingMeshCoversItsTrianglesNotItsWholeBox) {
-  const glm::mat4 projection = glm::perspective(glm::radians(50.0f), 2.0f, 0.1f, 100.0f);
-  const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
-  const glm::dmat4 view_projection = glm::dmat4(projection * view);
+  const glm::dmat4 view_projection = blades_view_projection();
   std::vector<float> positions;
   std::vector<uint32_t> indices;
   for (float x : {-3.0f, 3.0f}) add_blade(&positions, &indices, x, -1.0f, 0.05f, 4, 0.5f);
@@ -208,9 +213,7 @@ TEST(DrawnOverLayer, AMovingMeshCoversItsTrianglesNotItsWholeBox) {
 // the pieces' boxes cover, not the merged rects around them (the fish's box, merged with the
 // seaweed's, made every later pass redraw open water).
 TEST(DrawnOverLayer, TheDamageIsThePiecesBoxesNotTheRectsTheLayerIsCopiedIn) {
-  const glm::mat4 projection = glm::perspective(glm::radians(50.0f), 2.0f, 0.1f, 100.0f);
-  const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
-  const glm::dmat4 view_projection = glm::dmat4(projection * view);
+  const glm::dmat4 view_projection = blades_view_projection();
   std::vector<float> positions;
   std::vector<uint32_t> indices;
   for (int blade = 0; blade < 100; ++blade) {
