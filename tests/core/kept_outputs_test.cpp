@@ -3,24 +3,16 @@
 // acquisitions leave claimed textures alone while another is free.
 #include <gtest/gtest.h>
 
-#include <aquarelle/core/gl_context.h>
 #include <aquarelle/core/texture_pool.h>
 
 #include <memory>
 
+#include "support/gl_context_test.h"
+
 namespace aq {
 namespace {
 
-class KeptOutputs : public ::testing::Test {
- protected:
-  void SetUp() override {
-    auto context = create_headless_context(GlBackend::kAuto);
-    ASSERT_TRUE(context.ok()) << context.message();
-    context_ = std::move(*context);
-    context_->activate();
-  }
-  std::unique_ptr<GlContext> context_;
-};
+using KeptOutputs = test::GlContextTest;
 
 TEST_F(KeptOutputs, AWriterGetsItsOwnTextureBackOnlyWhileNobodyTookIt) {
   TexturePool pool;

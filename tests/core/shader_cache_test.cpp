@@ -5,28 +5,17 @@
 // anew under hot reload.
 #include <gtest/gtest.h>
 
-#include <aquarelle/core/gl_context.h>
-
 #include <cstdio>
 #include <fstream>
 #include <string>
 
 #include "../../nodes/src/shader_cache.h"
+#include "support/gl_context_test.h"
 
 namespace aq {
 namespace {
 
-class ShaderCacheTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    auto made = create_headless_context(GlBackend::kAuto);
-    ASSERT_TRUE(made.ok()) << made.message();
-    context_ = std::move(*made);
-    context_->activate();
-  }
-
-  std::unique_ptr<GlContext> context_;
-};
+using ShaderCacheTest = test::GlContextTest;
 
 constexpr const char* kRed =
     "#include \"aquarelle/hdr8.glsl\"\n"
