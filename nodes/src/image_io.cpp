@@ -157,7 +157,7 @@ Result<std::unique_ptr<OIIO::ImageInput>> open_input(const std::string& path,
   }
   if (auto ok = check_exr_header(path); !ok) return ok.error();
   if (auto ok = check_png_chunks(path); !ok) return ok.error();
-  if (auto ok = check_jpeg_iptc(path); !ok) return ok.error();
+  if (auto ok = check_jpeg_metadata(path); !ok) return ok.error();
   SilencedStderr quiet(lowercase_extension(path) == "png");
   auto input = OIIO::ImageInput::open(path, hints);
   if (!input) {

@@ -265,7 +265,52 @@ Status check_png_chunks(const std::string& path) {
   return Ok{};
 }
 
-Status check_jpeg_iptc(const std::string& path) {
+namespace {
+
+// Reads a file forward one byte at a time through a 64 KiB window: the JPEG walk below skips
+// garbage byte by byte, as libjpeg does, and a pread per byte would take seconds on a large file.
+class ForwardBytes {
+ public:
+  explicit ForwardBytes(const HeaderFile& file) : file_(file) {}
+  // The byte at `at`, or -1 past the end.
+  int at(uint64_t at) {
+    if (at >= file_.size()) return -1;
+    if (at < start_ || at >= start_ + filled_) {
+      start_ = at;
+      filled_ = static_cast<size_t>(std::min<uint64_t>(sizeof(window_), file_.size() - at));
+      if (!file_.read(window_, filled_, at)) {
+        filled_ = 0;
+        return -1;
+      }
+    }
+    return window_[at - start_];
+  }
+
+ private:
+  const HeaderFile& file_;
+  unsigned char window_[64 * 1024] = {};
+  uint64_t start_ = 0;
+  size_t filled_ = 0;
+};
+
+// The next marker after `at` as libjpeg's next_marker finds it: bytes before an 0xFF are
+// skipped as garbage (a segment whose length was forged short leaves some), 0xFF runs are fill,
+// and "FF 00" is stuffed data, not a marker. Returns the marker's code and leaves `at` after it,
+// or -1 at the end of the file.
+int next_jpeg_marker(ForwardBytes& bytes, uint64_t& at) {
+  while (true) {
+    int c = bytes.at(at);
+    while (c >= 0 && c != 0xFF) c = bytes.at(++at);
+    while (c == 0xFF) c = bytes.at(++at);
+    if (c < 0) return -1;
+    ++at;
+    if (c != 0) return c;
+  }
+}
+
+}  // namespace
+
+Status check_jpeg_metadata(const std::string& path) {
   auto file = open_header(path);
   if (!file.ok()) return file.error();
   const HeaderFile& header = **file;
@@ -283,22 +328,35 @@ Status check_jpeg_iptc(const std::string& path) {
     for (int i = 0; i < n; ++i) v = (v << 8) | p[i];
     return v;
   };
+  ForwardBytes bytes(header);
   uint64_t at = 2;
-  while (at + 4 <= size) {
-    unsigned char marker[4] = {};
-    if (!header.read(marker, 4, at) || marker[0] != 0xFF) break;
-    const unsigned char code = marker[1];
-    if (code == 0xD9 || code == 0xDA) break;  // end of image, start of scan: no more metadata
-    if (code == 0x01 || (code >= 0xD0 && code <= 0xD7) || code == 0xFF) {
-      at += code == 0xFF ? 1 : 2;  // fill byte or a marker without a length
-      continue;
+  while (true) {
+    const int code = next_jpeg_marker(bytes, at);
+    if (code < 0 || code == 0xD9 || code == 0xDA) break;  // no more metadata before the scan
+    if (code == 0x01 || (code >= 0xD0 && code <= 0xD7)) continue;  // markers without a length
+    unsigned char length_bytes[2] = {};
+    if (!header.read(length_bytes, 2, at)) break;
+    const uint64_t length = be(length_bytes, 2);
+    if (length < 2 || at + length > size) break;  // libjpeg reports a truncated file
+    if (code == 0xE1 && length - 2 == 5) {
+      // OpenImageIO 2.4 decodes Exif from 6 bytes in, over data_length - 6 bytes: an unsigned
+      // count that wraps to 4 GiB when the segment holds only "Exif\0".
+      char exif[5] = {};
+      if (header.read(exif, 5, at + 2) && std::memcmp(exif, "Exif", 5) == 0) {
+        return make_error("cannot read image " + path +
+                          ": its Exif metadata (APP1) ends inside its header (the file is "
+                          "corrupt or forged; re-export it, or strip its metadata)");
+      }
     }
-    const uint64_t length = be(marker + 2, 2);
-    if (length < 2 || at + 2 + length > size) break;  // libjpeg reports a truncated file
     if (code == 0xED && length - 2 >= 14) {
       std::vector<unsigned char> data(length - 2);
-      if (!header.read(data.data(), data.size(), at + 4)) break;
+      if (!header.read(data.data(), data.size(), at + 2)) break;
       if (std::memcmp(data.data(), "Photoshop 3.0", 14) == 0) {
+        // OpenImageIO reads the first resource's 12-byte header unchecked once it begins "8BIM".
+        const size_t rest = data.size() - 14;
+        if (rest < 12 && std::memcmp(data.data() + 14, "8BIM", std::min<size_t>(rest, 4)) == 0) {
+          return refuse("ends inside the header of its first resource");
+        }
         // 8BIM resources: signature, id, an empty name (OpenImageIO expects two zero bytes),
         // size, data padded to even; the IPTC one (0x0404) holds records 0x1C, record,
         // dataset, 2-byte length, data. OpenImageIO 2.4 trusts both sizes (it read past the
@@ -307,24 +365,25 @@ Status check_jpeg_iptc(const std::string& path) {
         while (p + 12 <= data.size() && std::memcmp(data.data() + p, "8BIM", 4) == 0) {
           const uint64_t id = be(data.data() + p + 4, 2);
           if (data[p + 6] != 0 || data[p + 7] != 0) return refuse("names a resource");
-          const uint64_t bytes = be(data.data() + p + 8, 4);
+          const uint64_t resource_bytes = be(data.data() + p + 8, 4);
           const size_t start = p + 12;
-          if (bytes > data.size() - start) {
-            return refuse("declares a resource of " + std::to_string(bytes) + " bytes where " +
-                          std::to_string(data.size() - start) + " are left");
+          if (resource_bytes > data.size() - start) {
+            return refuse("declares a resource of " + std::to_string(resource_bytes) +
+                          " bytes where " + std::to_string(data.size() - start) + " are left");
           }
-          for (size_t r = start; id == 0x0404 && r < start + bytes && data[r] == 0x1C;) {
-            if (r + 5 > start + bytes) return refuse("ends inside a record header");
+          const size_t end = start + resource_bytes;
+          for (size_t r = start; id == 0x0404 && r < end && data[r] == 0x1C;) {
+            if (r + 5 > end) return refuse("ends inside a record header");
             const uint64_t record = be(data.data() + r + 3, 2);
             if (record & 0x8000) return refuse("uses an extended record length");
-            if (record > start + bytes - (r + 5)) return refuse("declares a record past its end");
+            if (record > end - (r + 5)) return refuse("declares a record past its end");
             r += 5 + record;
           }
-          p = start + bytes + (bytes & 1);
+          p = end + (resource_bytes & 1);
         }
       }
     }
-    at += 2 + length;
+    at += length;
   }
   return Ok{};
 }

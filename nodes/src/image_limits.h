@@ -49,9 +49,11 @@ Status check_exr_header(const std::string& path);
 // beyond the PNG limit of 2^31 - 1. Other files pass.
 Status check_png_chunks(const std::string& path);
 
-// OpenImageIO 2.4 trusts the sizes inside a JPEG's Photoshop/IPTC segment (APP13) and read past
-// it on a fuzzed file: walks the APP13 segments of a JPEG file (found by its SOI marker) and
-// refuses 8BIM resources or IPTC records larger than what holds them. Other files pass.
-Status check_jpeg_iptc(const std::string& path);
+// OpenImageIO 2.4 trusts the sizes inside a JPEG's metadata and read past it on fuzzed files:
+// walks the markers of a JPEG file (found by its SOI marker) as libjpeg finds them, garbage
+// between segments skipped, and refuses Photoshop/IPTC segments (APP13) whose 8BIM resources or
+// IPTC records are larger than what holds them, and an Exif segment (APP1) that ends inside its
+// 6-byte header. Other files pass.
+Status check_jpeg_metadata(const std::string& path);
 
 }  // namespace aq

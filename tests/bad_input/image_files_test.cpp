@@ -107,32 +107,79 @@ TEST(ImageDeclaredSizes, PngChunkLongerThanTheFileIsRefused) {
   EXPECT_EQ(fine->height, 3);
 }
 
-// Found by the image fuzzer: a JPEG whose Photoshop/IPTC segment (APP13) is 58 bytes long while
-// its IPTC resource declares 99 and a record 94; OpenImageIO 2.4 copied the record from past
-// the segment (ASan: heap-buffer-overflow in decode_iptc_iim). The same picture without the
-// forged segment still reads.
-TEST(ImageDeclaredSizes, JpegIptcRecordLongerThanItsSegmentIsRefused) {
-  const fs::path dir = scratch_dir("bad_input_jpeg_iptc");
-  ASSERT_TRUE(write_image((dir / "fine.jpg").string(), constant_image(4, 3, 0.5f, 0.25f, 1.0f),
+// A 4x3 JPEG written by OpenImageIO, to put forged segments into.
+std::string fine_jpeg(const fs::path& dir) {
+  EXPECT_TRUE(write_image((dir / "fine.jpg").string(), constant_image(4, 3, 0.5f, 0.25f, 1.0f),
                           WriteOptions{false, 8})
                   .ok());
   std::ifstream in(dir / "fine.jpg", std::ios::binary);
   const std::string fine((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  ASSERT_GT(fine.size(), 2u);
-  std::string resource = std::string("8BIM\x04\x04\x00\x00", 8) + big_endian(99) +
-                         std::string("\x1c\x02\x41\x00\x5e", 5) + std::string(25, 'x');
-  std::string app13 = std::string("Photoshop 3.0\0", 14) + resource;
-  const std::string segment = std::string("\xff\xed", 2) +
-                              static_cast<char>((app13.size() + 2) >> 8) +
-                              static_cast<char>((app13.size() + 2) & 0xff) + app13;
-  write_bytes(dir / "forged.jpg", fine.substr(0, 2) + segment + fine.substr(2));
+  EXPECT_GT(fine.size(), 2u);
+  EXPECT_EQ(fine.substr(0, 2), std::string("\xff\xd8", 2));
+  return fine;
+}
+
+std::string jpeg_segment(char marker, const std::string& data) {
+  return std::string("\xff", 1) + marker + static_cast<char>((data.size() + 2) >> 8) +
+         static_cast<char>((data.size() + 2) & 0xff) + data;
+}
+
+// An APP13 segment whose IPTC resource declares 99 bytes and a record 94, in 58 bytes.
+std::string forged_iptc_segment() {
+  const std::string resource = std::string("8BIM\x04\x04\x00\x00", 8) + big_endian(99) +
+                               std::string("\x1c\x02\x41\x00\x5e", 5) + std::string(25, 'x');
+  return jpeg_segment('\xed', std::string("Photoshop 3.0\0", 14) + resource);
+}
+
+// Reads `fine` with `inserted` right after its SOI marker: refused with a message naming the
+// file and `what`, while the fine file still reads.
+void expect_refused_after_soi(const fs::path& dir, const std::string& fine,
+                              const std::string& inserted, const std::string& what) {
+  write_bytes(dir / "forged.jpg", fine.substr(0, 2) + inserted + fine.substr(2));
   auto refused = read_image((dir / "forged.jpg").string(), config());
   ASSERT_FALSE(refused.ok());
   EXPECT_TRUE(mentions(refused.message(), "forged.jpg")) << refused.message();
-  EXPECT_TRUE(mentions(refused.message(), "APP13")) << refused.message();
+  EXPECT_TRUE(mentions(refused.message(), what)) << refused.message();
   auto read = read_image((dir / "fine.jpg").string(), config());
   ASSERT_TRUE(read.ok()) << read.message();
   EXPECT_EQ(read->width, 4);
+}
+
+// Found by the image fuzzer: a JPEG whose Photoshop/IPTC segment (APP13) is 58 bytes long while
+// its IPTC resource declares 99 and a record 94; OpenImageIO 2.4 copied the record from past
+// the segment (ASan: heap-buffer-overflow in decode_iptc_iim).
+TEST(ImageDeclaredSizes, JpegIptcRecordLongerThanItsSegmentIsRefused) {
+  const fs::path dir = scratch_dir("bad_input_jpeg_iptc");
+  expect_refused_after_soi(dir, fine_jpeg(dir), forged_iptc_segment(), "APP13");
+}
+
+// Found by the image fuzzer in CI (2026-12-05) after the check above: the same overflow behind
+// bytes that are no marker. libjpeg skips such garbage (a segment whose length was made shorter
+// leaves some) and reads on; the check stopped its walk there and let the file through.
+TEST(ImageDeclaredSizes, JpegIptcRecordBehindGarbageIsRefused) {
+  const fs::path dir = scratch_dir("bad_input_jpeg_iptc_garbage");
+  const std::string fine = fine_jpeg(dir);
+  const std::string comment = jpeg_segment('\xfe', "a comment");
+  // The comment's length says 4 bytes: the rest of its text is garbage to libjpeg.
+  std::string shortened = comment;
+  shortened[3] = 4;
+  expect_refused_after_soi(dir, fine, shortened + forged_iptc_segment(), "APP13");
+  // "FF 00" is a stuffed byte, not a marker; FF runs are fill.
+  expect_refused_after_soi(dir, fine, std::string("\xff\x00\xff\xff", 4) + forged_iptc_segment(),
+                           "APP13");
+}
+
+// OpenImageIO reads the first 8BIM resource's id and size without checking the segment holds
+// them, and decodes Exif over the segment's length minus 6, an unsigned count that wraps.
+TEST(ImageDeclaredSizes, JpegMetadataEndingInsideItsHeaderIsRefused) {
+  const fs::path dir = scratch_dir("bad_input_jpeg_short_metadata");
+  const std::string fine = fine_jpeg(dir);
+  expect_refused_after_soi(dir, fine,
+                           jpeg_segment('\xed', std::string("Photoshop 3.0\0"
+                                                            "8BIM\x04\x04",
+                                                            20)),
+                           "first resource");
+  expect_refused_after_soi(dir, fine, jpeg_segment('\xe1', std::string("Exif\0", 5)), "Exif");
 }
 
 TEST(ImageDeclaredSizes, MemoryBudgetRefusesLargeDecodes) {
