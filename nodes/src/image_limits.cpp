@@ -338,14 +338,19 @@ Status check_jpeg_metadata(const std::string& path) {
     if (!header.read(length_bytes, 2, at)) break;
     const uint64_t length = be(length_bytes, 2);
     if (length < 2 || at + length > size) break;  // libjpeg reports a truncated file
-    if (code == 0xE1 && length - 2 == 5) {
-      // OpenImageIO 2.4 decodes Exif from 6 bytes in, over data_length - 6 bytes: an unsigned
-      // count that wraps to 4 GiB when the segment holds only "Exif\0".
-      char exif[5] = {};
-      if (header.read(exif, 5, at + 2) && std::memcmp(exif, "Exif", 5) == 0) {
-        return make_error("cannot read image " + path +
-                          ": its Exif metadata (APP1) ends inside its header (the file is "
-                          "corrupt or forged; re-export it, or strip its metadata)");
+    // OpenImageIO 2.4 finds Exif and Photoshop metadata with strcmp, which reads on past a
+    // segment that ends inside the signature, and then decodes Exif from 6 bytes in, over
+    // data_length - 6 bytes: an unsigned count that wraps to 4 GiB below 6.
+    if ((code == 0xE1 && length - 2 < 6) || (code == 0xED && length - 2 < 14)) {
+      const bool exif = code == 0xE1;
+      const char* signature = exif ? "Exif\0" : "Photoshop 3.0";  // with its final zero byte
+      const size_t held = static_cast<size_t>(length - 2);
+      char head[14] = {};
+      if (held > 0 && header.read(head, held, at + 2) && std::memcmp(head, signature, held) == 0) {
+        return make_error("cannot read image " + path + ": its " +
+                          (exif ? "Exif metadata (APP1)" : "Photoshop/IPTC metadata (APP13)") +
+                          " ends inside its header (the file is corrupt or forged; re-export "
+                          "it, or strip its metadata)");
       }
     }
     if (code == 0xED && length - 2 >= 14) {

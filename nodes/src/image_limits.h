@@ -52,8 +52,8 @@ Status check_png_chunks(const std::string& path);
 // OpenImageIO 2.4 trusts the sizes inside a JPEG's metadata and read past it on fuzzed files:
 // walks the markers of a JPEG file (found by its SOI marker) as libjpeg finds them, garbage
 // between segments skipped, and refuses Photoshop/IPTC segments (APP13) whose 8BIM resources or
-// IPTC records are larger than what holds them, and an Exif segment (APP1) that ends inside its
-// 6-byte header. Other files pass.
+// IPTC records are larger than what holds them, and an Exif (APP1) or Photoshop (APP13) segment
+// that ends inside its signature or header. Other files pass.
 Status check_jpeg_metadata(const std::string& path);
 
 }  // namespace aq

@@ -170,7 +170,8 @@ TEST(ImageDeclaredSizes, JpegIptcRecordBehindGarbageIsRefused) {
 }
 
 // OpenImageIO reads the first 8BIM resource's id and size without checking the segment holds
-// them, and decodes Exif over the segment's length minus 6, an unsigned count that wraps.
+// them, finds the signatures with strcmp, and decodes Exif over the segment's length minus 6,
+// an unsigned count that wraps.
 TEST(ImageDeclaredSizes, JpegMetadataEndingInsideItsHeaderIsRefused) {
   const fs::path dir = scratch_dir("bad_input_jpeg_short_metadata");
   const std::string fine = fine_jpeg(dir);
@@ -180,6 +181,9 @@ TEST(ImageDeclaredSizes, JpegMetadataEndingInsideItsHeaderIsRefused) {
                                                             20)),
                            "first resource");
   expect_refused_after_soi(dir, fine, jpeg_segment('\xe1', std::string("Exif\0", 5)), "Exif");
+  // Cut inside the signature: strcmp reads on past the segment.
+  expect_refused_after_soi(dir, fine, jpeg_segment('\xe1', "Exif"), "Exif");
+  expect_refused_after_soi(dir, fine, jpeg_segment('\xed', "Photoshop 3.0"), "APP13");
 }
 
 TEST(ImageDeclaredSizes, MemoryBudgetRefusesLargeDecodes) {
