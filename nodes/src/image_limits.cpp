@@ -26,6 +26,13 @@ std::string megabytes(uint64_t bytes) {
   return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
 }
 
+// The unsigned integer of the `n` bytes at `p`, big-endian unless `little`.
+uint64_t unsigned_at(const unsigned char* p, int n, bool little = false) {
+  uint64_t v = 0;
+  for (int i = 0; i < n; ++i) v = (v << 8) | p[little ? n - 1 - i : i];
+  return v;
+}
+
 // A header is read through its own descriptor, closed on every return path.
 class HeaderFile {
  public:
@@ -245,8 +252,7 @@ Status check_png_chunks(const std::string& path) {
   for (int chunks = 0; at + 8 <= size; ++chunks) {
     unsigned char chunk[8] = {};
     if (!header.read(chunk, 8, at)) break;
-    const uint64_t length = (uint64_t{chunk[0]} << 24) | (uint64_t{chunk[1]} << 16) |
-                            (uint64_t{chunk[2]} << 8) | uint64_t{chunk[3]};
+    const uint64_t length = unsigned_at(chunk, 4);
     const std::string type(reinterpret_cast<const char*>(chunk + 4), 4);
     at += 8;
     const uint64_t left = size - at;
@@ -293,6 +299,41 @@ class ForwardBytes {
   size_t filled_ = 0;
 };
 
+// What OpenImageIO 2.4 would read past in a Photoshop segment's data after its "Photoshop 3.0"
+// signature (`data`, the signature's 14 bytes included), or "" when everything fits. It reads
+// the first resource's 12-byte header unchecked once it begins "8BIM", and trusts the sizes of
+// the resources and of the IPTC records in them (it read past the segment on a fuzzed file).
+// 8BIM resources: signature, id, an empty name (OpenImageIO expects two zero bytes), size, data
+// padded to even; the IPTC one (0x0404) holds records 0x1C, record, dataset, 2-byte length,
+// data.
+std::string photoshop_problem(const std::vector<unsigned char>& data) {
+  const size_t rest = data.size() - 14;
+  if (rest < 12 && std::memcmp(data.data() + 14, "8BIM", std::min<size_t>(rest, 4)) == 0) {
+    return "ends inside the header of its first resource";
+  }
+  size_t p = 14;
+  while (p + 12 <= data.size() && std::memcmp(data.data() + p, "8BIM", 4) == 0) {
+    const uint64_t id = unsigned_at(data.data() + p + 4, 2);
+    if (data[p + 6] != 0 || data[p + 7] != 0) return "names a resource";
+    const uint64_t resource_bytes = unsigned_at(data.data() + p + 8, 4);
+    const size_t start = p + 12;
+    if (resource_bytes > data.size() - start) {
+      return "declares a resource of " + std::to_string(resource_bytes) + " bytes where " +
+             std::to_string(data.size() - start) + " are left";
+    }
+    const size_t end = start + resource_bytes;
+    for (size_t r = start; id == 0x0404 && r < end && data[r] == 0x1C;) {
+      if (r + 5 > end) return "ends inside a record header";
+      const uint64_t record = unsigned_at(data.data() + r + 3, 2);
+      if (record & 0x8000) return "uses an extended record length";
+      if (record > end - (r + 5)) return "declares a record past its end";
+      r += 5 + record;
+    }
+    p = end + (resource_bytes & 1);
+  }
+  return "";
+}
+
 // The next marker after `at` as libjpeg's next_marker finds it: bytes before an 0xFF are
 // skipped as garbage (a segment whose length was forged short leaves some), 0xFF runs are fill,
 // and "FF 00" is stuffed data, not a marker. Returns the marker's code and leaves `at` after it,
@@ -317,16 +358,9 @@ Status check_jpeg_metadata(const std::string& path) {
   const uint64_t size = header.size();
   unsigned char soi[2] = {};
   if (!header.read(soi, 2, 0) || soi[0] != 0xFF || soi[1] != 0xD8) return Ok{};  // not a JPEG
-  auto refuse = [&](const std::string& what) -> Status {
-    return make_error("cannot read image " + path + ": its Photoshop/IPTC metadata (APP13) " +
-                      what +
-                      " (the file is corrupt or forged; re-export it, or strip its "
-                      "metadata)");
-  };
-  auto be = [](const unsigned char* p, int n) {
-    uint64_t v = 0;
-    for (int i = 0; i < n; ++i) v = (v << 8) | p[i];
-    return v;
+  auto refuse = [&](const char* segment, const std::string& what) -> Status {
+    return make_error("cannot read image " + path + ": its " + segment + " " + what +
+                      " (the file is corrupt or forged; re-export it, or strip its metadata)");
   };
   ForwardBytes bytes(header);
   uint64_t at = 2;
@@ -336,56 +370,25 @@ Status check_jpeg_metadata(const std::string& path) {
     if (code == 0x01 || (code >= 0xD0 && code <= 0xD7)) continue;  // markers without a length
     unsigned char length_bytes[2] = {};
     if (!header.read(length_bytes, 2, at)) break;
-    const uint64_t length = be(length_bytes, 2);
+    const uint64_t length = unsigned_at(length_bytes, 2);
     if (length < 2 || at + length > size) break;  // libjpeg reports a truncated file
+    const bool exif = code == 0xE1, photoshop = code == 0xED;
+    const char* segment = exif ? "Exif metadata (APP1)" : "Photoshop/IPTC metadata (APP13)";
+    const size_t held = static_cast<size_t>(length - 2);
     // OpenImageIO 2.4 finds Exif and Photoshop metadata with strcmp, which reads on past a
     // segment that ends inside the signature, and then decodes Exif from 6 bytes in, over
     // data_length - 6 bytes: an unsigned count that wraps to 4 GiB below 6.
-    if ((code == 0xE1 && length - 2 < 6) || (code == 0xED && length - 2 < 14)) {
-      const bool exif = code == 0xE1;
+    if ((exif && held < 6) || (photoshop && held < 14)) {
       const char* signature = exif ? "Exif\0" : "Photoshop 3.0";  // with its final zero byte
-      const size_t held = static_cast<size_t>(length - 2);
       char head[14] = {};
       if (held > 0 && header.read(head, held, at + 2) && std::memcmp(head, signature, held) == 0) {
-        return make_error("cannot read image " + path + ": its " +
-                          (exif ? "Exif metadata (APP1)" : "Photoshop/IPTC metadata (APP13)") +
-                          " ends inside its header (the file is corrupt or forged; re-export "
-                          "it, or strip its metadata)");
+        return refuse(segment, "ends inside its header");
       }
-    }
-    if (code == 0xED && length - 2 >= 14) {
-      std::vector<unsigned char> data(length - 2);
+    } else if (photoshop) {
+      std::vector<unsigned char> data(held);
       if (!header.read(data.data(), data.size(), at + 2)) break;
       if (std::memcmp(data.data(), "Photoshop 3.0", 14) == 0) {
-        // OpenImageIO reads the first resource's 12-byte header unchecked once it begins "8BIM".
-        const size_t rest = data.size() - 14;
-        if (rest < 12 && std::memcmp(data.data() + 14, "8BIM", std::min<size_t>(rest, 4)) == 0) {
-          return refuse("ends inside the header of its first resource");
-        }
-        // 8BIM resources: signature, id, an empty name (OpenImageIO expects two zero bytes),
-        // size, data padded to even; the IPTC one (0x0404) holds records 0x1C, record,
-        // dataset, 2-byte length, data. OpenImageIO 2.4 trusts both sizes (it read past the
-        // segment on a fuzzed file), so every one must fit here.
-        size_t p = 14;
-        while (p + 12 <= data.size() && std::memcmp(data.data() + p, "8BIM", 4) == 0) {
-          const uint64_t id = be(data.data() + p + 4, 2);
-          if (data[p + 6] != 0 || data[p + 7] != 0) return refuse("names a resource");
-          const uint64_t resource_bytes = be(data.data() + p + 8, 4);
-          const size_t start = p + 12;
-          if (resource_bytes > data.size() - start) {
-            return refuse("declares a resource of " + std::to_string(resource_bytes) +
-                          " bytes where " + std::to_string(data.size() - start) + " are left");
-          }
-          const size_t end = start + resource_bytes;
-          for (size_t r = start; id == 0x0404 && r < end && data[r] == 0x1C;) {
-            if (r + 5 > end) return refuse("ends inside a record header");
-            const uint64_t record = be(data.data() + r + 3, 2);
-            if (record & 0x8000) return refuse("uses an extended record length");
-            if (record > end - (r + 5)) return refuse("declares a record past its end");
-            r += 5 + record;
-          }
-          p = end + (resource_bytes & 1);
-        }
+        if (std::string why = photoshop_problem(data); !why.empty()) return refuse(segment, why);
       }
     }
     at += length;
@@ -408,11 +411,7 @@ bool read_tiff_layout(const HeaderFile& file, TiffLayout* layout) {
   if (!file.read(head, 8, 0)) return false;
   const bool little = head[0] == 'I' && head[1] == 'I';
   if (!little && !(head[0] == 'M' && head[1] == 'M')) return false;
-  auto number = [little](const unsigned char* p, int n) {
-    uint64_t v = 0;
-    for (int i = 0; i < n; ++i) v = (v << 8) | p[little ? n - 1 - i : i];
-    return v;
-  };
+  auto number = [little](const unsigned char* p, int n) { return unsigned_at(p, n, little); };
   if (number(head + 2, 2) != 42) return false;  // BigTIFF (43) and others: OIIO's own checks
   const uint64_t directory = number(head + 4, 4);
   unsigned char count_bytes[2] = {};
