@@ -72,7 +72,9 @@
 // Confinement to regions (the node's `regions` input connected): the window of a pixel holds
 // only the pixels of its own region, whose label rides in the alpha channel between passes.
 //   AQ_MORPH_CONFINE  1: a tap counts only when its alpha (label) equals the centre pixel's
-//   AQ_MORPH_LABEL    1: this pass (a node's first) takes every tap's label from u_regions
+//   AQ_MORPH_LABEL    1: this pass (a node's first) takes every tap's label from u_regions; 0 in
+//                     a node's first pass: the input's alpha holds the labels already (`labels`
+//                     = alpha, e.g. cel_light's `alpha` = regions), no region image is read
 //   AQ_MORPH_OPAQUE   1: this pass (a node's last, not handed on) writes alpha 1
 #ifndef AQ_MORPH_CONFINE
 #define AQ_MORPH_CONFINE 0
@@ -163,21 +165,13 @@ vec4 aq_morph_output(vec4 best) {
 }
 
 #if AQ_MORPH_LABEL
+#include "aquarelle/region_label.glsl"
 uniform sampler2D u_regions;
 
-// The 8-bit label of the region at `pixel`: a hash of the region colour's three bytes, so equal
-// colours share a label; two different colours share one with probability 1/256 (where two
-// such regions touch, they are then filtered as one). reference/morphology.cpp: region_label.
+// The label of the region at `pixel` (aquarelle/region_label.glsl).
 float aq_morph_label(ivec2 pixel) {
   ivec2 last = textureSize(u_regions, 0) - 1;
-  vec3 c = texelFetch(u_regions, clamp(pixel, ivec2(0), last), 0).rgb;
-  uint h = packUnorm4x8(vec4(c, 0.0));
-  h ^= h >> 15;
-  h *= 0x2C1B3C6Du;
-  h ^= h >> 12;
-  h *= 0x297A2D39u;
-  h ^= h >> 15;
-  return float(h >> 24) * (1.0 / 255.0);
+  return aq_region_label(texelFetch(u_regions, clamp(pixel, ivec2(0), last), 0).rgb);
 }
 #endif
 

@@ -50,7 +50,8 @@ enum Param {
   kEnvironment,
   kSpace,
   kFloor,
-  kPlain
+  kPlain,
+  kAlpha
 };
 constexpr aq_param_desc kParams[] = {
     aq::int_param("levels", 4, 1, 64,
@@ -76,13 +77,18 @@ constexpr aq_param_desc kParams[] = {
     aq::enum_param("plain", "light|regions", 0,
                    "what the `plain` output holds: light (the light without caustics) or regions "
                    "(a flat colour per object id: where washes meet, the source `edge` darkens "
-                   "outlines from without lines along cel bands; no extra pass)")};
+                   "outlines from without lines along cel bands; no extra pass)"),
+    aq::enum_param("alpha", "opaque|regions", 0,
+                   "what the image's alpha holds: opaque (1) or regions (the 8-bit label of the "
+                   "pixel's object region, the hash erode and dilate take of `plain` = regions): "
+                   "a morphology chain with labels = alpha then reads no region image")};
 
 // The shader variant for this node's connections and parameters (see cel_light.frag).
 std::string variant_source(bool has_shadow, bool has_caustics, bool quantize, int pcf_radius,
                            bool same_size, bool encode, bool surface, bool display, bool floor,
-                           bool regions) {
+                           bool regions, bool alpha_labels) {
   return std::string(regions ? "#define AQ_PLAIN_REGIONS 1\n" : "") +
+         (alpha_labels ? "#define AQ_ALPHA_LABELS 1\n" : "") +
          "#define AQ_QUANTIZE_DISPLAY " + std::to_string(display ? 1 : 0) +
          "\n#define AQ_QUANTIZE_FLOOR " + std::to_string(floor ? 1 : 0) + "\n#define AQ_SURFACE " +
          std::to_string(surface ? 1 : 0) + "\n#define AQ_HAS_SHADOW " +
@@ -106,6 +112,7 @@ struct CelLight {
     bool encode;
     bool surface;
     bool display, floor, regions;
+    bool alpha_labels;
     bool operator==(const Variant&) const = default;
   };
   Variant variant_{};
@@ -161,11 +168,13 @@ struct CelLight {
                           packed,
                           ctx.param_enum(kSpace) == 0,
                           ctx.param_bool(kFloor),
-                          ctx.param_enum(kPlain) == 1};
+                          ctx.param_enum(kPlain) == 1,
+                          ctx.param_enum(kAlpha) == 1};
     if (source.empty() || variant != variant_) {  // not re-made every frame
       source = variant_source(variant.shadow, variant.caustics, variant.quantize,
                               variant.pcf_radius, variant.same_size, variant.encode,
-                              variant.surface, variant.display, variant.floor, variant.regions);
+                              variant.surface, variant.display, variant.floor, variant.regions,
+                              variant.alpha_labels);
       variant_ = variant;
     }
     // No source path: hot reload would read the file without the variant's defines.

@@ -8,8 +8,9 @@
 namespace {
 
 struct Dilate {
+  aq::morphology::Warned warned;
   int process(aq::Context& ctx) {
-    return aq::morphology::run(ctx, shaders::dilate_frag, aq::morphology::Op::kDilate);
+    return aq::morphology::run(ctx, shaders::dilate_frag, aq::morphology::Op::kDilate, warned);
   }
 };
 

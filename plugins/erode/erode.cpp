@@ -8,8 +8,9 @@
 namespace {
 
 struct Erode {
+  aq::morphology::Warned warned;
   int process(aq::Context& ctx) {
-    return aq::morphology::run(ctx, shaders::erode_frag, aq::morphology::Op::kErode);
+    return aq::morphology::run(ctx, shaders::erode_frag, aq::morphology::Op::kErode, warned);
   }
 };
 

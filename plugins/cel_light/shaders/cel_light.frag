@@ -20,11 +20,14 @@
 //   AQ_QUANTIZE_DISPLAY 1: levels are steps of the sRGB-encoded value (0: of the linear value)
 //   AQ_QUANTIZE_FLOOR   1: a pixel with v > 0 keeps at least the first level above black
 //   AQ_PLAIN_REGIONS    1: o_plain holds the object regions (a colour per id) instead of the light
+//   AQ_ALPHA_LABELS     1: o_color's alpha holds the label of the pixel's region (the hash erode
+//                       and dilate take of the region colour) instead of 1
 //   AQ_PCF_RADIUS                                0..4
 //   AQ_SAME_SIZE   1 when every g-buffer input has the output's size (read at gl_FragCoord)
 //   AQ_ENCODE_HDR8 1 when `image` is stored as AQ_FORMAT_RGBA8_HDR (aquarelle/hdr8.glsl)
 #include "aquarelle/gbuffer_surface.glsl"
 #include "aquarelle/hdr8.glsl"
+#include "aquarelle/region_label.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_plain;
@@ -207,12 +210,20 @@ void main() {
   vec4 plain = vec4(cel(albedo * (u_ambient + direct)), 1.0);
   vec4 behind = vec4(u_environment ? albedo : u_background, 1.0);
   o_color = background ? behind : lit;
-#if AQ_PLAIN_REGIONS
   // Where washes meet: one flat colour per object id (0 on the background), far apart for
   // neighbouring ids, so an edge detector on it finds the objects' outlines and nothing inside
   // them (no cel bands, no caustics).
-  float id = background ? 0.0 : surface_id;
-  o_plain = vec4(fract(id * vec3(0.6180339887, 0.7548776662, 0.5698402910)), 1.0);
+  vec3 region = aq_region_colour(background ? 0.0 : surface_id);
+#ifndef AQ_ALPHA_LABELS
+#define AQ_ALPHA_LABELS 0
+#endif
+#if AQ_ALPHA_LABELS
+  // The label as erode and dilate would hash it from `plain` = regions, stored in 8 bits: the
+  // colour rounded to bytes first, as the 8-bit region image they would read holds it.
+  o_color.a = aq_region_label(region);
+#endif
+#if AQ_PLAIN_REGIONS
+  o_plain = vec4(region, 1.0);
 #else
   o_plain = background ? behind : plain;
 #endif

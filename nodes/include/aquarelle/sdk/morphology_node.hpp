@@ -24,9 +24,10 @@
 
 namespace aq::morphology {
 
-enum Param : uint32_t { kSize, kFootprint, kMode };
+enum Param : uint32_t { kSize, kFootprint, kMode, kLabels };
 enum Footprint : int64_t { kSquare = 0, kDisc = 1 };
 enum Mode : int64_t { kPerChannel = 0, kLuminance = 1 };
+enum Labels : int64_t { kFromRegions = 0, kFromAlpha = 1 };
 enum class Op { kErode, kDilate };  // which extreme the plugin's shader takes
 
 constexpr int kMaxRadius = 4;  // size 9
@@ -56,7 +57,12 @@ inline constexpr aq_param_desc kParams[] = {
                    "size/2 of the centre"),
     aq::enum_param("mode", "channel|luminance", kPerChannel,
                    "channel: each of r, g, b, a on its own (the seed's choice); luminance: "
-                   "whole colours ordered by luminance, so no new colour appears")};
+                   "whole colours ordered by luminance, so no new colour appears"),
+    aq::enum_param("labels", "regions|alpha", kFromRegions,
+                   "where the windows' region labels come from: regions: hashed from the "
+                   "`regions` input's colours (no confinement when it is unconnected); alpha: "
+                   "the image's alpha holds them (cel_light with alpha = regions), so no region "
+                   "image is read")};
 
 // Which row span every row offset of the footprint uses.
 struct SpanPlan {
@@ -117,12 +123,15 @@ inline std::string variant_text(const aq_shader_source& shader, int pass, const 
          (blocked ? "1" : "0") + "\n" + shader.text;
 }
 
-// Confinement to regions (the `regions` input connected). Each pass takes only the taps whose
-// region label equals its centre pixel's; the label rides in alpha between the passes of a node
-// and across a handed-on pass (AQ_PORT_DEFER_AXIS), so only a node's first pass reads `regions`
-// (AQ_MORPH_LABEL) and its last one, when not handed on, writes alpha 1 (AQ_MORPH_OPAQUE).
+// Confinement to regions (the `regions` input connected, or `labels` = alpha). Each pass takes
+// only the taps whose region label equals its centre pixel's; the label rides in alpha between
+// the passes of a node and across a handed-on pass (AQ_PORT_DEFER_AXIS), so only a node's first
+// pass reads `regions` (AQ_MORPH_LABEL) and its last one, when not handed on, writes alpha 1
+// (AQ_MORPH_OPAQUE). With the labels in the input's alpha already (`from_alpha`), the first
+// pass reads them like the later ones: no region image, no hash per tap.
 struct Confine {
   bool on = false;
+  bool from_alpha = false;
   aq_image regions{};
 };
 
@@ -130,13 +139,16 @@ struct Confine {
 // writes alpha 1. Empty when not confined.
 inline std::string confine_defines(const Confine& confine, bool first, bool last) {
   if (!confine.on) return "";
-  return std::string("#define AQ_MORPH_CONFINE 1\n") + (first ? "#define AQ_MORPH_LABEL 1\n" : "") +
+  const bool hash_regions = first && !confine.from_alpha;
+  return std::string("#define AQ_MORPH_CONFINE 1\n") +
+         (hash_regions ? "#define AQ_MORPH_LABEL 1\n" : "") +
          (last ? "#define AQ_MORPH_OPAQUE 1\n" : "");
 }
 
 // Binds `regions` to texture unit `unit` of `program` when the pass reads labels.
 inline void bind_regions(GLuint program, const Confine& confine, bool first, GLuint unit) {
-  if (confine.on && first) aq::bind_texture(program, "u_regions", unit, confine.regions);
+  if (confine.on && first && !confine.from_alpha)
+    aq::bind_texture(program, "u_regions", unit, confine.regions);
 }
 
 // Whether the blocked fast path applies: a square window, per channel, on 8-bit values (where
@@ -362,8 +374,13 @@ inline bool run_handing_over(aq::Context& ctx, const aq_shader_source& shader, O
          run_blocked(ctx, shader, rows, out, plan_spans(0, kSquare), drawn);
 }
 
+// What a node instance has already told the user (each warning once, not every frame).
+struct Warned {
+  bool unread_regions = false;
+};
+
 // Runs erosion or dilation, whichever `shader` implements.
-inline int run(aq::Context& ctx, const aq_shader_source& shader, Op op) {
+inline int run(aq::Context& ctx, const aq_shader_source& shader, Op op, Warned& warned) {
   aq_image in = ctx.input_image(0);
   const int64_t size = ctx.param_int(kSize);
   if (size < 1 || size > 2 * kMaxRadius + 1 || size % 2 == 0) {
@@ -389,8 +406,15 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader, Op op) {
   const SpanPlan plan = plan_spans(radius, footprint == kDisc ? kDisc : kSquare);
   const bool luminance = ctx.param_enum(kMode) == kLuminance;
   Confine confine;
-  confine.on = ctx.connected(kRegions);
-  if (confine.on) confine.regions = ctx.input_image(kRegions);
+  confine.from_alpha = ctx.param_enum(kLabels) == kFromAlpha;
+  confine.on = confine.from_alpha || ctx.connected(kRegions);
+  if (confine.on && !confine.from_alpha) confine.regions = ctx.input_image(kRegions);
+  if (confine.from_alpha && ctx.connected(kRegions) && !warned.unread_regions) {
+    warned.unread_regions = true;
+    ctx.warn(std::string("'") + ctx.node_id() +
+             "': `labels` is alpha, so the `regions` input is not read; disconnect it or set "
+             "`labels` to regions");
+  }
 
   // Damage tracking: with its output kept, only the pixels whose window holds a changed input
   // pixel are redrawn (and the writer's pass this node runs widens the window along its axis);
@@ -400,7 +424,8 @@ inline int run(aq::Context& ctx, const aq_shader_source& shader, Op op) {
     const int reach_x = radius + (pending && pending->axis == 0 ? pending->radius : 0);
     const int reach_y = radius + (pending && pending->axis == 1 ? pending->radius : 0);
     Region changed = ctx.input_damage(kImage);
-    if (confine.on) changed.add(ctx.input_damage(kRegions));  // a label moves the windows
+    if (confine.on && !confine.from_alpha)
+      changed.add(ctx.input_damage(kRegions));  // a label moves the windows
     damage = changed.dilated(reach_x, reach_y, out.width, out.height);
   }
   if (damage.empty()) return ctx.set_output_damage(0, damage) ? AQ_OK : AQ_ERROR;
