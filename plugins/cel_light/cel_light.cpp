@@ -4,7 +4,8 @@
 // value quantised to `levels` with hue and saturation kept. Output is linear HDR.
 //
 //   scene ──► light direction, colour, ambient, light matrix (scene_math.hpp, as shadowmap)
-//   position, surface ─────────────┐    (or position, normal, albedo, id)
+//   surface (or position, normal, albedo, id) ┐
+//   (the packed surface carries the depth: the position is rebuilt on the camera's rays)
 //   shadow (optional) ─────────────┼──► cel_light.frag ──► image (working format)
 //   caustics (optional) ───────────┘                    └─► plain (the same without caustics)
 #include <aquarelle/plugin.hpp>
@@ -24,15 +25,18 @@ namespace {
 enum Input { kScene, kPosition, kNormal, kAlbedo, kId, kShadow, kCaustics, kSurface };
 constexpr aq_port_desc kInputs[] = {
     aq::scene_port("scene", "light direction, colour and ambient; the light matrix"),
-    aq::image_port("position", "world position (gbuffer.position)"),
+    aq::optional_image_port("position",
+                            "world position (gbuffer.position), with `normal`, `albedo` and "
+                            "`id`; not read with `surface`, which carries the depth"),
     aq::optional_image_port("normal", "world normal (gbuffer.normal); or connect `surface`"),
     aq::optional_image_port("albedo", "base colour (gbuffer.albedo); or connect `surface`"),
     aq::optional_image_port("id", "object id, 0 = background (gbuffer.id); or connect `surface`"),
     aq::optional_image_port("shadow", "light-space depth (shadowmap.depth); unlit test if absent"),
     aq::optional_image_port("caustics", "tileable caustic texture, mean 1 (caustics.image)"),
     aq::optional_image_port("surface",
-                            "normal, albedo and id packed in one texel (gbuffer.surface): one "
-                            "read instead of three; replaces `normal`, `albedo` and `id`")};
+                            "normal, albedo, id and depth packed in one texel (gbuffer.surface): "
+                            "one read instead of four; replaces `position`, `normal`, `albedo` "
+                            "and `id`")};
 constexpr aq_port_desc kOutputs[] = {
     // AQ_PORT_HDR8: written encoded (aquarelle/hdr8.glsl) when every reader decodes it.
     aq::image_port("image", "lit, cel-shaded colour (HDR)", AQ_PORT_HDR8),
@@ -131,25 +135,29 @@ struct CelLight {
                       "the gbuffer");
     }
     const bool packed = ctx.connected(kSurface);
-    if (!packed && !(ctx.connected(kNormal) && ctx.connected(kAlbedo) && ctx.connected(kId))) {
+    if (!packed && !(ctx.connected(kPosition) && ctx.connected(kNormal) && ctx.connected(kAlbedo) &&
+                     ctx.connected(kId))) {
       return ctx.fail(std::string("cel_light '") + ctx.node_id() +
                       "': the surface is not connected; connect `surface` to the gbuffer's "
-                      "`surface` output (or all of `normal`, `albedo` and `id` to its outputs of "
-                      "those names)");
+                      "`surface` output (or all of `position`, `normal`, `albedo` and `id` to its "
+                      "outputs of those names)");
     }
     if (packed && ctx.input_image(kSurface).format != AQ_FORMAT_RGBA32UI) {
       return ctx.fail(std::string("cel_light '") + ctx.node_id() +
                       "': input `surface` is not a packed surface (RGBA32UI); connect a "
                       "gbuffer's `surface` output to it, or an image to `normal`/`albedo`/`id`");
     }
-    if (packed && (ctx.connected(kNormal) || ctx.connected(kAlbedo) || ctx.connected(kId)) &&
+    if (packed &&
+        (ctx.connected(kPosition) || ctx.connected(kNormal) || ctx.connected(kAlbedo) ||
+         ctx.connected(kId)) &&
         !warned_both_) {
       ctx.warn(std::string("cel_light '") + ctx.node_id() +
-               "': `surface` is connected, so `normal`, `albedo` and `id` are not read; "
-               "disconnect them");
+               "': `surface` is connected, so `position`, `normal`, `albedo` and `id` are not "
+               "read; disconnect them");
       warned_both_ = true;
     }
-    const aq_image position = ctx.input_image(kPosition);
+    // The image every output is sized like: the surface, or the position.
+    const aq_image position = ctx.input_image(packed ? kSurface : kPosition);
     aq_image targets[2];
     if (!ctx.output_like(0, position, &targets[0]) || !ctx.output_like(1, position, &targets[1])) {
       return AQ_ERROR;
@@ -157,7 +165,7 @@ struct CelLight {
     const bool has_shadow = ctx.connected(kShadow);
     const bool has_caustics = ctx.connected(kCaustics);
     bool gbuffer_same_size = true;
-    for (uint32_t input : surface_inputs(ctx))
+    for (uint32_t input : pixel_inputs(ctx))
       gbuffer_same_size = gbuffer_same_size && same_size(position, ctx.input_image(input));
     const Variant variant{has_shadow,
                           has_caustics,
@@ -182,10 +190,11 @@ struct CelLight {
     GLuint program = ctx.program(fragment);
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
-    aq::bind_texture(program, "u_position", 0, position);
     if (packed) {
       aq::bind_texture(program, "u_surface", 1, ctx.input_image(kSurface));
+      set_camera_rays(program, scene->camera, position);
     } else {
+      aq::bind_texture(program, "u_position", 0, position);
       aq::bind_texture(program, "u_normal", 1, ctx.input_image(kNormal));
       aq::bind_texture(program, "u_albedo", 2, ctx.input_image(kAlbedo));
       aq::bind_texture(program, "u_id", 3, ctx.input_image(kId));
@@ -222,6 +231,9 @@ struct CelLight {
     lighting.mix(scene->light.ambient);
     lighting.mix(scene->water_height);
     lighting.mix(aq::scene_caustic_tile(*scene));
+    // From the surface's depth, the position also depends on the camera: a camera that moves
+    // without changing a pixel's depth still moves its point.
+    if (packed) lighting.mix(scene->camera);
     aq::Region damage = damaged(ctx, targets[0], lighting.value != lighting_key_);
     lighting_key_ = lighting.value;
     if (!ctx.set_draw_region(damage.for_drawing())) damage = aq::Region::everything();
@@ -250,10 +262,31 @@ struct CelLight {
     glBindSampler(5, repeating.get());
   }
 
-  // The inputs a pixel's surface is read from besides its position.
-  static std::vector<uint32_t> surface_inputs(const aq::Context& ctx) {
+  // The inputs a pixel's surface and position are read from.
+  static std::vector<uint32_t> pixel_inputs(const aq::Context& ctx) {
     if (ctx.connected(kSurface)) return {kSurface};
-    return {kNormal, kAlbedo, kId};
+    return {kPosition, kNormal, kAlbedo, kId};
+  }
+
+  // The ray through texel t of the packed surface is ray0 + t.x dx + t.y dy with a view-axis
+  // component of 1 (camera_rays at the surface's aspect, the one the g-buffer drew with), so
+  // the shader's position is eye + depth * ray.
+  static void set_camera_rays(GLuint program, const aq_camera& camera, const aq_image& surface) {
+    const double width = surface.width, height = surface.height;
+    const aq::scene_math::CameraRays rays = aq::scene_math::camera_rays(camera, width / height);
+    double ray0[3], dx[3], dy[3], eye[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      // The texel's centre: ndc = (t + 0.5) * 2 / size - 1 along each axis.
+      dx[axis] = rays.right[axis] * 2.0 / width;
+      dy[axis] = rays.up[axis] * 2.0 / height;
+      ray0[axis] = rays.forward[axis] + rays.right[axis] * (1.0 / width - 1.0) +
+                   rays.up[axis] * (1.0 / height - 1.0);
+      eye[axis] = camera.position[axis];
+    }
+    aq::set_vec3(program, "u_eye", eye);
+    aq::set_vec3(program, "u_ray0", ray0);
+    aq::set_vec3(program, "u_ray_dx", dx);
+    aq::set_vec3(program, "u_ray_dy", dy);
   }
 
   // Damage tracking: the pixels whose light can differ from the kept outputs'. A pixel reads
@@ -264,9 +297,7 @@ struct CelLight {
   aq::Region damaged(const aq::Context& ctx, const aq_image& target, bool lighting_changed) {
     if (!ctx.output_kept(0) || !ctx.output_kept(1)) return aq::Region::everything();
     aq::Region damage;
-    std::vector<uint32_t> inputs = surface_inputs(ctx);
-    inputs.push_back(kPosition);
-    for (uint32_t input : inputs) {
+    for (uint32_t input : pixel_inputs(ctx)) {
       const aq_image image = ctx.input_image(input);
       if (image.width != target.width || image.height != target.height)
         return aq::Region::everything();

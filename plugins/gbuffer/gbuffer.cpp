@@ -8,7 +8,7 @@
 //                           gradient with a = 0 behind the scene)   working format
 //                 depth    (linear view depth, far plane on the background)  R32F
 //                 id       (object_id as float, 0 on the background)         R32F
-//                 surface  (normal, albedo and id packed for the light)      RGBA32UI
+//                 surface  (normal, albedo, id and depth packed for the light) RGBA32UI
 //
 // The background is marked explicitly (id 0, w = 0), never by a zero normal. Texture alpha
 // under a mesh's cut-off is a hole (cut-out cards).
@@ -20,6 +20,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -39,9 +40,10 @@ constexpr aq_port_desc kOutputs[] = {
                    "on the background (R32F)"),
     aq::image_port("id", "object id as a float (R32F); 0 on the background"),
     aq::image_port("surface",
-                   "normal, albedo and id in one texel for a deferred light (RGBA32UI): x = "
-                   "packHalf2x16(normal.xy), y = packHalf2x16(normal.z, albedo.r), z = "
-                   "packHalf2x16(albedo.gb), w = floatBitsToUint(id); one read instead of three")};
+                   "normal, albedo, id and depth in one texel for a deferred light (RGBA32UI, "
+                   "nodes/shaders/gbuffer_surface.glsl): x = the octahedral normal in 2 x 16 "
+                   "bits, y = packHalf2x16(albedo.rg), z = albedo.b as a half and the id in 16 "
+                   "bits, w = floatBitsToUint(depth); one read instead of four")};
 enum Param { kCacheStatic };
 constexpr aq_param_desc kParams[] = {aq::bool_param(
     "cache_static", true,
@@ -171,8 +173,10 @@ class GBuffer {
     glClearBufferfv(GL_COLOR, kAlbedo, zero);
     glClearBufferfv(GL_COLOR, kDepth, far_value);
     glClearBufferfv(GL_COLOR, kId, zero);
-    const GLuint no_words[4] = {0, 0, 0, 0};
-    glClearBufferuiv(GL_COLOR, kSurface, no_words);
+    // aq_surface_pack(0, 0, 0, far plane): zero words but the depth's.
+    GLuint background_words[4] = {0, 0, 0, 0};
+    std::memcpy(&background_words[3], &far_plane, sizeof(float));
+    glClearBufferuiv(GL_COLOR, kSurface, background_words);
     return true;
   }
 

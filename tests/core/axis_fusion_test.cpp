@@ -159,7 +159,7 @@ TEST(AxisFusion, AChainThatEndsTheGraphAfterTheLightRenders) {
       "scene": {"type": "scene", "params": {"preset": "plane_box"}},
       "gbuf": {"type": "gbuffer", "inputs": {"scene": "scene.scene"}},
       "light": {"type": "cel_light", "inputs": {"scene": "scene.scene",
-                "position": "gbuf.position", "surface": "gbuf.surface"}},
+                "surface": "gbuf.surface"}},
       "open_erode": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "light.image"}},
       "dilate": {"type": "dilate", "params": {"size": 5}, "inputs": {"image": "open_erode.image"}},
       "close_erode": {"type": "erode", "params": {"size": 3}, "inputs": {"image": "dilate.image"}}

@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 #include <string>
 
 #include "aquarelle/reference/cel_shading.h"
+#include "aquarelle/reference/morphology.h"
 #include "support/harness.h"
 
 namespace {
@@ -28,6 +30,7 @@ struct LightSetup {
   std::string space = "display";
   bool floor = true;
   std::string plain = "light";
+  std::string alpha = "opaque";
   double caustic_tile = 4.0;  // cel_light's own; 0 takes the scene's
   double scene_caustic_tile = 4.0;
   double caustic_strength = 1.0;
@@ -59,6 +62,7 @@ std::string graph(const LightSetup& s, bool shadow, bool caustics) {
                               {"space", s.space},
                               {"floor", s.floor},
                               {"plain", s.plain},
+                              {"alpha", s.alpha},
                               {"caustic_tile", s.caustic_tile},
                               {"caustic_strength", s.caustic_strength},
                               {"pcf_radius", s.pcf_radius}}}}}};
@@ -413,6 +417,42 @@ TEST(CelLight, RegionsAreAFlatColourPerObject) {
   LightSetup light = s;
   light.plain = "light";
   EXPECT_EQ(aq::test::max_abs_diff(run(s, as_inputs(g)), run(light, as_inputs(g))), 0.0);
+}
+
+// `alpha` = regions: the image's alpha holds the label erode and dilate hash from the region
+// colour (reference/morphology.cpp, region_label, on the bytes of the `plain` = regions
+// colour), so a confined chain with `labels` = alpha needs no region image; the colour is the
+// same as with an opaque alpha.
+TEST(CelLight, RegionLabelsInAlphaAreTheMorphologysHashOfTheRegions) {
+  GBufferImages g = random_gbuffer(33);
+  for (int y = 3; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) g.id.at(x, y, 0) = static_cast<float>(1 + x / 8 + 8 * (y / 24));
+  LightSetup s;
+  s.plain = "regions";
+  s.alpha = "regions";
+  aq::test::RenderOptions options;
+  options.width = kW;
+  options.height = kH;
+  options.output = "light.plain";
+  auto regions = aq::test::render_graph(graph(s, false, false), options, as_inputs(g));
+  ASSERT_TRUE(regions.ok()) << regions.message();
+  const ImageF labelled = run(s, as_inputs(g));
+  std::set<int> labels;
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) {
+      const int label = aq::reference::region_label(regions->at(x, y, 0), regions->at(x, y, 1),
+                                                    regions->at(x, y, 2));
+      ASSERT_EQ(std::lround(labelled.at(x, y, 3) * 255.0), label) << x << "," << y;
+      labels.insert(label);
+    }
+  }
+  EXPECT_GE(labels.size(), 10u);  // the background and most of the 16 ids apart
+  LightSetup opaque = s;
+  opaque.alpha = "opaque";
+  const ImageF plain_alpha = run(opaque, as_inputs(g));
+  EXPECT_EQ(aq::test::max_abs_diff(labelled, plain_alpha, 3), 0.0);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) ASSERT_EQ(plain_alpha.at(x, y, 3), 1.0f);
 }
 
 TEST(CelLight, BackgroundGetsTheBackgroundColour) {

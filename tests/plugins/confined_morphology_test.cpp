@@ -66,6 +66,24 @@ const char* kConfinedChainEncoded = R"({
   "output": "close_erode.image"
 })";
 
+// The encoded chain whose first node takes the labels from the image's alpha, as the flagship's
+// open_erode takes them from the light's (the later nodes still read `regions`).
+const char* kConfinedChainLabelled = R"({
+  "aquarelle": 1,
+  "nodes": {
+    "input": {"type": "image_input", "params": {"name": "image"}},
+    "regions": {"type": "image_input", "params": {"name": "regions"}},
+    "encode": {"type": "erode", "params": {"size": 1}, "inputs": {"image": "input.image"}},
+    "open_erode": {"type": "erode", "params": {"size": 3, "labels": "alpha"},
+                   "inputs": {"image": "encode.image"}},
+    "dilate": {"type": "dilate", "params": {"size": 5},
+               "inputs": {"image": "open_erode.image", "regions": "regions.image"}},
+    "close_erode": {"type": "erode", "params": {"size": 3},
+                    "inputs": {"image": "dilate.image", "regions": "regions.image"}}
+  },
+  "output": "close_erode.image"
+})";
+
 // The same chain without `regions`: today's opening and closing.
 const char* kOpenChain = R"({
   "aquarelle": 1,
@@ -166,6 +184,43 @@ INSTANTIATE_TEST_SUITE_P(Sweep, ConfinedMorphology,
                                             ::testing::Values("channel", "luminance"),
                                             ::testing::Values("float", "half")));
 
+// `labels` = alpha: the same windows as `regions`, from labels the writer put in the image's
+// alpha (cel_light's `alpha` = regions writes region_label / 255 there); no region image.
+class LabelsFromAlpha : public ::testing::TestWithParam<NodeCase> {};
+
+TEST_P(LabelsFromAlpha, MatchTheDefinitionWithTheRegionsTheyLabel) {
+  const auto& [node, size, footprint, mode, precision] = GetParam();
+  ImageF input = watercolor::quantized(random_image(53, 37, 5));
+  const ImageF regions = blob_regions(53, 37, 9);
+  ASSERT_TRUE(labels_distinct(regions));
+  for (int y = 0; y < input.height; ++y)
+    for (int x = 0; x < input.width; ++x)
+      input.at(x, y, 3) =
+          static_cast<float>(aq::reference::region_label(regions.at(x, y, 0), regions.at(x, y, 1),
+                                                         regions.at(x, y, 2)) /
+                             255.0);
+  RenderOptions options;
+  options.width = input.width;
+  options.height = input.height;
+  options.precision = precision;
+  auto out = run_node(
+      node, {{"image", input}},
+      {{"size", size}, {"footprint", footprint}, {"mode", mode}, {"labels", "alpha"}}, options);
+  ASSERT_TRUE(out.ok()) << out.message();
+  const MorphologyParams params{
+      node == "erode" ? MorphologyOp::kErode : MorphologyOp::kDilate, size,
+      footprint == "disc" ? MorphologyFootprint::kDisc : MorphologyFootprint::kSquare,
+      mode == "luminance" ? MorphologyOrder::kLuminance : MorphologyOrder::kPerChannel};
+  EXPECT_EQ(max_abs_diff(*out, aq::reference::confined_morphology(input, regions, params), 3), 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Sweep, LabelsFromAlpha,
+                         ::testing::Combine(::testing::Values("erode", "dilate"),
+                                            ::testing::Values(3, 5),
+                                            ::testing::Values("square", "disc"),
+                                            ::testing::Values("channel", "luminance"),
+                                            ::testing::Values("float", "half")));
+
 double encode(double c) {
   return std::sqrt(c / (1.0 + c));
 }
@@ -232,13 +287,21 @@ TEST(ConfinedMorphologyChain, HandedOnAndWholeMatchTheDefinition) {
     const char* name;
   };
   const Case cases[] = {{kConfinedChainEncoded, true, {kRows, kColumns, kRows}, "encoded"},
+                        {kConfinedChainLabelled, true, {kRows, kColumns, kRows}, "labelled"},
                         {kConfinedChain, true, {kRows, kRows, kColumns}, "working format"},
                         {kConfinedChainEncoded, false, {kRows, kRows, kRows}, "whole, encoded"},
                         {kConfinedChain, false, {kRows, kRows, kRows}, "whole"}};
   for (const auto& [width, height] : {std::pair{64, 48}, {37, 21}, {9, 5}}) {
-    const ImageF light = light_on_codes(width, height, 3);
+    ImageF light = light_on_codes(width, height, 3);
     const ImageF regions = blob_regions(width, height, 4);
     ASSERT_TRUE(labels_distinct(regions));
+    // The labels in alpha for the labelled chain (the others read `regions` and leave alpha).
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        light.at(x, y, 3) =
+            static_cast<float>(aq::reference::region_label(regions.at(x, y, 0), regions.at(x, y, 1),
+                                                           regions.at(x, y, 2)) /
+                               255.0);
     for (const Case& c : cases) {
       auto out = render_chain(c.graph, light, regions, c.hand_on);
       ASSERT_TRUE(out.ok()) << out.message();

@@ -15,7 +15,9 @@
 // source `edge` looks at, so caustic patterns draw no outlines).
 //
 // cel_light.cpp prepends the variant (llvmpipe runs both sides of a branch on a uniform):
-//   AQ_SURFACE   1: normal, albedo and id from the packed `surface` (one read instead of three)
+//   AQ_SURFACE   1: normal, albedo, id and depth from the packed `surface` (one read instead of
+//                four), the position rebuilt from the depth on the camera's ray through the
+//                texel's centre
 //   AQ_HAS_SHADOW, AQ_HAS_CAUSTICS, AQ_QUANTIZE  0 or 1
 //   AQ_QUANTIZE_DISPLAY 1: levels are steps of the sRGB-encoded value (0: of the linear value)
 //   AQ_QUANTIZE_FLOOR   1: a pixel with v > 0 keeps at least the first level above black
@@ -32,10 +34,16 @@ in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_plain;
 
-uniform sampler2D u_position;
 #if AQ_SURFACE
 uniform usampler2D u_surface;
+// The camera's ray through texel t of the surface is u_ray0 + t.x u_ray_dx + t.y u_ray_dy,
+// scaled so that its component along the view axis is 1 (cel_light.cpp, from camera_rays).
+uniform vec3 u_eye;
+uniform vec3 u_ray0;
+uniform vec3 u_ray_dx;
+uniform vec3 u_ray_dy;
 #else
+uniform sampler2D u_position;
 uniform sampler2D u_normal;
 uniform sampler2D u_albedo;
 uniform sampler2D u_id;
@@ -165,8 +173,14 @@ vec4 fetch(sampler2D s) {
 }
 
 #if AQ_SURFACE
-aq_surface fetch_surface() {
-  return aq_surface_unpack(texelFetch(u_surface, texel_of(textureSize(u_surface, 0)), 0));
+// The surface at this pixel and the world point the g-buffer saw there: the point at view depth
+// z on the ray through the texel's centre, which is where the g-buffer interpolated its position
+// (planar triangles, perspective-correct), to float rounding.
+aq_surface fetch_surface(out vec3 position) {
+  ivec2 t = texel_of(textureSize(u_surface, 0));
+  aq_surface surface = aq_surface_unpack(texelFetch(u_surface, t, 0));
+  position = u_eye + surface.depth * (u_ray0 + float(t.x) * u_ray_dx + float(t.y) * u_ray_dy);
+  return surface;
 }
 #endif
 
@@ -178,7 +192,8 @@ void main() {
 #define AQ_PLAIN_REGIONS 0
 #endif
 #if AQ_SURFACE
-  aq_surface surface = fetch_surface();
+  vec3 p;
+  aq_surface surface = fetch_surface(p);
   float surface_id = surface.id;
   bool background = !(surface.id >= 0.5);  // id 0 (or NaN)
   vec3 albedo = max(surface.albedo, vec3(0.0));
@@ -188,8 +203,8 @@ void main() {
   bool background = !(surface_id >= 0.5);
   vec3 albedo = max(fetch(u_albedo).rgb, vec3(0.0));
   vec3 n = fetch(u_normal).xyz;
-#endif
   vec3 p = fetch(u_position).xyz;
+#endif
   float len = length(n);
   n = len > 1e-6 ? n / len : vec3(0.0);
 

@@ -29,5 +29,5 @@ void main() {
   o_normal = vec4(0.0);
   o_depth = u_far_plane;
   o_id = 0.0;
-  o_surface = aq_surface_pack(vec3(0.0), o_albedo.rgb, 0.0);
+  o_surface = aq_surface_pack(vec3(0.0), o_albedo.rgb, 0.0, o_depth);
 }

@@ -48,5 +48,5 @@ void main() {
   o_albedo = vec4(v_color * texel.rgb, 1.0);
   o_depth = v_view_depth;
   o_id = u_object_id;
-  o_surface = aq_surface_pack(o_normal.xyz, o_albedo.rgb, o_id);
+  o_surface = aq_surface_pack(o_normal.xyz, o_albedo.rgb, o_id, o_depth);
 }
