@@ -160,6 +160,7 @@ Status FrameRun::run_node(const PlannedNode& planned, NodeState& state, NodeCall
   host_call.input_refs = &call.inputs.images;
   host_call.stored_formats = &planned.stored_formats;
   host_call.axis_deferrable = &planned.axis_deferrable;
+  host_call.outputs_read = &planned.outputs_read;
   host_call.working_format = frame_.format;
   host_call.sources = &call.inputs.sources;
   host_call.input_keys = &call.inputs.keys;

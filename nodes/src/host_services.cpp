@@ -59,6 +59,7 @@ HostServices::HostServices(GlContext& context, TexturePool& pool) : context_(con
   host_.may_defer_axis = &HostServices::may_defer_axis;
   host_.defer_axis = &HostServices::defer_axis;
   host_.input_deferred_axis = &HostServices::input_deferred_axis;
+  host_.output_read = &HostServices::output_read;
   empty_vao_ = gl::make_vertex_array();
   GLuint framebuffer = 0;
   glCreateFramebuffers(1, &framebuffer);  // created, not just named: DSA calls need that
@@ -408,6 +409,12 @@ int HostServices::input_bounds(void* data, uint32_t index, aq_rect* rects, uint3
   const DamageSource& source = (*call->sources)[index];
   if (source.state == nullptr || source.output >= source.state->output_bounds.size()) return -1;
   return write_rects(source.state->output_bounds[source.output], rects, capacity);
+}
+
+int HostServices::output_read(void* data, uint32_t index) {
+  const auto* call = static_cast<const CallState*>(data);
+  const std::vector<bool>* read = call->outputs_read;
+  return read == nullptr || read->empty() || index >= read->size() || (*read)[index] ? 1 : 0;
 }
 
 int HostServices::may_defer_axis(void* data, uint32_t index) {

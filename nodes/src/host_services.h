@@ -87,6 +87,9 @@ struct CallState {
   // Per output: the plan lets it leave its last 1D pass to its reader
   // (PlannedNode::axis_deferrable); null or empty: none may.
   const std::vector<bool>* axis_deferrable = nullptr;
+  // Per output: something reads it in this evaluation (PlannedNode::outputs_read); null or
+  // empty: every output counts as read.
+  const std::vector<bool>* outputs_read = nullptr;
   uint32_t working_format = AQ_FORMAT_RGBA16F;
 
   // Epilogue fusion (AQ_NODE_EPILOGUE): the pointwise stages the node's draws into output 0
@@ -166,6 +169,7 @@ class HostServices {
   static int may_defer_axis(void* data, uint32_t index);
   static int defer_axis(void* data, uint32_t index, const aq_axis_pass* pass);
   static int input_deferred_axis(void* data, uint32_t index, aq_axis_pass* pass);
+  static int output_read(void* data, uint32_t index);
 
   GlContext& context_;
   TexturePool& pool_;

@@ -188,6 +188,8 @@ uint64_t hash_frame(uint64_t key, const PlannedNode& planned, const FrameConstan
   if (with_frame && planned.type->time_dependent()) key = hash_value(key, frame.options->frame);
   for (uint32_t stored : planned.stored_formats) key = hash_value(key, stored);
   for (bool deferrable : planned.axis_deferrable) key = hash_value(key, deferrable ? 1 : 2);
+  // An output left unwritten while unread must be written when a reader appears.
+  for (bool read : planned.outputs_read) key = hash_value(key, read ? 3 : 4);
   return builtin_key(*planned.type, params, *frame.options, key);
 }
 

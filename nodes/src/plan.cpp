@@ -277,6 +277,10 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
     if (planned.deferred && !planned.producer && chain.size() >= kMaxFusedStages) {
       planned.deferred = false;
     }
+    for (const PortInfo& output : type->outputs) {
+      planned.outputs_read.push_back((id == target->node && output.name == target->port) ||
+                                     !readers_of(graph, registry, order, id, output.name).empty());
+    }
     if (options.formats_by_need && !planned.deferred)
       planned.stored_formats =
           stored_formats(graph, registry, order, id, *type, *target, options.hdr8, options.blocks);

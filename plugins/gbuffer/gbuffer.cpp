@@ -66,10 +66,22 @@ class GBuffer {
     for (uint32_t i = 0; i < kOutputCount; ++i) {
       if (!ctx.output(i, width, height, formats[i], &targets[i])) return AQ_ERROR;
     }
+    // The outputs nothing reads in this evaluation are left unwritten (no draw, clear or copy
+    // into them): in the flagship the light reads `surface` and the blur `depth`, so four of
+    // the six targets are skipped. A change of that set redraws everything.
+    uint32_t read_mask = 0;
+    for (uint32_t i = 0; i < kOutputCount; ++i) read_mask |= ctx.output_read(i) ? 1u << i : 0u;
     bool outputs_kept = false;
     const aq_image depth_buffer =
         depth_.get(ctx.raw()->gl_generation, width, height, &outputs_kept);
     for (uint32_t i = 0; i < kOutputCount; ++i) outputs_kept = outputs_kept && ctx.output_kept(i);
+    outputs_kept = outputs_kept && read_mask == read_mask_;
+    read_mask_ = read_mask;
+    aq_image read_targets[kOutputCount];  // texture 0 where unread: the restore copies skip it
+    for (uint32_t i = 0; i < kOutputCount; ++i) {
+      read_targets[i] = targets[i];
+      if (((read_mask >> i) & 1u) == 0) read_targets[i].texture = 0;
+    }
     const std::string untextured_text =
         std::string("#define AQ_GBUFFER_TEXTURED 0\n") + shaders::gbuffer_frag.text;
     const GLuint programs[2] = {
@@ -100,6 +112,7 @@ class GBuffer {
       key.mix(scene->camera.far_plane);
       const bool environment = aq::scene_has_environment(*scene);
       key.mix(environment);
+      key.mix(read_mask);
       if (environment) {  // the fields exist only where struct_size covers them
         key.mix(scene->environment_top);
         key.mix(scene->environment_bottom);
@@ -108,6 +121,7 @@ class GBuffer {
       if (layer_.key == key.value) {
         layered = true;
       } else if (layer_.bind()) {
+        write_only(read_mask);
         if (!draw_background(ctx, frame)) return AQ_ERROR;
         draw_meshes(frame, &unchanged, true);
         layer_.key = key.value;
@@ -117,10 +131,11 @@ class GBuffer {
       // With the outputs as the last call left them, the layer goes back only where that
       // call's moving meshes were.
       if (layered)
-        damage = drawn_.restore(layer_, targets, kOutputCount, &depth_buffer, outputs_kept);
+        damage = drawn_.restore(layer_, read_targets, kOutputCount, &depth_buffer, outputs_kept);
     }
 
     if (!ctx.bind_targets(targets, kOutputCount, &depth_buffer)) return AQ_ERROR;
+    write_only(read_mask);
     if (layered) {
       draw_meshes(frame, &unchanged, false);
     } else {
@@ -148,6 +163,14 @@ class GBuffer {
   }
 
  private:
+  // The bound framebuffer's draw buffers: the targets in `read_mask`, none for the others.
+  static void write_only(uint32_t read_mask) {
+    GLenum buffers[kOutputCount];
+    for (uint32_t i = 0; i < kOutputCount; ++i)
+      buffers[i] = (read_mask >> i) & 1u ? GL_COLOR_ATTACHMENT0 + i : GL_NONE;
+    glDrawBuffers(kOutputCount, buffers);
+  }
+
   struct Frame {
     const aq_scene& scene;
     glm::mat4 view, projection;
@@ -233,6 +256,7 @@ class GBuffer {
   aq::view_bounds::MeshBoxes boxes_;
   aq::DrawnOverLayer drawn_;
   gbuffer::MeshCoverage coverage_;
+  uint32_t read_mask_ = 0;  // the outputs read on the last call
 };
 
 }  // namespace

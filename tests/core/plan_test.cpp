@@ -108,6 +108,25 @@ TEST(Plan, TheFlagshipGraphCachesWhatIsStatic) {
   EXPECT_NE(text.find("epilogue: blur -> vignette -> tint"), std::string::npos) << text;
 }
 
+// aq_host::output_read: an output is read when a link of the plan reads it or it is the
+// requested output. In the flagship the light reads the g-buffer's `surface` and the blur its
+// `depth`, so the other four targets may stay unwritten; viewing one of them makes it read.
+TEST(Plan, OutputsAreReadByTheirLinksOrByBeingRequested) {
+  auto read = read_graph_file(source_path("graphs/underwater.json"), registry());
+  ASSERT_TRUE(read.ok());
+  auto plan = compile_plan(read.graph, registry(), PlanOptions{});
+  ASSERT_TRUE(plan.ok()) << plan.message();
+  const PlannedNode* gbuf = plan->find("gbuf");
+  ASSERT_NE(gbuf, nullptr);
+  // position, normal, albedo, depth, id, surface
+  EXPECT_EQ(gbuf->outputs_read, (std::vector<bool>{false, false, false, true, false, true}));
+  EXPECT_EQ(plan->find("tint")->outputs_read, std::vector<bool>{true}) << "the graph's output";
+  auto viewed = compile_plan(read.graph, registry(), PlanOptions{}, PortRef{"gbuf", "normal"});
+  ASSERT_TRUE(viewed.ok()) << viewed.message();
+  EXPECT_EQ(viewed->find("gbuf")->outputs_read,
+            (std::vector<bool>{false, true, false, false, false, false}));
+}
+
 TEST(Plan, ACycleIsAnErrorNamingItsNodes) {
   const char* cycle = R"({
     "aquarelle": 1,

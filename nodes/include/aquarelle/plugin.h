@@ -508,6 +508,11 @@ typedef struct aq_host {
   int (*may_defer_axis)(void* host_data, uint32_t index);
   int (*defer_axis)(void* host_data, uint32_t index, const aq_axis_pass* pass);
   int (*input_deferred_axis)(void* host_data, uint32_t input_index, aq_axis_pass* pass);
+  /* Appended in ABI 1 (check struct_size): 1 when something reads output `index` in this
+   * evaluation (a link of the plan, or the requested output: what a viewer shows), 0 when
+   * nothing does. A node may then leave that output unwritten (the g-buffer skips its unread
+   * targets); the host re-runs the node when the set of read outputs changes. */
+  int (*output_read)(void* host_data, uint32_t index);
 } aq_host;
 
 #ifdef __cplusplus

@@ -281,6 +281,12 @@ class Context {
     return raw_->host->set_output_bounds(raw_->host_data, index, rects.data(),
                                          static_cast<uint32_t>(rects.size())) == AQ_OK;
   }
+  // Whether anything reads output `index` in this evaluation (true from an older host): an
+  // unread output may be left unwritten.
+  bool output_read(uint32_t index) const {
+    return !has_host_call(offsetof(aq_host, output_read), raw_->host->output_read != nullptr) ||
+           raw_->host->output_read(raw_->host_data, index) == 1;
+  }
   // Neighbourhood fusion of separable filters (AQ_PORT_DEFER_AXIS): whether output `index` may
   // be left with its last 1D pass undone for its reader (false from an older host) ...
   bool may_defer_axis(uint32_t index) const {

@@ -44,6 +44,9 @@ struct PlannedNode {
   // requested output): neighbourhood fusion, the two same-axis passes at the link run as one.
   // Empty when no output may.
   std::vector<bool> axis_deferrable;
+  // Per output port (type order): a link of the plan reads it, or it is the requested output.
+  // An unread output may be left unwritten (aq_host::output_read).
+  std::vector<bool> outputs_read;
 };
 
 // One pass of the frame: a node's process(), or one fused shader that computes a chain of

@@ -210,12 +210,14 @@ class CachedTargets {
   void copy_to(const aq_image* targets, uint32_t count, const aq_image* depth) const {
     copy_rect_to(targets, count, depth, PixelRect{0, 0, targets[0].width, targets[0].height});
   }
-  // The same for the pixels of `rect` only (targets and depth buffer of one size).
+  // The same for the pixels of `rect` only (targets and depth buffer of one size); a target of
+  // texture 0 (an output nobody reads) is skipped.
   void copy_rect_to(const aq_image* targets, uint32_t count, const aq_image* depth,
                     const PixelRect& rect) const {
     const int w = rect.x1 - rect.x0, h = rect.y1 - rect.y0;
     if (w <= 0 || h <= 0) return;
     for (uint32_t i = 0; i < std::min(count, shape_.count); ++i) {
+      if (targets[i].texture == 0) continue;
       glCopyImageSubData(colour_[i].get(), GL_TEXTURE_2D, 0, rect.x0, rect.y0, 0,
                          targets[i].texture, GL_TEXTURE_2D, 0, rect.x0, rect.y0, 0, w, h, 1);
     }
