@@ -381,6 +381,15 @@ TEST(CelLight, ACheckerOfDarkAndLightSquaresNeverGoesBlack) {
   EXPECT_LE(e.max_abs, 2e-5);
 }
 
+// The light's `plain` output for setup `s` on g-buffer `g`.
+aq::Result<ImageF> plain_output(const LightSetup& s, const GBufferImages& g) {
+  aq::test::RenderOptions options;
+  options.width = kW;
+  options.height = kH;
+  options.output = "light.plain";
+  return aq::test::render_graph(graph(s, false, false), options, as_inputs(g));
+}
+
 // `plain` = regions: the second output holds a flat colour per object id (0 on the background),
 // the source `edge` darkens outlines from (issue 37): constant inside an object whatever its
 // light, far apart between neighbouring ids.
@@ -390,11 +399,7 @@ TEST(CelLight, RegionsAreAFlatColourPerObject) {
     for (int x = 0; x < kW; ++x) g.id.at(x, y, 0) = static_cast<float>(1 + x / 16);
   LightSetup s;
   s.plain = "regions";
-  aq::test::RenderOptions options;
-  options.width = kW;
-  options.height = kH;
-  options.output = "light.plain";
-  auto regions = aq::test::render_graph(graph(s, false, false), options, as_inputs(g));
+  auto regions = plain_output(s, g);
   ASSERT_TRUE(regions.ok()) << regions.message();
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x)
@@ -430,11 +435,7 @@ TEST(CelLight, RegionLabelsInAlphaAreTheMorphologysHashOfTheRegions) {
   LightSetup s;
   s.plain = "regions";
   s.alpha = "regions";
-  aq::test::RenderOptions options;
-  options.width = kW;
-  options.height = kH;
-  options.output = "light.plain";
-  auto regions = aq::test::render_graph(graph(s, false, false), options, as_inputs(g));
+  auto regions = plain_output(s, g);
   ASSERT_TRUE(regions.ok()) << regions.message();
   const ImageF labelled = run(s, as_inputs(g));
   std::set<int> labels;
