@@ -156,17 +156,18 @@ struct CelLight {
                "read; disconnect them");
       warned_both_ = true;
     }
-    // The image every output is sized like: the surface, or the position.
-    const aq_image position = ctx.input_image(packed ? kSurface : kPosition);
+    // The g-buffer image every output is sized like: the surface, or the position.
+    const aq_image gbuffer_image = ctx.input_image(packed ? kSurface : kPosition);
     aq_image targets[2];
-    if (!ctx.output_like(0, position, &targets[0]) || !ctx.output_like(1, position, &targets[1])) {
+    if (!ctx.output_like(0, gbuffer_image, &targets[0]) ||
+        !ctx.output_like(1, gbuffer_image, &targets[1])) {
       return AQ_ERROR;
     }
     const bool has_shadow = ctx.connected(kShadow);
     const bool has_caustics = ctx.connected(kCaustics);
     bool gbuffer_same_size = true;
     for (uint32_t input : pixel_inputs(ctx))
-      gbuffer_same_size = gbuffer_same_size && same_size(position, ctx.input_image(input));
+      gbuffer_same_size = gbuffer_same_size && same_size(gbuffer_image, ctx.input_image(input));
     const Variant variant{has_shadow,
                           has_caustics,
                           ctx.param_bool(kQuantize),
@@ -192,9 +193,9 @@ struct CelLight {
     glUseProgram(program);
     if (packed) {
       aq::bind_texture(program, "u_surface", 1, ctx.input_image(kSurface));
-      set_camera_rays(program, scene->camera, position);
+      set_camera_rays(program, scene->camera, gbuffer_image);
     } else {
-      aq::bind_texture(program, "u_position", 0, position);
+      aq::bind_texture(program, "u_position", 0, gbuffer_image);
       aq::bind_texture(program, "u_normal", 1, ctx.input_image(kNormal));
       aq::bind_texture(program, "u_albedo", 2, ctx.input_image(kAlbedo));
       aq::bind_texture(program, "u_id", 3, ctx.input_image(kId));

@@ -27,6 +27,12 @@
 //   AQ_PCF_RADIUS                                0..4
 //   AQ_SAME_SIZE   1 when every g-buffer input has the output's size (read at gl_FragCoord)
 //   AQ_ENCODE_HDR8 1 when `image` is stored as AQ_FORMAT_RGBA8_HDR (aquarelle/hdr8.glsl)
+#ifndef AQ_PLAIN_REGIONS
+#define AQ_PLAIN_REGIONS 0
+#endif
+#ifndef AQ_ALPHA_LABELS
+#define AQ_ALPHA_LABELS 0
+#endif
 #include "aquarelle/gbuffer_surface.glsl"
 #include "aquarelle/hdr8.glsl"
 #include "aquarelle/region_label.glsl"
@@ -188,9 +194,6 @@ aq_surface fetch_surface(out vec3 position) {
 // llvmpipe a branch on per-pixel data runs both sides for the whole block anyway, so an early
 // return for the background only added its own reads (measured: the pass 30 -> 26 ms at 720p).
 void main() {
-#ifndef AQ_PLAIN_REGIONS
-#define AQ_PLAIN_REGIONS 0
-#endif
 #if AQ_SURFACE
   vec3 p;
   aq_surface surface = fetch_surface(p);
@@ -229,9 +232,6 @@ void main() {
   // neighbouring ids, so an edge detector on it finds the objects' outlines and nothing inside
   // them (no cel bands, no caustics).
   vec3 region = aq_region_colour(background ? 0.0 : surface_id);
-#ifndef AQ_ALPHA_LABELS
-#define AQ_ALPHA_LABELS 0
-#endif
 #if AQ_ALPHA_LABELS
   // The label as erode and dilate would hash it from `plain` = regions, stored in 8 bits: the
   // colour rounded to bytes first, as the 8-bit region image they would read holds it.
