@@ -41,12 +41,13 @@ levers=(
   "caustics: grid from the footprint (off by default)|caustics|caustics.auto_grid=true|on"
   "caustics: coverage in closed form over 3 x 3 texels|caustics|caustics.window=2|off"
   "damage tracking: nodes with kept outputs redraw only what changed|light|env:AQUARELLE_DAMAGE=0|off"
-  "the default levers off|-|blur.direct_kernel=full one-node-pigment pigment.cache_canvas=false gbuf.cache_static=false -wobble.gradient -light.surface +light.normal=gbuf.normal +light.albedo=gbuf.albedo +light.id=gbuf.id env:AQUARELLE_FORMATS_BY_NEED=0 env:AQUARELLE_EPILOGUE_FUSION=0 env:AQUARELLE_DAMAGE=0 env:AQUARELLE_MORPH_BLOCKED=0 env:AQUARELLE_MORPH_BLOCKS=0 env:AQUARELLE_DEFER_AXIS=0|off"
+  "the default levers off|-|blur.direct_kernel=full one-node-pigment pigment.cache_canvas=false gbuf.cache_static=false -wobble.gradient -light.surface +light.normal=gbuf.normal +light.albedo=gbuf.albedo +light.id=gbuf.id env:AQUARELLE_FORMATS_BY_NEED=0 env:AQUARELLE_EPILOGUE_FUSION=0 env:AQUARELLE_DAMAGE=0 env:AQUARELLE_MORPH_BLOCKED=0 env:AQUARELLE_MORPH_BLOCKS=0 env:AQUARELLE_DEFER_AXIS=0 env:AQUARELLE_BLUR_BLOCKS=0|off"
   "formats by need, all of it: 8-bit edge source and paper, 8-bit HDR light|edge|env:AQUARELLE_FORMATS_BY_NEED=0|off"
   "formats by need: light, morphology and pigment as 8-bit HDR|dilate|env:AQUARELLE_HDR8=0|off"
   "morphology: 2 x 2 blocks of packed 8-bit row extremes (square windows)|dilate|env:AQUARELLE_MORPH_BLOCKED=0|off"
   "morphology: the chain keeps its images in 2 x 2 blocks between its nodes|dilate|env:AQUARELLE_MORPH_BLOCKS=0|off"
   "morphology: a node's last 1D pass run by its reader with its own first (neighbourhood fusion; the three nodes together in the README)|dilate|env:AQUARELLE_DEFER_AXIS=0|off"
+  "blur: the separable kernel's rows in 2 x 2 blocks of packed 8-bit pixels|tint|env:AQUARELLE_BLUR_BLOCKS=0|off"
   "fusion: vignette and tint in the blur's last draw, edge and pigment_apply in the wobble's (epilogue)|-|env:AQUARELLE_EPILOGUE_FUSION=0|off"
 )
 # AQ_LEVERS_FROM_JSON=1: only rewrite the table from the runs already in docs/performance/levers.

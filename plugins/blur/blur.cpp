@@ -24,11 +24,13 @@
 //
 // `strided`: the seed's 5×5 kernel read with strides 0.3σ and σ, kept to show its artefacts.
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/blocks.hpp>
 #include <aquarelle/sdk/gaussian_blur.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -321,29 +323,42 @@ struct Blur {
   }
 
   // σ per pixel, σmax small: rows then columns, each pixel with its own σ (a float scratch
-  // between the passes, as the exact separable blur; an encoded one when the input is encoded,
-  // which is what makes the columns' taps cheap).
+  // between the passes, as the exact separable blur; when the input is encoded, encoded 2 x 2
+  // blocks, which is what makes both passes' taps cheap: blur_direct_separable.frag;
+  // AQUARELLE_BLUR_BLOCKS=0 keeps encoded pixels, the lever table).
   bool separable_gaussian(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma,
                           int radius) {
     const bool encoded = in.format == AQ_FORMAT_RGBA8_HDR;
+    const char* blocks_lever = std::getenv("AQUARELLE_BLUR_BLOCKS");  // per call: tests flip it
+    const bool blocks = encoded && (blocks_lever == nullptr || std::string(blocks_lever) != "0");
     aq_image rows;
-    if (!ctx.scratch(in.width, in.height, encoded ? in.format : scratch_format(ctx), &rows))
-      return false;
+    const uint32_t rows_format = blocks    ? static_cast<uint32_t>(AQ_FORMAT_RGBA8_HDR_BLOCKS)
+                                 : encoded ? in.format
+                                           : scratch_format(ctx);
+    if (!ctx.scratch(in.width, in.height, rows_format, &rows)) return false;
     for (int axis = 0; axis < 2; ++axis) {
       const aq_image& target = axis == 0 ? rows : out;
       const std::string defines = define("AQ_RADIUS", radius) + define("AQ_AXIS", axis) +
                                   depth_define(ctx, in) + define("AQ_DECODE_HDR8", encoded) +
-                                  define("AQ_ENCODE_HDR8", target.format == AQ_FORMAT_RGBA8_HDR);
+                                  define("AQ_ENCODE_HDR8", target.format == AQ_FORMAT_RGBA8_HDR) +
+                                  define("AQ_BLOCKS", blocks);
       GLuint program =
           ctx.program(with_strength(shaders::blur_direct_separable_frag, defines, source));
       if (program == 0) return false;
       glUseProgram(program);
       set_strength_uniforms(ctx, program, in);
-      aq::bind_texture(program, "u_image", 0, axis == 0 ? in : rows);
+      if (axis == 1 && blocks) {
+        aq::bind_blocks(program, rows, in);
+      } else {
+        aq::bind_texture(program, "u_image", 0, axis == 0 ? in : rows);
+      }
       aq::set_float(program, "u_sigma", sigma);
-      // The rows pass covers the rows the columns pass reads around the damaged pixels.
-      ctx.set_draw_region(axis == 0 ? drawn_.dilated(0, radius, out.width, out.height).for_drawing()
-                                    : drawn_);
+      // The rows pass covers the rows the columns pass reads around the damaged pixels, in
+      // whole blocks when it writes them.
+      const aq::Region rows_drawn = drawn_.dilated(0, radius, out.width, out.height);
+      ctx.set_draw_region(axis == 1 ? drawn_
+                          : blocks  ? aq::blocks_of(rows_drawn).for_drawing()
+                                    : rows_drawn.for_drawing());
       if (!ctx.draw(axis == 0 ? rows : out)) return false;
     }
     return true;

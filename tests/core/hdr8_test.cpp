@@ -381,6 +381,28 @@ TEST(Hdr8, BlurDecodesEveryTap) {
   }
 }
 
+// The separable kernel's rows pass writes 2 x 2 blocks (blur_direct_separable.frag) and its
+// columns pass reads two rows a read: the same taps summed in the same order and stored as the
+// same bytes, so the same bits as rows in pixels, also where the windows run over the edges
+// (odd sizes, images thinner than the window).
+TEST(Hdr8, TheBlursRowsInBlocksGiveTheSameBitsAsInPixels) {
+  const std::string graph = pigment_blur("separable");
+  for (const auto& [width, height] :
+       {std::pair{64, 48}, {63, 47}, {17, 9}, {1, 1}, {9, 1}, {1, 9}, {3, 5}}) {
+    const ImageF light = hdr_image(width, height, false);
+    auto pixels = render_without("AQUARELLE_BLUR_BLOCKS", graph.c_str(), light);
+    // Another image in between, so that no output kept from the render before answers this one.
+    ASSERT_TRUE(render(graph.c_str(), hdr_image(width, height, true), true).ok());
+    auto blocks = render(graph.c_str(), light, true);
+    ASSERT_TRUE(pixels.ok()) << pixels.message();
+    ASSERT_TRUE(blocks.ok()) << blocks.message();
+    EXPECT_EQ(test::max_abs_diff(*blocks, *pixels), 0.0) << width << "x" << height;
+    if (width * height > 1) {
+      EXPECT_GT(test::max_abs_diff(*blocks, light), 0.0) << "the blur moved nothing";
+    }
+  }
+}
+
 // The flagship's chain wobble → edge → pigment_apply → blur: at final the wobble's draw runs
 // edge and pigment_apply as its epilogue and encodes the result; in a proxy render the host's
 // fused pass (edge and pigment_apply) encodes it. Either way the blur decodes every tap: within

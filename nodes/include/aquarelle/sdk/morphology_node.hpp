@@ -13,6 +13,7 @@
 #pragma once
 
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/blocks.hpp>
 
 #include <algorithm>
 #include <array>
@@ -159,33 +160,6 @@ inline bool blocked_path(const aq_image& in, Footprint footprint, bool luminance
   return enabled && footprint == kSquare && !luminance &&
          (in.format == AQ_FORMAT_RGBA8 || in.format == AQ_FORMAT_RGBA8_HDR ||
           in.format == AQ_FORMAT_RGBA8_HDR_BLOCKS);
-}
-
-// `pixels` grown to whole 2 x 2 blocks: the pixels a pass over their blocks computes.
-inline Region whole_blocks(const Region& pixels, int width, int height) {
-  if (pixels.all()) return pixels;
-  std::vector<PixelRect> rects;
-  for (const PixelRect& r : pixels.rects()) {
-    const PixelRect b = blocks_of(r);
-    rects.push_back(
-        PixelRect{2 * b.x0, 2 * b.y0, std::min(2 * b.x1, width), std::min(2 * b.y1, height)});
-  }
-  Region grown;
-  grown.add(rects);
-  return grown;
-}
-
-inline bool in_blocks(const aq_image& image) {
-  return image.format == AQ_FORMAT_RGBA8_HDR_BLOCKS;
-}
-
-// Binds `blocks` (an RGBA32UI texture, read with texelFetch) to unit 0 of `program`'s u_blocks.
-inline void bind_blocks(GLuint program, const aq_image& blocks, const aq_image& image) {
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, blocks.texture);
-  glBindSampler(0, 0);
-  glUniform1i(glGetUniformLocation(program, "u_blocks"), 0);
-  glUniform2i(glGetUniformLocation(program, "u_image_size"), image.width, image.height);
 }
 
 // The blocked fast path (morphology.glsl): pass 0 into a scratch image of 2 x 2 blocks over the

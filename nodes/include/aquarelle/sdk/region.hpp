@@ -409,4 +409,18 @@ inline Region blocks_of(const Region& pixels) {
   return blocks;
 }
 
+// `pixels` grown to whole 2 x 2 blocks: the pixels a pass over their blocks computes.
+inline Region whole_blocks(const Region& pixels, int width, int height) {
+  if (pixels.all()) return pixels;
+  std::vector<PixelRect> rects;
+  for (const PixelRect& r : pixels.rects()) {
+    const PixelRect b = blocks_of(r);
+    rects.push_back(
+        PixelRect{2 * b.x0, 2 * b.y0, std::min(2 * b.x1, width), std::min(2 * b.y1, height)});
+  }
+  Region grown;
+  grown.add(rects);
+  return grown;
+}
+
 }  // namespace aq
