@@ -210,6 +210,24 @@ int HostServices::output_scene(void* data, uint32_t index, const aq_scene* scene
   return AQ_OK;
 }
 
+namespace {
+
+// Fills `image` with values no pass computes: bit patterns for integer textures, a saturated
+// off-colour with alpha 0.5 for the others.
+void poison_texture(const aq_image& image) {
+  const bool integer = image.format == AQ_FORMAT_RGBA8_HDR_BLOCKS ||
+                       image.format == AQ_FORMAT_R32UI || image.format == AQ_FORMAT_RGBA32UI;
+  if (integer) {
+    const GLuint words[4] = {0x7f3f1f0fu, 0x12345678u, 0x9abcdef0u, 0x0f1f3f7fu};
+    glClearTexImage(image.texture, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, words);
+  } else {
+    const float colour[4] = {0.37f, 0.91f, 0.05f, 0.5f};
+    glClearTexImage(image.texture, 0, GL_RGBA, GL_FLOAT, colour);
+  }
+}
+
+}  // namespace
+
 int HostServices::scratch_image(void* data, int32_t width, int32_t height, uint32_t format,
                                 aq_image* out) {
   auto* call = static_cast<CallState*>(data);
@@ -217,6 +235,11 @@ int HostServices::scratch_image(void* data, int32_t width, int32_t height, uint3
   if (!valid_size(call, width, height)) return AQ_ERROR;
   call->scratch.push_back(call->host->pool_.acquire(width, height, format));
   *out = call->scratch.back()->image;
+  // AQUARELLE_POISON_SCRATCH=1 (tests, debugging): a scratch image arrives full of junk instead
+  // of whatever its last user left, so a pass that reads pixels no pass of this call wrote shows
+  // in the picture instead of reading last frame's values (often the right ones by chance).
+  const char* poison = std::getenv("AQUARELLE_POISON_SCRATCH");  // per call: tests flip it
+  if (poison != nullptr && std::string(poison) == "1") poison_texture(*out);
   return AQ_OK;
 }
 

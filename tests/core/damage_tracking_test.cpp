@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstdlib>
 #include <map>
 #include <string>
 
@@ -59,7 +60,15 @@ double redrawn(const aq::Evaluator& evaluator, const std::string& node) {
   return -2.0;  // did not run
 }
 
+// Scratch images arrive full of junk (AQUARELLE_POISON_SCRATCH): a pass reading pixels that no
+// pass of its call wrote differs from the frame from scratch instead of reading last frame's.
+struct PoisonedScratch {
+  PoisonedScratch() { setenv("AQUARELLE_POISON_SCRATCH", "1", 1); }
+  ~PoisonedScratch() { unsetenv("AQUARELLE_POISON_SCRATCH"); }
+};
+
 TEST(DamageTracking, AnAnimationEqualsEveryFrameFromScratch) {
+  const PoisonedScratch poisoned;
   auto context = aq::create_headless_context(aq::GlBackend::kAuto);
   ASSERT_TRUE(context.ok()) << context.message();
   for (const std::string precision : {"float", "half"}) {
@@ -129,6 +138,7 @@ const aq::Registry& registry_with_test_nodes() {
 // morphology that forgets its window's reach fails the first half; the wobble's reach is a
 // bound by construction, its slope clamped to 1, far above what the cells move it here.)
 TEST(DamageTracking, AMovingSquareThroughStencilsAndEpiloguesEqualsFromScratch) {
+  const PoisonedScratch poisoned;
   auto context = aq::create_headless_context(aq::GlBackend::kAuto);
   ASSERT_TRUE(context.ok()) << context.message();
   const nlohmann::json graph_json = {

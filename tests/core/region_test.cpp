@@ -177,4 +177,27 @@ TEST(Region, ForDrawingMergesTheClosestRects) {
       << drawn.rects().size() << " of " << drawn.area(kW, kH);
 }
 
+// A pass over 2 x 2 blocks draws blocks_of(pixels).for_drawing(), whose merged rects also cover
+// blocks between the damaged ones: whole_blocks must name every pixel it draws, or the pass that
+// reads its output sizes its own input pass too small and reads what nothing wrote this call
+// (the morphology chain did, at 1280 x 720 with more than 64 damaged rects).
+TEST(Region, WholeBlocksHoldEveryPixelAPassOverTheirBlocksDraws) {
+  std::mt19937 rng(11);
+  aq::Region region;
+  region.add(random_rects(rng, 400, 2));
+  const aq::Region blocks = aq::blocks_of(region);
+  ASSERT_GT(blocks.rects().size(), aq::Region::kMaxDrawRects)
+      << "no merge: the test proves nothing";
+  const aq::Region drawn_blocks = blocks.for_drawing();
+  aq::Region drawn_pixels;
+  for (const aq::PixelRect& b : drawn_blocks.rects()) {
+    drawn_pixels.add(
+        aq::PixelRect{2 * b.x0, 2 * b.y0, std::min(2 * b.x1, kW), std::min(2 * b.y1, kH)});
+  }
+  const aq::Region whole = aq::whole_blocks(region, kW, kH);
+  EXPECT_EQ(pixels_of(whole), pixels_of(drawn_pixels));
+  EXPECT_TRUE(whole.covers(region));
+  EXPECT_TRUE(aq::whole_blocks(aq::Region::everything(), kW, kH).all());
+}
+
 }  // namespace

@@ -409,12 +409,16 @@ inline Region blocks_of(const Region& pixels) {
   return blocks;
 }
 
-// `pixels` grown to whole 2 x 2 blocks: the pixels a pass over their blocks computes.
+// `pixels` grown to whole 2 x 2 blocks: the pixels a pass over their blocks computes, drawn as
+// a pass draws them (blocks_of(pixels).for_drawing(), which may merge rects into larger ones).
+// A pass that reads what this one computes must size its inputs' regions from these pixels, not
+// from `pixels`: else the merged parts read what no pass wrote this call.
 inline Region whole_blocks(const Region& pixels, int width, int height) {
   if (pixels.all()) return pixels;
+  const Region blocks = blocks_of(pixels).for_drawing();
+  if (blocks.all()) return blocks;
   std::vector<PixelRect> rects;
-  for (const PixelRect& r : pixels.rects()) {
-    const PixelRect b = blocks_of(r);
+  for (const PixelRect& b : blocks.rects()) {
     rects.push_back(
         PixelRect{2 * b.x0, 2 * b.y0, std::min(2 * b.x1, width), std::min(2 * b.y1, height)});
   }
