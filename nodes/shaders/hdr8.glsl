@@ -22,15 +22,18 @@ vec4 aq_hdr8_decode(vec4 e) {
   return vec4(y / max(vec3(1.0) - y, vec3(1.0 / 256.0)), e.a);
 }
 
-// Pixel p (inside the image) of an AQ_FORMAT_RGBA8_HDR_BLOCKS texture (plugin.h: the words of
-// pixels (0, 0), (1, 0), (0, 1), (1, 1) of each 2 x 2 block in x, y, z, w), decoded. The bytes
-// are scaled by 1/255 rather than unpacked with unpackUnorm4x8 (a division): llvmpipe's RGBA8
-// texel fetch converts so, and a last-bit difference can round a re-encoded result to the next
-// code.
+// A pixel's word of an AQ_FORMAT_RGBA8_HDR_BLOCKS texture, decoded, and pixel p (inside the
+// image) of such a texture (plugin.h: the words of pixels (0, 0), (1, 0), (0, 1), (1, 1) of
+// each 2 x 2 block in x, y, z, w), decoded. The bytes are scaled by 1/255 rather than unpacked
+// with unpackUnorm4x8 (a division): llvmpipe's RGBA8 texel fetch converts so, and a last-bit
+// difference can round a re-encoded result to the next code.
+vec4 aq_hdr8_word_decode(uint word) {
+  vec4 bytes = vec4(uvec4(word, word >> 8, word >> 16, word >> 24) & 0xFFu);
+  return aq_hdr8_decode(bytes * (1.0 / 255.0));
+}
+
 vec4 aq_hdr8_block_pixel(usampler2D blocks, ivec2 p) {
   uvec4 words = texelFetch(blocks, p >> 1, 0);
   uvec2 row = (p.y & 1) == 0 ? words.xy : words.zw;
-  uint word = (p.x & 1) == 0 ? row.x : row.y;
-  vec4 bytes = vec4(uvec4(word, word >> 8, word >> 16, word >> 24) & 0xFFu);
-  return aq_hdr8_decode(bytes * (1.0 / 255.0));
+  return aq_hdr8_word_decode((p.x & 1) == 0 ? row.x : row.y);
 }

@@ -131,9 +131,7 @@ void main() {
     int source = clamp(first + i, 0, last_row);
     // Block of row first + i: index i >> 1 from an even start, (i + 1) >> 1 from an odd one.
     uvec4 words = odd ? blocks[(i + 1) >> 1] : blocks[i >> 1];
-    uint word = block_word(words, column, source & 1);
-    vec4 bytes = vec4(uvec4(word, word >> 8, word >> 16, word >> 24) & 0xFFu);
-    row[i] = aq_hdr8_decode(bytes * (1.0 / 255.0));
+    row[i] = aq_hdr8_word_decode(block_word(words, column, source & 1));
   }
   o_color = aq_epilogue(blur_row(gl_FragCoord.xy, row));
 #if AQ_ENCODE_HDR8
