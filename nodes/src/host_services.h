@@ -160,6 +160,8 @@ class HostServices {
   static int bind_targets(void* data, const aq_image* colors, uint32_t count,
                           const aq_image* depth);
   static void draw_fullscreen(void* data);
+  void draw_rects(const std::vector<PixelRect>& rects);
+  size_t viewport_batch();
   static int input_damage(void* data, uint32_t index, aq_rect* rects, uint32_t capacity);
   static int epilogue_damage(void* data, aq_rect* rects, uint32_t capacity);
   static int set_output_damage(void* data, uint32_t index, const aq_rect* rects, uint32_t count);
@@ -175,6 +177,7 @@ class HostServices {
   TexturePool& pool_;
   ShaderCache shaders_;
   gl::VertexArray empty_vao_;
+  size_t viewport_batch_ = 0;  // 0: not asked yet (viewport_batch)
   gl::Framebuffer framebuffer_;
   GLuint attached_colors_ = 0;
   aq_host host_{};

@@ -13,12 +13,18 @@ namespace aq {
 
 namespace {
 
-constexpr const char* kFullscreenVertex = R"(
+// Instance i of the triangle goes to viewport i, whose scissor box is rect i of a draw region
+// (HostServices::draw_fullscreen): the same triangle, so the same pixels and interpolated values
+// as one draw per rect, in a sixteenth of the draw calls.
+constexpr const char* kFullscreenVertex = R"(#extension GL_ARB_shader_viewport_layer_array : enable
 out vec2 v_uv;
 void main() {
   vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
   v_uv = p;
   gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+#ifdef GL_ARB_shader_viewport_layer_array
+  gl_ViewportIndex = gl_InstanceID;
+#endif
 }
 )";
 
@@ -178,6 +184,7 @@ Result<GLuint> ShaderCache::program(const aq_shader_source* vertex,
                       " + " + (fragment->name ? fragment->name : "") + "):\n" + log.c_str());
   }
   GLuint id = program.get();
+  if (vertex == nullptr) fullscreen_.insert(id);
   programs_.emplace(std::move(key), std::move(program));
   if (!hot_reload_) by_given_source_.emplace(std::move(given), id);
   return id;

@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace aq {
 
@@ -19,6 +20,8 @@ class ShaderCache {
   Result<GLuint> program(const aq_shader_source* vertex, const aq_shader_source* fragment);
   void set_hot_reload(bool enabled) { hot_reload_ = enabled; }
   size_t size() const { return programs_.size(); }
+  // Whether `program` runs the full-screen triangle (its instance i draws into viewport i).
+  bool fullscreen(GLuint program) const { return fullscreen_.count(program) != 0; }
 
  private:
   std::map<std::string, gl::Program> programs_;
@@ -27,6 +30,7 @@ class ShaderCache {
   // of every included file: 16 % of the flagship's main thread per frame). Not used
   // with hot reload, where an included file may change on disk between two calls.
   std::unordered_map<std::string, GLuint> by_given_source_;
+  std::unordered_set<GLuint> fullscreen_;
   bool hot_reload_ = false;
 };
 

@@ -235,16 +235,23 @@ struct CelLight {
     // From the surface's depth, the position also depends on the camera: a camera that moves
     // without changing a pixel's depth still moves its point.
     if (packed) lighting.mix(scene->camera);
-    aq::Region damage = damaged(ctx, targets[0], lighting.value != lighting_key_);
+    const aq::Region gbuffer = gbuffer_damage(ctx, targets[0]);
+    aq::Region damage = damaged(ctx, gbuffer, lighting.value != lighting_key_);
     lighting_key_ = lighting.value;
-    if (!ctx.set_draw_region(damage.for_drawing())) damage = aq::Region::everything();
+    // The regions depend on the ids alone: they change only where the g-buffer did, though the
+    // pass redraws them wherever the light changed (the same values), so their readers
+    // (edge_detect) redraw only that.
+    aq::Region plain_damage = variant.regions ? gbuffer : damage;
+    if (!ctx.set_draw_region(damage.for_drawing()))
+      damage = plain_damage = aq::Region::everything();
 
     const bool bound = ctx.bind_targets(targets, 2);
     if (bound) ctx.raw()->host->draw_fullscreen(ctx.raw()->host_data);
     glBindSampler(5, 0);
     aq::unbind_textures(6);
-    return bound && ctx.set_output_damage(0, damage) && ctx.set_output_damage(1, damage) ? AQ_OK
-                                                                                         : AQ_ERROR;
+    return bound && ctx.set_output_damage(0, damage) && ctx.set_output_damage(1, plain_damage)
+               ? AQ_OK
+               : AQ_ERROR;
   }
 
   // One period of the caustics: the hardware's repeat wrap gives the periodic bilinear lookup
@@ -295,7 +302,9 @@ struct CelLight {
   // surface is (the background is the parameter's colour or the g-buffer's albedo), so a change
   // of those reaches only the id's (or surface's) bounds (where the g-buffer drew meshes), not the
   // open water.
-  aq::Region damaged(const aq::Context& ctx, const aq_image& target, bool lighting_changed) {
+  // Where the g-buffer inputs may have changed since the last call; everything when an output
+  // was not kept or an input has another size than the target.
+  aq::Region gbuffer_damage(const aq::Context& ctx, const aq_image& target) {
     if (!ctx.output_kept(0) || !ctx.output_kept(1)) return aq::Region::everything();
     aq::Region damage;
     for (uint32_t input : pixel_inputs(ctx)) {
@@ -304,6 +313,13 @@ struct CelLight {
         return aq::Region::everything();
       damage.add(ctx.input_damage(input));
     }
+    return damage;
+  }
+
+  // What the pass redraws: the g-buffer's damage, and every surface when the shadow, the
+  // caustics or the lighting changed.
+  aq::Region damaged(const aq::Context& ctx, const aq::Region& gbuffer, bool lighting_changed) {
+    aq::Region damage = gbuffer;
     bool surfaces_changed = lighting_changed;
     for (uint32_t input : {kShadow, kCaustics})
       surfaces_changed =

@@ -7,10 +7,10 @@
 //   [source] ──► edges ┴──► image · mix(1, factor, smoothstep(response)) ──► image
 #include <aquarelle/plugin.hpp>
 
-#include <algorithm>
 #include <string>
 
 #include "edge_shaders.h"
+#include "edge_shared.h"
 
 namespace {
 
@@ -24,15 +24,8 @@ constexpr aq_port_desc kInputs[] = {
 constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "colour with darkened edges")};
 enum Input : uint32_t { kImage, kSource };
 enum Param : uint32_t { kKernel, kFactor, kThreshold, kSoftness };
-constexpr aq_param_desc kParams[] = {
-    aq::enum_param("kernel", "laplacian|sobel", 0,
-                   "laplacian: 3×3, −8 centre (the seed's kernel); sobel: gradient magnitude"),
-    aq::float_param("factor", 0.7, 0.0, 1.0,
-                    "HSV value multiplier on full edges; 1 passes the image through"),
-    aq::float_param("threshold", 0.1, 0.0, 8.0,
-                    "edge response where darkening starts (largest channel response)"),
-    aq::float_param("softness", 0.2, 0.001, 8.0,
-                    "width of the smooth ramp above the threshold to full darkening")};
+constexpr aq_param_desc kParams[] = {edge::kKernelParam, edge::kFactorParam, edge::kThresholdParam,
+                                     edge::kSoftnessParam};
 
 struct Edge {
   std::string fragment = aq::pointwise_fragment(shaders::edge_glsl.text);
@@ -58,18 +51,18 @@ struct Edge {
   // when it fuses this node's function, which it does only with `source` connected).
   int set_uniforms(aq::Context& ctx, GLuint program, const std::string& prefix) {
     aq::set_float(program, (prefix + "factor").c_str(), ctx.param_float(kFactor));
-    aq::set_float(program, (prefix + "threshold").c_str(), ctx.param_float(kThreshold));
-    aq::set_float(program, (prefix + "softness").c_str(),
-                  std::max(ctx.param_float(kSoftness), 1e-3));
-    aq::set_int(program, (prefix + "sobel").c_str(), ctx.param_enum(kKernel) == 1 ? 1 : 0);
+    edge::set_detection_uniforms(ctx, program, prefix, kKernel, kThreshold, kSoftness);
     return AQ_OK;
   }
 };
 
 }  // namespace
 
+const aq_node_desc* edge_detect_node_desc();
+const aq_node_desc* edge_apply_node_desc();
+
 AQ_POINTWISE_NODE(kEdgeNode, Edge, "edge", "Watercolor",
                   "Edge darkening: Laplacian or Sobel edges (optionally of an effect-free "
                   "`source`) scale the HSV value by `factor` through a smooth threshold.",
                   kInputs, kOutputs, kParams, shaders::edge_glsl, 1);
-AQ_PLUGIN("edge", "1.0", &kEdgeNode)
+AQ_PLUGIN("edge", "1.0", &kEdgeNode, edge_detect_node_desc(), edge_apply_node_desc())

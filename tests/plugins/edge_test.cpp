@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <tuple>
 
@@ -176,6 +177,57 @@ TEST(Edge, OnePixelImageHasNoEdges) {
                            options_for(input, "float"));
     ASSERT_TRUE(out.ok()) << out.message();
     EXPECT_EQ(aq::test::max_abs_diff(*out, input), 0.0) << kernel;
+  }
+}
+
+// edge_detect → edge_apply is `edge` in two nodes: the weight written as a 32-bit float and
+// read at the pixel gives the same bits as `edge` computing it in place, for both kernels, a
+// source of the image's size and one stretched over it, and against the reference.
+TEST(Edge, DetectThenApplyEqualsEdge) {
+  const ImageF image = blocky_image(64, 48);
+  for (const int source_width : {64, 32}) {
+    const ImageF source = blocky_image(source_width, source_width * 3 / 4);
+    for (const char* kernel : {"laplacian", "sobel"}) {
+      const nlohmann::json detection = {{"kernel", kernel}, {"threshold", 0.05}, {"softness", 0.3}};
+      nlohmann::json edge_params = detection;
+      edge_params["factor"] = 0.4;
+      const nlohmann::json graph = {
+          {"aquarelle", 1},
+          {"settings", {{"width", 64}, {"height", 48}, {"precision", "float"}}},
+          {"nodes",
+           {{"image", {{"type", "image_input"}, {"params", {{"name", "image"}}}}},
+            {"source", {{"type", "image_input"}, {"params", {{"name", "source"}}}}},
+            {"one",
+             {{"type", "edge"},
+              {"params", edge_params},
+              {"inputs", {{"image", "image.image"}, {"source", "source.image"}}}}},
+            {"edges",
+             {{"type", "edge_detect"},
+              {"params", detection},
+              {"inputs", {{"source", "source.image"}}}}},
+            {"two",
+             {{"type", "edge_apply"},
+              {"params", {{"factor", 0.4}}},
+              {"inputs", {{"image", "image.image"}, {"edges", "edges.edges"}}}}}}},
+          {"output", "two.image"}};
+      const std::map<std::string, ImageF> images = {{"image", image}, {"source", source}};
+      aq::test::RenderOptions options;
+      options.height = 48;
+      auto two = aq::test::render_graph(graph.dump(), options, images);
+      options.output = "one.image";
+      auto one = aq::test::render_graph(graph.dump(), options, images);
+      ASSERT_TRUE(two.ok()) << two.message();
+      ASSERT_TRUE(one.ok()) << one.message();
+      EXPECT_EQ(aq::test::max_abs_diff(*two, *one), 0.0) << kernel << ", source " << source_width;
+      aq::reference::EdgeParams params;
+      params.kernel = kernel_of(kernel);
+      params.factor = 0.4;
+      params.threshold = 0.05;
+      params.softness = 0.3;
+      const ImageF expected = aq::reference::edge_darkening(image, &source, params);
+      EXPECT_LE(aq::test::max_abs_diff(*two, expected), 1e-5) << kernel;
+      EXPECT_GT(aq::test::max_abs_diff(*two, image), 0.1) << "something was darkened";
+    }
   }
 }
 

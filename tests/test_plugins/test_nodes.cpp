@@ -1,7 +1,7 @@
 // Test node types: `test_add` (optional image in, adds `offset`), `test_fail` (always reports
 // an error), `test_bad_shader` (a shader that does not compile), `test_time` (time-dependent),
 // `test_square` (a square moving with the frame, redrawn only where it was and is: damage
-// tracking).
+// tracking), `test_rects` (a draw region of 40 rects over a background).
 #include <aquarelle/plugin.hpp>
 
 #include <optional>
@@ -14,6 +14,8 @@ namespace {
 constexpr aq_port_desc kImageIn[] = {aq::optional_image_port("image", "input")};
 constexpr aq_port_desc kImageOut[] = {aq::image_port("image", "output")};
 constexpr aq_param_desc kSquareParams[] = {aq::int_param("size", 6, 1, 64, "side in pixels")};
+constexpr aq_param_desc kRectsParams[] = {
+    aq::bool_param("own_vertex", false, "draw with the node's own full-screen vertex shader")};
 constexpr aq_param_desc kAddParams[] = {
     aq::float_param("offset", 0.0, -10.0, 10.0, "added to rgb")};
 
@@ -86,6 +88,37 @@ struct Square {
   std::pair<int, int> size_{0, 0};
 };
 
+// 0.25 everywhere, then 1 in a draw region of 40 rects of 2 x 3 pixels: (4i + 1, 6j + 1) for
+// i < 10, j < 4. With `own_vertex` the program has the node's own vertex shader, which the host
+// cannot batch: draw_fullscreen then draws the rects one by one.
+const aq_shader_source kOwnVertex = {
+    "own_fullscreen.vert",
+    "void main() {\n"
+    "  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n"
+    "  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);\n}\n",
+    nullptr};
+struct Rects {
+  int process(aq::Context& ctx) {
+    aq_image out;
+    if (!ctx.output(0, 48, 32, AQ_FORMAT_RGBA32F, &out)) return AQ_ERROR;
+    const aq_host* host = ctx.raw()->host;
+    const GLuint program = ctx.param_bool(0) ? host->program(ctx.raw()->host_data, &kOwnVertex,
+                                                             &shaders::test_rects_frag)
+                                             : ctx.program(shaders::test_rects_frag);
+    if (program == 0) return AQ_ERROR;
+    glUseProgram(program);
+    glUniform4f(glGetUniformLocation(program, "u_color"), 0.25f, 0.25f, 0.25f, 1.0f);
+    if (!ctx.draw(out)) return AQ_ERROR;
+    aq::Region rects;
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 10; ++i)
+        rects.add(aq::PixelRect{4 * i + 1, 6 * j + 1, 4 * i + 3, 6 * j + 4});
+    if (!ctx.set_draw_region(rects)) return AQ_ERROR;
+    glUniform4f(glGetUniformLocation(program, "u_color"), 1.0f, 1.0f, 1.0f, 1.0f);
+    return ctx.draw(out) ? AQ_OK : AQ_ERROR;
+  }
+};
+
 }  // namespace
 
 AQ_NODE(kAdd, Add, "test_add", "Test", "adds offset", AQ_NODE_POINTWISE, kImageIn, kImageOut,
@@ -97,4 +130,6 @@ AQ_NODE_NO_PARAMS(kBad, BadShader, "test_bad_shader", "Test", "shader error", 0,
                   kImageOut);
 AQ_SOURCE_NODE(kSquare, Square, "test_square", "Test", "a square moving with the frame",
                AQ_NODE_TIME_DEPENDENT, kImageOut, kSquareParams);
-AQ_PLUGIN("test_nodes", "1.0", &kAdd, &kTime, &kFail, &kBad, &kSquare)
+AQ_SOURCE_NODE(kRects, Rects, "test_rects", "Test", "a draw region of 40 rects", 0, kImageOut,
+               kRectsParams);
+AQ_PLUGIN("test_nodes", "1.0", &kAdd, &kTime, &kFail, &kBad, &kSquare, &kRects)

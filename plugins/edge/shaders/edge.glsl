@@ -6,8 +6,9 @@
 // H and S fixed is scaling r, g and b by the same number, so no HSV round trip is needed.
 //
 // The node's own pass and the host's fused passes both call it (aq_pointwise_desc): the colour
-// is the image at the pixel, the source a sampler read around it. Everything stays inside
-// AQ_APPLY (no helper functions), so two edge stages can share one fused shader.
+// is the image at the pixel, the source a sampler read around it. Everything but the shared,
+// include-guarded aq_edge_weight (also edge_detect's) stays inside AQ_APPLY, so two edge stages
+// can share one fused shader.
 #include "aquarelle/edge_kernels.glsl"
 
 uniform sampler2D AQ_UNIFORM(source);
@@ -27,11 +28,7 @@ vec4 AQ_APPLY(vec4 c, vec2 pixel, vec2 size) {
           texelFetch(AQ_UNIFORM(source), clamp(p + ivec2(i - 1, j - 1), ivec2(0), last), 0).rgb;
     }
   }
-  vec3 r = AQ_UNIFORM(sobel) == 1 ? aq_sobel3x3(n) : aq_laplacian3x3(n);
-  float response = max(r.r, max(r.g, r.b));
-  // A NaN in the source must not darken (or poison) its neighbours.
-  response = response >= 0.0 ? response : 0.0;
-  float t = AQ_UNIFORM(threshold);
-  float edge = smoothstep(t, t + AQ_UNIFORM(softness), response);
+  float edge = aq_edge_weight(n, AQ_UNIFORM(sobel) == 1, AQ_UNIFORM(threshold),
+                              AQ_UNIFORM(softness));
   return vec4(c.rgb * mix(1.0, AQ_UNIFORM(factor), edge), c.a);
 }
