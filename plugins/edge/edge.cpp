@@ -34,17 +34,8 @@ struct Edge {
     const aq_image in = ctx.input_image(kImage);
     if (ctx.param_float(kFactor) >= 1.0) return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
     const aq_image source = ctx.connected(kSource) ? ctx.input_image(kSource) : in;
-    aq_image out;
-    if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
-    const GLuint program = ctx.program(aq_shader_source{"edge.glsl", fragment.c_str(), nullptr});
-    if (program == 0) return AQ_ERROR;
-    glUseProgram(program);
-    aq::bind_texture(program, "u_image", 0, in);
-    aq::bind_texture(program, "u_source", 1, source);
-    set_uniforms(ctx, program, "u_");
-    const bool drawn = ctx.draw(out);
-    aq::unbind_textures(2);
-    return drawn ? AQ_OK : AQ_ERROR;
+    return edge::draw_own_pass(ctx, "edge.glsl", fragment, in, "source", source,
+                               [&](GLuint program) { set_uniforms(ctx, program, "u_"); });
   }
 
   // The uniforms of edge.glsl but its source, named prefix + name (the host binds the source

@@ -27,18 +27,9 @@ struct EdgeApply {
   int process(aq::Context& ctx) {
     const aq_image in = ctx.input_image(kImage);
     if (ctx.param_float(kFactor) >= 1.0) return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
-    aq_image out;
-    if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
-    const GLuint program =
-        ctx.program(aq_shader_source{"edge_apply.glsl", fragment.c_str(), nullptr});
-    if (program == 0) return AQ_ERROR;
-    glUseProgram(program);
-    aq::bind_texture(program, "u_image", 0, in);
-    aq::bind_texture(program, "u_edges", 1, ctx.input_image(kEdges));
-    set_uniforms(ctx, program, "u_");
-    const bool drawn = ctx.draw(out);
-    aq::unbind_textures(2);
-    return drawn ? AQ_OK : AQ_ERROR;
+    return edge::draw_own_pass(ctx, "edge_apply.glsl", fragment, in, "edges",
+                               ctx.input_image(kEdges),
+                               [&](GLuint program) { set_uniforms(ctx, program, "u_"); });
   }
 
   // The uniforms of edge_apply.glsl but the weights, named prefix + name (the host binds the

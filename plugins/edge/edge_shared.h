@@ -29,4 +29,24 @@ inline void set_detection_uniforms(aq::Context& ctx, GLuint program, const std::
   aq::set_int(program, (prefix + "sobel").c_str(), ctx.param_enum(kernel) == 1 ? 1 : 0);
 }
 
+// The own pass of `edge` and `edge_apply` (when the host does not fuse them): the pointwise
+// `fragment` over `in` into output 0, `second` bound as the sampler `u_<second_name>`, the rest
+// of the uniforms from `set_uniforms(program)`. Returns AQ_OK or AQ_ERROR.
+template <typename SetUniforms>
+int draw_own_pass(aq::Context& ctx, const char* name, const std::string& fragment,
+                  const aq_image& in, const char* second_name, const aq_image& second,
+                  SetUniforms&& set_uniforms) {
+  aq_image out;
+  if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+  const GLuint program = ctx.program(aq_shader_source{name, fragment.c_str(), nullptr});
+  if (program == 0) return AQ_ERROR;
+  glUseProgram(program);
+  aq::bind_texture(program, "u_image", 0, in);
+  aq::bind_texture(program, (std::string("u_") + second_name).c_str(), 1, second);
+  set_uniforms(program);
+  const bool drawn = ctx.draw(out);
+  aq::unbind_textures(2);
+  return drawn ? AQ_OK : AQ_ERROR;
+}
+
 }  // namespace edge
