@@ -203,41 +203,10 @@ struct CelLight {
     if (has_shadow) aq::bind_texture(program, "u_shadow", 4, ctx.input_image(kShadow));
     if (has_caustics) bind_caustics(ctx, program);
 
-    // The matrix the shadow map was drawn with: fitted to the receivers in view, for its size.
-    glm::mat4 light = aq::scene_math::light_view_projection(*scene);
-    if (has_shadow) {
-      const aq::scene_math::ViewFit fit = aq::scene_math::fit_to_view(
-          *scene, boxes.world_boxes(*scene),
-          static_cast<float>(ctx.width()) / static_cast<float>(ctx.height()));
-      light = aq::scene_math::light_view_projection(*scene, fit, ctx.input_image(kShadow).width);
-    }
-    glm::vec3 direction = aq::scene_math::light_direction(*scene);
-    aq::set_mat4(program, "u_light_view_projection", glm::value_ptr(light));
-    aq::set_vec3(program, "u_light_direction", glm::value_ptr(direction));
-    aq::set_vec3(program, "u_light_color", scene->light.color);
-    aq::set_vec3(program, "u_ambient", scene->light.ambient);
-    aq::set_float(program, "u_water_height", scene->water_height);
-    const double own_tile = ctx.param_float(kCausticTile);
-    aq::set_float(program, "u_caustic_tile",
-                  own_tile > 0.0 ? own_tile : aq::scene_caustic_tile(*scene));
-    aq::set_float(program, "u_caustic_strength", ctx.param_float(kCausticStrength));
-    aq::set_int(program, "u_levels", static_cast<int>(ctx.param_int(kLevels)));
-    aq::set_vec3(program, "u_background", ctx.param_vec3(kBackground));
-    aq::set_int(program, "u_environment", ctx.param_bool(kEnvironment) ? 1 : 0);
-
-    aq::Fnv1a lighting;
-    lighting.mix(light);
-    lighting.mix(direction);
-    lighting.mix(scene->light.color);
-    lighting.mix(scene->light.ambient);
-    lighting.mix(scene->water_height);
-    lighting.mix(aq::scene_caustic_tile(*scene));
-    // From the surface's depth, the position also depends on the camera: a camera that moves
-    // without changing a pixel's depth still moves its point.
-    if (packed) lighting.mix(scene->camera);
+    const uint64_t lighting = set_light_uniforms(ctx, program, *scene, packed, has_shadow);
     const aq::Region gbuffer = gbuffer_damage(ctx, targets[0]);
-    aq::Region damage = damaged(ctx, gbuffer, lighting.value != lighting_key_);
-    lighting_key_ = lighting.value;
+    aq::Region damage = damaged(ctx, gbuffer, lighting != lighting_key_);
+    lighting_key_ = lighting;
     // The regions depend on the ids alone: they change only where the g-buffer did, though the
     // pass redraws them wherever the light changed (the same values), so their readers
     // (edge_detect) redraw only that.
@@ -252,6 +221,45 @@ struct CelLight {
     return bound && ctx.set_output_damage(0, damage) && ctx.set_output_damage(1, plain_damage)
                ? AQ_OK
                : AQ_ERROR;
+  }
+
+  // The light's uniforms from the scene and the parameters (program bound); returns a hash of
+  // the scene's part of them, whose change makes every surface's light change.
+  uint64_t set_light_uniforms(aq::Context& ctx, GLuint program, const aq_scene& scene, bool packed,
+                              bool has_shadow) {
+    // The matrix the shadow map was drawn with: fitted to the receivers in view, for its size.
+    glm::mat4 light = aq::scene_math::light_view_projection(scene);
+    if (has_shadow) {
+      const aq::scene_math::ViewFit fit = aq::scene_math::fit_to_view(
+          scene, boxes.world_boxes(scene),
+          static_cast<float>(ctx.width()) / static_cast<float>(ctx.height()));
+      light = aq::scene_math::light_view_projection(scene, fit, ctx.input_image(kShadow).width);
+    }
+    glm::vec3 direction = aq::scene_math::light_direction(scene);
+    aq::set_mat4(program, "u_light_view_projection", glm::value_ptr(light));
+    aq::set_vec3(program, "u_light_direction", glm::value_ptr(direction));
+    aq::set_vec3(program, "u_light_color", scene.light.color);
+    aq::set_vec3(program, "u_ambient", scene.light.ambient);
+    aq::set_float(program, "u_water_height", scene.water_height);
+    const double own_tile = ctx.param_float(kCausticTile);
+    aq::set_float(program, "u_caustic_tile",
+                  own_tile > 0.0 ? own_tile : aq::scene_caustic_tile(scene));
+    aq::set_float(program, "u_caustic_strength", ctx.param_float(kCausticStrength));
+    aq::set_int(program, "u_levels", static_cast<int>(ctx.param_int(kLevels)));
+    aq::set_vec3(program, "u_background", ctx.param_vec3(kBackground));
+    aq::set_int(program, "u_environment", ctx.param_bool(kEnvironment) ? 1 : 0);
+
+    aq::Fnv1a lighting;
+    lighting.mix(light);
+    lighting.mix(direction);
+    lighting.mix(scene.light.color);
+    lighting.mix(scene.light.ambient);
+    lighting.mix(scene.water_height);
+    lighting.mix(aq::scene_caustic_tile(scene));
+    // From the surface's depth, the position also depends on the camera: a camera that moves
+    // without changing a pixel's depth still moves its point.
+    if (packed) lighting.mix(scene.camera);
+    return lighting.value;
   }
 
   // One period of the caustics: the hardware's repeat wrap gives the periodic bilinear lookup
@@ -297,13 +305,8 @@ struct CelLight {
     aq::set_vec3(program, "u_ray_dy", dy);
   }
 
-  // Damage tracking: the pixels whose light can differ from the kept outputs'. A pixel reads
-  // the g-buffer at itself; the shadow map, the caustics and the scene's light only where a
-  // surface is (the background is the parameter's colour or the g-buffer's albedo), so a change
-  // of those reaches only the id's (or surface's) bounds (where the g-buffer drew meshes), not the
-  // open water.
-  // Where the g-buffer inputs may have changed since the last call; everything when an output
-  // was not kept or an input has another size than the target.
+  // Damage tracking. Where the g-buffer inputs may have changed since the last call; everything
+  // when an output was not kept or an input has another size than the target.
   aq::Region gbuffer_damage(const aq::Context& ctx, const aq_image& target) {
     if (!ctx.output_kept(0) || !ctx.output_kept(1)) return aq::Region::everything();
     aq::Region damage;
@@ -316,8 +319,11 @@ struct CelLight {
     return damage;
   }
 
-  // What the pass redraws: the g-buffer's damage, and every surface when the shadow, the
-  // caustics or the lighting changed.
+  // What the pass redraws: the pixels whose light can differ from the kept outputs'. A pixel
+  // reads the g-buffer at itself; the shadow map, the caustics and the scene's light only where
+  // a surface is (the background is the parameter's colour or the g-buffer's albedo), so a
+  // change of those reaches only the id's (or surface's) bounds (where the g-buffer drew
+  // meshes), not the open water.
   aq::Region damaged(const aq::Context& ctx, const aq::Region& gbuffer, bool lighting_changed) {
     aq::Region damage = gbuffer;
     bool surfaces_changed = lighting_changed;
