@@ -32,6 +32,9 @@ vec4 aq_hdr8_word_decode(uint word) {
   return aq_hdr8_decode(bytes * (1.0 / 255.0));
 }
 
+// The word an RGBA8 target stores for colour c encoded: a pixel of a block.
+uint aq_hdr8_word_encode(vec4 c) { return packUnorm4x8(aq_hdr8_encode(c)); }
+
 vec4 aq_hdr8_block_pixel(usampler2D blocks, ivec2 p) {
   uvec4 words = texelFetch(blocks, p >> 1, 0);
   uvec2 row = (p.y & 1) == 0 ? words.xy : words.zw;

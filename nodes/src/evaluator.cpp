@@ -112,6 +112,8 @@ Result<Plan> compile(const Graph& graph, const Registry& registry, const EvalOpt
       options.formats_by_need && enabled_in_environment("AQUARELLE_FORMATS_BY_NEED");
   plan_options.hdr8 = plan_options.formats_by_need && enabled_in_environment("AQUARELLE_HDR8");
   plan_options.blocks = plan_options.hdr8 && enabled_in_environment("AQUARELLE_MORPH_BLOCKS");
+  plan_options.epilogue_blocks =
+      plan_options.blocks && enabled_in_environment("AQUARELLE_EPILOGUE_BLOCKS");
   plan_options.defer_axis = plan_options.blocks && enabled_in_environment("AQUARELLE_DEFER_AXIS");
   plan_options.epilogue_fusion = enabled_in_environment("AQUARELLE_EPILOGUE_FUSION");
   return compile_plan(graph, registry, plan_options, output);

@@ -159,6 +159,14 @@ Result<TextureRef> run_producer(FusedChain::Producer& producer,
     return make_error(where + ": produced no output '" + producer.type->outputs[0].name +
                       "' (a plugin bug: report it to its author)");
   if (call.epilogue_draws > 0) return out;
+  // The host's own pass reads and writes pixels: a chain stored in 2 x 2 blocks is the
+  // producer's promise (AQ_PORT_BLOCKS on its output) to apply the epilogue itself.
+  if (out->image.format == AQ_FORMAT_RGBA8_HDR_BLOCKS ||
+      (!stored.empty() && stored[0] == AQ_FORMAT_RGBA8_HDR_BLOCKS))
+    return make_error(where +
+                      ": wrote its output in 2 x 2 blocks without applying the epilogue "
+                      "(a plugin bug: an AQ_PORT_BLOCKS output of an AQ_NODE_EPILOGUE node "
+                      "must call aq_epilogue_at on each pixel it writes)");
   return fuser.run(host.shaders(), host.pool(), stages, out, out->image.width, out->image.height,
                    chain_result_format(stored, format));
 }

@@ -114,10 +114,12 @@ std::vector<ReaderInput> readers_of(const Graph& graph, const Registry& registry
 //   works in half precision (float asks for accuracy over speed);
 // - AQ_FORMAT_RGBA8 when every reader reads through an AQ_PORT_8BIT_ENOUGH input.
 // An output nobody reads and the requested output keep their format. Empty when none changes.
+// `epilogue_writer`: the output 0 of the producer whose last draw applies the chain ending at
+// `id` (epilogue fusion), whose promises (AQ_PORT_HDR8, AQ_PORT_BLOCKS) are then the writer's.
 std::vector<uint32_t> stored_formats(const Graph& graph, const Registry& registry,
                                      const std::vector<std::string>& order, const std::string& id,
                                      const NodeType& type, const PortRef& target, bool hdr8,
-                                     bool blocks) {
+                                     bool blocks, const PortInfo* epilogue_writer) {
   std::vector<uint32_t> formats(type.outputs.size(), 0);
   bool any = false;
   const bool half = graph.settings.precision != "float";
@@ -136,9 +138,10 @@ std::vector<uint32_t> stored_formats(const Graph& graph, const Registry& registr
       all_hdr8 = all_hdr8 && input != nullptr && input->hdr8;
       all_blocks = all_blocks && input != nullptr && input->blocks;
     }
-    if (all_hdr8 && hdr8 && half && type.outputs[o].hdr8) {
-      formats[o] = all_blocks && blocks && type.outputs[o].blocks ? AQ_FORMAT_RGBA8_HDR_BLOCKS
-                                                                  : AQ_FORMAT_RGBA8_HDR;
+    const PortInfo& writer = epilogue_writer != nullptr ? *epilogue_writer : type.outputs[o];
+    if (all_hdr8 && hdr8 && half && writer.hdr8) {
+      formats[o] =
+          all_blocks && blocks && writer.blocks ? AQ_FORMAT_RGBA8_HDR_BLOCKS : AQ_FORMAT_RGBA8_HDR;
     } else if (all_eight_bit) {
       formats[o] = AQ_FORMAT_RGBA8;
     }
@@ -281,9 +284,16 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
       planned.outputs_read.push_back((id == target->node && output.name == target->port) ||
                                      !readers_of(graph, registry, order, id, output.name).empty());
     }
-    if (options.formats_by_need && !planned.deferred)
-      planned.stored_formats =
-          stored_formats(graph, registry, order, id, *type, *target, options.hdr8, options.blocks);
+    if (options.formats_by_need && !planned.deferred) {
+      const PlannedNode* head = chain.empty() ? nullptr : plan.find(chain.front());
+      const PortInfo* epilogue_writer =
+          head != nullptr && head->producer && !head->type->outputs.empty()
+              ? &head->type->outputs[0]
+              : nullptr;
+      const bool blocks = options.blocks && (epilogue_writer == nullptr || options.epilogue_blocks);
+      planned.stored_formats = stored_formats(graph, registry, order, id, *type, *target,
+                                              options.hdr8, blocks, epilogue_writer);
+    }
     plan.nodes.push_back(planned);
     if (planned.deferred) {
       chain_of[id] = std::move(chain);
@@ -300,19 +310,8 @@ Result<Plan> compile_plan(const Graph& graph, const Registry& registry, const Pl
     pass.fused = pass.chain.size() > 1 || pass.resamples;
     const PlannedNode* head = plan.find(pass.chain.front());
     pass.epilogue = head != nullptr && head->producer;
-    // 8-bit HDR is a promise of the pass's writer: the host's fused pass encodes, an epilogue
-    // producer only when its own output 0 handles AQ_PORT_HDR8.
-    if (pass.epilogue) {
-      const bool encodes = !head->type->outputs.empty() && head->type->outputs[0].hdr8;
-      std::vector<uint32_t>& stored = plan.nodes.back().stored_formats;
-      for (uint32_t& format : stored) {
-        // The fused pass writes pixels: a chain's result in blocks is stored encoded instead.
-        if (format == AQ_FORMAT_RGBA8_HDR_BLOCKS) format = AQ_FORMAT_RGBA8_HDR;
-        if (format == AQ_FORMAT_RGBA8_HDR && !encodes) format = 0;
-      }
-      if (std::all_of(stored.begin(), stored.end(), [](uint32_t f) { return f == 0; }))
-        stored.clear();
-    }
+    // 8-bit HDR and 2 x 2 blocks are promises of the pass's writer: the host's fused pass
+    // encodes pixels; an epilogue producer's output 0 made them (stored_formats).
     if (options.defer_axis)
       plan.nodes.back().axis_deferrable = axis_deferrable(graph, registry, order, deferred, id,
                                                           *type, plan.nodes.back().stored_formats);

@@ -9,14 +9,15 @@ std::string fused_uniform_prefix(size_t stage) {
 
 namespace {
 // The stages' functions, stage i's named `function`<i> with its uniforms prefixed
-// (fused_uniform_prefix), and the calls that apply them in order to `c` at gl_FragCoord of an
-// image of `size` pixels: what a fused pass and an epilogue both put in their shader.
+// (fused_uniform_prefix), and the calls that apply them in order to `c` at the pixel centre
+// `pixel` of an image of `size` pixels: what a fused pass and an epilogue both put in their
+// shader.
 struct StageCode {
   std::string functions;
   std::string calls;
 };
 StageCode stage_code(const std::vector<const char*>& glsl, const std::string& function,
-                     const char* size) {
+                     const char* pixel, const char* size) {
   StageCode code;
   for (size_t i = 0; i < glsl.size(); ++i) {
     const std::string name = function + std::to_string(i);
@@ -24,7 +25,7 @@ StageCode stage_code(const std::vector<const char*>& glsl, const std::string& fu
     code.functions += "#define AQ_UNIFORM(name) " + fused_uniform_prefix(i) + "##name\n";
     code.functions += glsl[i];
     code.functions += "\n#undef AQ_APPLY\n#undef AQ_UNIFORM\n";
-    code.calls += "  c = " + name + "(c, gl_FragCoord.xy, " + size + ");\n";
+    code.calls += "  c = " + name + "(c, " + pixel + ", " + size + ");\n";
   }
   return code;
 }
@@ -32,7 +33,7 @@ StageCode stage_code(const std::vector<const char*>& glsl, const std::string& fu
 
 std::string fused_fragment_source(const std::vector<const char*>& glsl, bool resample,
                                   bool decode_hdr8, bool encode_hdr8) {
-  const StageCode code = stage_code(glsl, "aq_apply_", "aq_fused_size");
+  const StageCode code = stage_code(glsl, "aq_apply_", "gl_FragCoord.xy", "aq_fused_size");
   std::string source = decode_hdr8 || encode_hdr8 ? "#include \"aquarelle/hdr8.glsl\"\n" : "";
   source += code.functions;
   source +=
@@ -50,12 +51,18 @@ std::string fused_fragment_source(const std::vector<const char*>& glsl, bool res
 }
 
 std::string epilogue_source(const std::vector<FusedStage>* stages) {
-  if (stages == nullptr || stages->empty()) return "vec4 aq_epilogue(vec4 c) { return c; }\n";
+  // aq_epilogue_at applies the chain at any pixel, for a shader that writes several pixels per
+  // fragment (2 x 2 blocks); aq_epilogue at the fragment's own.
+  const std::string at_fragment =
+      "vec4 aq_epilogue(vec4 c) { return aq_epilogue_at(c, gl_FragCoord.xy); }\n";
+  if (stages == nullptr || stages->empty())
+    return "vec4 aq_epilogue_at(vec4 c, vec2 pixel) { return c; }\n" + at_fragment;
   std::vector<const char*> glsl;
   for (const FusedStage& stage : *stages) glsl.push_back(stage.pointwise->glsl);
-  const StageCode code = stage_code(glsl, "aq_epilogue_", "aq_epilogue_size");
-  return code.functions + "uniform vec2 aq_epilogue_size;\nvec4 aq_epilogue(vec4 c) {\n" +
-         code.calls + "  return c;\n}\n";
+  const StageCode code = stage_code(glsl, "aq_epilogue_", "pixel", "aq_epilogue_size");
+  return code.functions +
+         "uniform vec2 aq_epilogue_size;\nvec4 aq_epilogue_at(vec4 c, vec2 pixel) {\n" +
+         code.calls + "  return c;\n}\n" + at_fragment;
 }
 
 namespace {

@@ -51,9 +51,9 @@ std::string fused_fragment_source(const std::vector<const char*>& glsl, bool res
 std::string fused_uniform_prefix(size_t stage);
 
 // What the host prepends to the fragment shaders of an AQ_NODE_EPILOGUE node: `vec4
-// aq_epilogue(vec4)`, the identity without stages, else the stages applied in order at
-// gl_FragCoord of an image of `aq_epilogue_size` pixels (stage i's uniforms prefixed as in a
-// fused pass).
+// aq_epilogue_at(vec4, vec2 pixel)`, the identity without stages, else the stages applied in
+// order at the pixel centre `pixel` of an image of `aq_epilogue_size` pixels (stage i's uniforms
+// prefixed as in a fused pass), and `vec4 aq_epilogue(vec4)`, the same at gl_FragCoord.
 std::string epilogue_source(const std::vector<FusedStage>* stages);
 // Sets the stages' uniforms and aq_epilogue_size on `program` for a draw of width x height;
 // false when a stage's set_uniforms failed.

@@ -41,7 +41,7 @@ namespace {
 constexpr aq_port_desc kInputs[] = {
     // AQ_PORT_HDR8: the separable direct kernel (final quality) decodes per tap; the other
     // methods decode the image once first.
-    aq::image_port("image", "colour to blur", AQ_PORT_HDR8),
+    aq::image_port("image", "colour to blur", AQ_PORT_HDR8 | AQ_PORT_BLOCKS),
     aq::optional_image_port("depth",
                             "linear view depth (R32F); without it the depth term is 1 (far)")};
 constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "blurred colour")};
@@ -146,7 +146,7 @@ struct Blur {
     const bool uniform = !has_depth && (radial_weight <= 0.0 || depth_weight >= 1.0);
     const double max_strength = std::min(1.0, depth_weight + radial_weight);
     const double max_sigma = sigma * (uniform ? std::min(1.0, depth_weight) : max_strength);
-    if (!(max_sigma > 0.0)) return ctx.pass_through(0, 0) ? AQ_OK : AQ_ERROR;
+    if (!(max_sigma > 0.0)) return unblurred(ctx, in) ? AQ_OK : AQ_ERROR;
 
     if (has_depth && depth_weight > 0.0) check_distance_scale(ctx);
 
@@ -158,7 +158,8 @@ struct Blur {
         direct ? direct_damage(ctx, in, out, direct_radius(max_sigma)) : aq::Region::everything();
     drawn_ = damage_.for_drawing();
     if (!ctx.set_draw_region(drawn_)) damage_ = drawn_ = aq::Region::everything();  // old host
-    if (in.format == AQ_FORMAT_RGBA8_HDR && !reads_encoded(ctx, uniform, max_sigma)) {
+    const bool encoded = in.format == AQ_FORMAT_RGBA8_HDR || aq::in_blocks(in);
+    if (encoded && !reads_encoded(ctx, uniform, max_sigma)) {
       aq_image decoded;
       ctx.set_draw_region(
           drawn_.dilated(direct_radius(max_sigma), direct_radius(max_sigma), in.width, in.height)
@@ -313,13 +314,33 @@ struct Blur {
     return kernel == kDirectSeparable || (kernel == kDirectAuto && direct_radius(max_sigma) > 2);
   }
 
-  static bool decode(aq::Context& ctx, const aq_image& in, aq_image* decoded) {
-    if (!ctx.scratch(in.width, in.height, scratch_format(ctx), decoded)) return false;
-    const GLuint program = ctx.program(shaders::blur_decode_frag);
+  bool decode(aq::Context& ctx, const aq_image& in, aq_image* decoded) {
+    return ctx.scratch(in.width, in.height, scratch_format(ctx), decoded) &&
+           decode_into(ctx, in, *decoded);
+  }
+
+  // An encoded image (pixels or 2 x 2 blocks) decoded into `target`, of its size.
+  bool decode_into(aq::Context& ctx, const aq_image& in, const aq_image& target) {
+    source = std::string("#define AQ_BLOCKS ") + (aq::in_blocks(in) ? "1" : "0") + "\n" +
+             shaders::blur_decode_frag.text;
+    const GLuint program =
+        ctx.program(aq_shader_source{shaders::blur_decode_frag.name, source.c_str(), nullptr});
     if (program == 0) return false;
     glUseProgram(program);
-    aq::bind_texture(program, "u_image", 0, in);
-    return ctx.draw(*decoded);
+    if (aq::in_blocks(in)) {
+      aq::bind_blocks(program, in, in);
+    } else {
+      aq::bind_texture(program, "u_image", 0, in);
+    }
+    return ctx.draw(target);
+  }
+
+  // σ = 0: the image itself, passed through; an image in blocks is drawn out as pixels, which
+  // is what readers of the output take.
+  bool unblurred(aq::Context& ctx, const aq_image& in) {
+    if (!aq::in_blocks(in)) return ctx.pass_through(0, 0);
+    aq_image out;
+    return ctx.output_like(0, in, &out) && decode_into(ctx, in, out);
   }
 
   // σ per pixel, σmax small: rows then columns, each pixel with its own σ (a float scratch
@@ -328,9 +349,12 @@ struct Blur {
   // AQUARELLE_BLUR_BLOCKS=0 keeps encoded pixels, the lever table).
   bool separable_gaussian(aq::Context& ctx, const aq_image& in, const aq_image& out, double sigma,
                           int radius) {
-    const bool encoded = in.format == AQ_FORMAT_RGBA8_HDR;
+    const bool blocks_in = aq::in_blocks(in);
+    const bool encoded = in.format == AQ_FORMAT_RGBA8_HDR || blocks_in;
     const char* blocks_lever = std::getenv("AQUARELLE_BLUR_BLOCKS");  // per call: tests flip it
-    const bool blocks = encoded && (blocks_lever == nullptr || std::string(blocks_lever) != "0");
+    // An input in blocks is read as blocks whatever the lever says.
+    const bool blocks =
+        blocks_in || (encoded && (blocks_lever == nullptr || std::string(blocks_lever) != "0"));
     aq_image rows;
     const uint32_t rows_format = blocks    ? static_cast<uint32_t>(AQ_FORMAT_RGBA8_HDR_BLOCKS)
                                  : encoded ? in.format
@@ -341,7 +365,7 @@ struct Blur {
       const std::string defines = define("AQ_RADIUS", radius) + define("AQ_AXIS", axis) +
                                   depth_define(ctx, in) + define("AQ_DECODE_HDR8", encoded) +
                                   define("AQ_ENCODE_HDR8", target.format == AQ_FORMAT_RGBA8_HDR) +
-                                  define("AQ_BLOCKS", blocks);
+                                  define("AQ_BLOCKS", blocks) + define("AQ_BLOCKS_IN", blocks_in);
       GLuint program =
           ctx.program(with_strength(shaders::blur_direct_separable_frag, defines, source));
       if (program == 0) return false;
@@ -349,6 +373,8 @@ struct Blur {
       set_strength_uniforms(ctx, program, in);
       if (axis == 1 && blocks) {
         aq::bind_blocks(program, rows, in);
+      } else if (axis == 0 && blocks_in) {
+        aq::bind_blocks(program, in, in);
       } else {
         aq::bind_texture(program, "u_image", 0, axis == 0 ? in : rows);
       }

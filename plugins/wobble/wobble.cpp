@@ -6,6 +6,8 @@
 //   [paper input] ─────────────────────────┐
 //   procedural_paper.frag ──► scratch ─────┴──► wobble.frag(image, paper) ──► image
 #include <aquarelle/plugin.hpp>
+#include <aquarelle/sdk/blocks.hpp>
+#include <aquarelle/sdk/region.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -26,9 +28,11 @@ constexpr aq_port_desc kInputs[] = {
     aq::optional_image_port("gradient",
                             "the paper's `gradient` output (with `paper` connected): read once "
                             "per pixel instead of differencing the height with four reads")};
-// AQ_PORT_HDR8: written encoded when every reader decodes it; with an epilogue, the output is
-// the fused chain's (in graphs/underwater.json edge and pigment_apply, read by blur).
-constexpr aq_port_desc kOutputs[] = {aq::image_port("image", "displaced colour", AQ_PORT_HDR8)};
+// AQ_PORT_HDR8: written encoded when every reader decodes it; AQ_PORT_BLOCKS: in 2 x 2 blocks
+// when every reader takes them. With an epilogue, the output is the fused chain's (in
+// graphs/underwater.json edge and pigment_apply, read by blur's rows pass in blocks).
+constexpr aq_port_desc kOutputs[] = {
+    aq::image_port("image", "displaced colour", AQ_PORT_HDR8 | AQ_PORT_BLOCKS)};
 enum Input : uint32_t { kImage, kPaper, kGradient };
 enum Param : uint32_t { kStrength, kPaperResolution, kGrain, kSeed };
 constexpr aq_param_desc kParams[] = {
@@ -46,15 +50,16 @@ struct Wobble {
   int process(aq::Context& ctx) {
     const aq_image in = ctx.input_image(kImage);
     const double strength = ctx.param_float(kStrength);
-    // An image in 2 x 2 blocks is drawn out as pixels even unmoved: readers of the output take
-    // pixels.
-    const bool blocks = in.format == AQ_FORMAT_RGBA8_HDR_BLOCKS;
-    if (strength == 0.0 && !blocks) return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
+    aq_image out;
+    if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
+    // Unmoved, the image passes through unless the input or the output is in 2 x 2 blocks
+    // (its readers take the other): it is then drawn out.
+    const bool blocks = aq::in_blocks(in);
+    if (strength == 0.0 && !blocks && !aq::in_blocks(out))
+      return ctx.pass_through(0, kImage) ? AQ_OK : AQ_ERROR;
     aq_image paper = ctx.input_image(kPaper);
     if (!ctx.connected(kPaper) && !render_procedural_paper(ctx, in, &paper)) return AQ_ERROR;
 
-    aq_image out;
-    if (!ctx.output_like(0, in, &out)) return AQ_ERROR;
     // The precomputed gradient only stands for the paper it was computed from (same size).
     const bool precomputed = ctx.connected(kPaper) && ctx.connected(kGradient) &&
                              ctx.input_image(kGradient).width == paper.width &&
@@ -63,17 +68,15 @@ struct Wobble {
         std::string("#define AQ_WOBBLE_GRADIENT ") + (precomputed ? "1" : "0") +
         "\n#define AQ_WOBBLE_DECODE_HDR8 " + (in.format == AQ_FORMAT_RGBA8_HDR ? "1" : "0") +
         "\n#define AQ_WOBBLE_ENCODE_HDR8 " + (out.format == AQ_FORMAT_RGBA8_HDR ? "1" : "0") +
-        "\n#define AQ_WOBBLE_BLOCKS " + (blocks ? "1" : "0") + "\n" + shaders::wobble_frag.text;
+        "\n#define AQ_WOBBLE_BLOCKS " + (blocks ? "1" : "0") + "\n#define AQ_WOBBLE_OUT_BLOCKS " +
+        (aq::in_blocks(out) ? "1" : "0") + "\n" + shaders::wobble_frag.text;
     const GLuint program =
         ctx.program(aq_shader_source{shaders::wobble_frag.name, text.c_str(), nullptr});
     if (program == 0) return AQ_ERROR;
     glUseProgram(program);
+    aq::set_vec2(program, "u_out_size", out.width, out.height);
     if (blocks) {
-      glActiveTexture(GL_TEXTURE0);
-      glBindTexture(GL_TEXTURE_2D, in.texture);
-      glBindSampler(0, 0);
-      glUniform1i(glGetUniformLocation(program, "u_blocks"), 0);
-      glUniform2i(glGetUniformLocation(program, "u_image_size"), in.width, in.height);
+      aq::bind_blocks(program, in, in);
     } else {
       aq::bind_texture(program, "u_image", 0, in);
     }
@@ -106,7 +109,8 @@ struct Wobble {
       }
       damage.add(ctx.epilogue_damage());
     }
-    if (!ctx.set_draw_region(damage.for_drawing())) damage = aq::Region::everything();
+    const aq::Region region = aq::in_blocks(out) ? aq::blocks_of(damage) : damage;
+    if (!ctx.set_draw_region(region.for_drawing())) damage = aq::Region::everything();
     // Drawn even when nothing changed: an empty region draws nothing, but the host learns that
     // the draw applies the epilogue (else it would run the fused nodes as a pass of their own).
     const bool drawn = ctx.draw(out);

@@ -276,7 +276,9 @@ enum {
    * node compiles: the identity, or, when the pointwise chain that alone reads output 0 runs
    * inside this node's last pass (epilogue fusion), that chain's functions. A shader calls it
    * only on the value it writes to output 0 (the host refuses a draw into anything else). A
-   * node that never calls it stays correct: the host then runs the chain as its own pass. */
+   * node that never calls it stays correct: the host then runs the chain as its own pass.
+   * `vec4 aq_epilogue_at(vec4 colour, vec2 pixel)` applies it at another pixel centre of
+   * output 0, for a shader that writes several pixels per fragment (2 x 2 blocks). */
   AQ_NODE_EPILOGUE = 1u << 2
 };
 

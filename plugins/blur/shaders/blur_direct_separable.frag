@@ -19,6 +19,9 @@
 // pass then reads the AQ_RADIUS + 1 blocks that hold its 2·AQ_RADIUS + 1 rows (two rows a read).
 // Every pixel sums the same decoded taps in the same order as without blocks, and the words are
 // the bytes an RGBA8 target would store, so the image is bit-identical.
+// Blocks in (AQ_BLOCKS_IN 1: the input itself in blocks, from a writer that makes them, such as
+// the wobble): the rows pass reads the AQ_RADIUS + 1 blocks that hold both its rows' taps
+// instead of 2·AQ_RADIUS + 2 texels per row; the taps are the same words.
 #include "aquarelle/hdr8.glsl"
 #ifndef AQ_DECODE_HDR8
 #define AQ_DECODE_HDR8 0
@@ -29,6 +32,9 @@
 #ifndef AQ_BLOCKS
 #define AQ_BLOCKS 0
 #endif
+#ifndef AQ_BLOCKS_IN
+#define AQ_BLOCKS_IN 0
+#endif
 
 #if AQ_BLOCKS && AQ_AXIS == 0
 layout(location = 0) out uvec4 o_block;  // pixels (0, 0), (1, 0), (0, 1), (1, 1) of the block
@@ -36,8 +42,8 @@ layout(location = 0) out uvec4 o_block;  // pixels (0, 0), (1, 0), (0, 1), (1, 1
 layout(location = 0) out vec4 o_color;
 #endif
 
-#if AQ_BLOCKS && AQ_AXIS == 1
-uniform usampler2D u_blocks;  // the rows pass's blocks
+#if AQ_BLOCKS && (AQ_AXIS == 1 || AQ_BLOCKS_IN)
+uniform usampler2D u_blocks;  // the rows pass's blocks, or the input's (AQ_BLOCKS_IN)
 uniform ivec2 u_image_size;   // the image's size in pixels
 #else
 uniform sampler2D u_image;
@@ -77,15 +83,50 @@ vec4 blur_row(vec2 frag, vec4 row[2 * kTaps + 1]) {
 }
 #endif
 
+#if AQ_BLOCKS
+// Word `row` (0 or 1) of a block, in column `column` (0 or 1).
+uint block_word(uvec4 words, int column, int row) {
+  uvec2 pair = row == 0 ? words.xy : words.zw;
+  return column == 0 ? pair.x : pair.y;
+}
+#endif
+
 #if AQ_BLOCKS && AQ_AXIS == 0
-// Row y of the block's two pixels at x0 and x0 + 1, blurred.
-void blur_block_row(int x0, int y, out vec4 left, out vec4 right) {
-  ivec2 last = textureSize(u_image, 0) - 1;
-  vec4 texels[2 * kTaps + 2];  // x0 - kTaps .. x0 + 1 + kTaps
-  for (int i = 0; i < 2 * kTaps + 2; ++i) {
-    ivec2 p = clamp(ivec2(x0 - kTaps + i, y), ivec2(0), last);
-    texels[i] = aq_hdr8_decode(texelFetch(u_image, p, 0));
+#if AQ_BLOCKS_IN
+// Pixels x0 - kTaps .. x0 + 1 + kTaps of rows y0 and y0 + 1 (x0 and y0 even): the kTaps + 1
+// blocks from (x0 - kTaps) / 2 hold them. Pixels past the image repeat its edge pixels, which
+// lie in the edge blocks that the clamped reads return.
+void read_block_rows(int x0, int y0, out vec4 texels[2][2 * kTaps + 2]) {
+  ivec2 last = u_image_size - 1;
+  int b0 = (x0 - kTaps) >> 1;
+  uvec4 blocks[kTaps + 1];
+  for (int j = 0; j <= kTaps; ++j) {
+    blocks[j] = texelFetch(u_blocks, ivec2(clamp(b0 + j, 0, last.x >> 1), y0 >> 1), 0);
   }
+  for (int r = 0; r < 2; ++r) {
+    int y = min(y0 + r, last.y);
+    for (int i = 0; i < 2 * kTaps + 2; ++i) {
+      int x = clamp(x0 - kTaps + i, 0, last.x);
+      texels[r][i] = aq_hdr8_word_decode(block_word(blocks[i >> 1], x & 1, y & 1));
+    }
+  }
+}
+#else
+// The same from an encoded image of pixels.
+void read_block_rows(int x0, int y0, out vec4 texels[2][2 * kTaps + 2]) {
+  ivec2 last = textureSize(u_image, 0) - 1;
+  for (int r = 0; r < 2; ++r) {
+    for (int i = 0; i < 2 * kTaps + 2; ++i) {
+      ivec2 p = clamp(ivec2(x0 - kTaps + i, y0 + r), ivec2(0), last);
+      texels[r][i] = aq_hdr8_decode(texelFetch(u_image, p, 0));
+    }
+  }
+}
+#endif
+
+// Row y of the block's two pixels at x0 and x0 + 1, blurred from `texels`, pixels x0 - kTaps ..
+// x0 + 1 + kTaps of the row.
+void blur_block_row(int x0, int y, vec4 texels[2 * kTaps + 2], out vec4 left, out vec4 right) {
   vec4 row[2 * kTaps + 1];
   for (int i = 0; i <= 2 * kTaps; ++i) row[i] = texels[i];
   left = blur_row(vec2(float(x0) + 0.5, float(y) + 0.5), row);
@@ -93,23 +134,17 @@ void blur_block_row(int x0, int y, out vec4 left, out vec4 right) {
   right = blur_row(vec2(float(x0) + 1.5, float(y) + 0.5), row);
 }
 
-// The bytes an RGBA8 target stores for an encoded colour.
-uint stored_word(vec4 c) { return packUnorm4x8(aq_hdr8_encode(c)); }
-
 void main() {
   ivec2 block = ivec2(gl_FragCoord.xy);
+  vec4 texels[2][2 * kTaps + 2];
+  read_block_rows(2 * block.x, 2 * block.y, texels);
   vec4 c00, c10, c01, c11;
-  blur_block_row(2 * block.x, 2 * block.y, c00, c10);
-  blur_block_row(2 * block.x, 2 * block.y + 1, c01, c11);
-  o_block = uvec4(stored_word(c00), stored_word(c10), stored_word(c01), stored_word(c11));
+  blur_block_row(2 * block.x, 2 * block.y, texels[0], c00, c10);
+  blur_block_row(2 * block.x, 2 * block.y + 1, texels[1], c01, c11);
+  o_block = uvec4(aq_hdr8_word_encode(c00), aq_hdr8_word_encode(c10), aq_hdr8_word_encode(c01),
+                  aq_hdr8_word_encode(c11));
 }
 #elif AQ_BLOCKS && AQ_AXIS == 1
-// Word `row` (0 or 1) of a block, in column `column` (0 or 1).
-uint block_word(uvec4 words, int column, int row) {
-  uvec2 pair = row == 0 ? words.xy : words.zw;
-  return column == 0 ? pair.x : pair.y;
-}
-
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   int last_row = u_image_size.y - 1;

@@ -21,9 +21,20 @@
 #ifndef AQ_WOBBLE_BLOCKS
 #define AQ_WOBBLE_BLOCKS 0
 #endif
+// AQ_WOBBLE_OUT_BLOCKS 1: the target is AQ_FORMAT_RGBA8_HDR_BLOCKS (its reader, the blur, reads
+// 2 x 2 blocks): a fragment per block writes its four pixels, each wobbled, passed through the
+// epilogue at its own centre and encoded: the bytes four fragments would write to an encoded
+// image.
+#ifndef AQ_WOBBLE_OUT_BLOCKS
+#define AQ_WOBBLE_OUT_BLOCKS 0
+#endif
 #include "aquarelle/hdr8.glsl"
-in vec2 v_uv;
+#if AQ_WOBBLE_OUT_BLOCKS
+layout(location = 0) out uvec4 o_block;  // pixels (0, 0), (1, 0), (0, 1), (1, 1) of the block
+#else
 layout(location = 0) out vec4 o_color;
+#endif
+uniform vec2 u_out_size;  // the output's size in pixels
 
 #if AQ_WOBBLE_BLOCKS
 // The image in 2 x 2 blocks of packed encoded pixels (AQ_FORMAT_RGBA8_HDR_BLOCKS, plugin.h).
@@ -69,16 +80,17 @@ vec4 image_at(vec2 uv) {
 #endif
 }
 
-void main() {
+// The image wobbled at `uv`, the centre of an output pixel.
+vec4 wobbled(vec2 uv) {
   vec2 step_uv = 1.0 / u_paper_size;
 #if AQ_WOBBLE_GRADIENT
   // u_paper holds the paper's precomputed gradient (paper_gradient.frag): one read.
-  vec2 gradient = texture(u_paper, v_uv).rg;
+  vec2 gradient = texture(u_paper, uv).rg;
 #else
-  vec2 gradient = vec2(paper_height(v_uv + vec2(step_uv.x, 0.0)) -
-                           paper_height(v_uv - vec2(step_uv.x, 0.0)),
-                       paper_height(v_uv + vec2(0.0, step_uv.y)) -
-                           paper_height(v_uv - vec2(0.0, step_uv.y))) /
+  vec2 gradient = vec2(paper_height(uv + vec2(step_uv.x, 0.0)) -
+                           paper_height(uv - vec2(step_uv.x, 0.0)),
+                       paper_height(uv + vec2(0.0, step_uv.y)) -
+                           paper_height(uv - vec2(0.0, step_uv.y))) /
                   2.0;
 #endif
   // A NaN or infinite paper would throw the lookup anywhere: keep the pixel in place instead.
@@ -87,9 +99,23 @@ void main() {
   // central difference): the clamp only bounds a foreign image's, and with it how far a lookup
   // moves, which is what a change of the image can reach (wobble.cpp, damage tracking).
   gradient = clamp(gradient, vec2(-1.0), vec2(1.0));
-  // aq_epilogue: the pointwise nodes after the wobble (edge) when the host fuses them.
-  o_color = aq_epilogue(image_at(v_uv + u_strength * gradient * step_uv));
+  return image_at(uv + u_strength * gradient * step_uv);
+}
+
+// aq_epilogue: the pointwise nodes after the wobble (edge) when the host fuses them.
+void main() {
+#if AQ_WOBBLE_OUT_BLOCKS
+  ivec2 block = ivec2(gl_FragCoord.xy);
+  uint words[4];
+  for (int i = 0; i < 4; ++i) {
+    vec2 pixel = vec2(2 * block + ivec2(i & 1, i >> 1)) + 0.5;
+    words[i] = aq_hdr8_word_encode(aq_epilogue_at(wobbled(pixel / u_out_size), pixel));
+  }
+  o_block = uvec4(words[0], words[1], words[2], words[3]);
+#else
+  o_color = aq_epilogue(wobbled(gl_FragCoord.xy / u_out_size));
 #if AQ_WOBBLE_ENCODE_HDR8
   o_color = aq_hdr8_encode(o_color);
+#endif
 #endif
 }

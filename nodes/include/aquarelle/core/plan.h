@@ -97,6 +97,8 @@ struct PlanOptions {
   bool hdr8 = true;
   // ... and AQ_FORMAT_RGBA8_HDR_BLOCKS between AQ_PORT_BLOCKS ports (with hdr8).
   bool blocks = true;
+  // ... also where an epilogue producer writes a fused chain's result (with blocks).
+  bool epilogue_blocks = true;
   // ... and a separable filter's last 1D pass handed to its reader (PlannedNode::axis_deferrable).
   bool defer_axis = true;
 };
