@@ -13,7 +13,6 @@
 #include <aquarelle/core/registry.h>
 
 #include <cstdlib>
-#include <random>
 #include <string>
 
 #include "support/harness.h"
@@ -43,17 +42,6 @@ const std::string kSeparable = R"({"sigma": 2.0, "depth_weight": 0.4, "radial_we
 uint32_t stored_format(const Plan& plan, const std::string& id) {
   const PlannedNode* node = plan.find(id);
   return node == nullptr || node->stored_formats.empty() ? 0 : node->stored_formats[0];
-}
-
-ImageF random_light(int width, int height, unsigned seed) {
-  ImageF image(width, height, 4, 1.0f);
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int c = 0; c < 4; ++c)
-        image.at(x, y, c) = static_cast<float>(c == 3 ? unit(random) : 4.0 * unit(random));
-  return image;
 }
 
 Result<ImageF> render(const std::string& graph, const ImageF& input, bool blocks) {
@@ -110,7 +98,7 @@ TEST(EpilogueBlocks, BlocksGiveTheSameBitsAsEncodedPixels) {
       chain(R"({"sigma": 0.0})")};
   for (const std::string& graph : graphs) {
     for (const auto& [width, height] : {std::pair{64, 48}, {63, 47}, {17, 9}, {5, 3}}) {
-      const ImageF light = random_light(width, height, 21);
+      const ImageF light = random_image(width, height, 21, 0.0f, 4.0f);
       auto pixels = render(graph, light, false);
       auto blocks = render(graph, light, true);
       ASSERT_TRUE(pixels.ok()) << pixels.message();
