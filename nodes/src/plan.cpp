@@ -385,9 +385,10 @@ std::string format_plan(const Plan& plan) {
       "input content with 8 bits; [RGBA8 HDR: port]: linear HDR colour encoded in 8 bits "
       "(sqrt(c / (1 + c))) because its writer and every reader handle that (bandwidth by "
       "need); [RGBA8 HDR 2x2: port]: the same in 2 x 2 blocks of packed pixels, between "
-      "nodes that work on whole blocks (a morphology chain); [last 1D pass to its reader: "
-      "port]: a separable filter leaves its last 1D pass undone and its reader runs it in one "
-      "pass with its own first one along the same axis (AQ_PORT_DEFER_AXIS)\n";
+      "nodes that work on whole blocks (a morphology chain, the wobble to the blur); [last 1D "
+      "pass to its reader: port]: a separable filter leaves its last 1D pass undone and its "
+      "reader runs it in one pass with its own first one along the same axis "
+      "(AQ_PORT_DEFER_AXIS)\n";
   return text;
 }
 
