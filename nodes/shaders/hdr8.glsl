@@ -35,8 +35,13 @@ vec4 aq_hdr8_word_decode(uint word) {
 // The word an RGBA8 target stores for colour c encoded: a pixel of a block.
 uint aq_hdr8_word_encode(vec4 c) { return packUnorm4x8(aq_hdr8_encode(c)); }
 
+// Word of a block's pixel in column `column` (0 or 1) and row `row` (0 or 1).
+uint aq_hdr8_block_word(uvec4 words, int column, int row) {
+  uvec2 pair = row == 0 ? words.xy : words.zw;
+  return column == 0 ? pair.x : pair.y;
+}
+
 vec4 aq_hdr8_block_pixel(usampler2D blocks, ivec2 p) {
   uvec4 words = texelFetch(blocks, p >> 1, 0);
-  uvec2 row = (p.y & 1) == 0 ? words.xy : words.zw;
-  return aq_hdr8_word_decode((p.x & 1) == 0 ? row.x : row.y);
+  return aq_hdr8_word_decode(aq_hdr8_block_word(words, p.x & 1, p.y & 1));
 }

@@ -83,14 +83,6 @@ vec4 blur_row(vec2 frag, vec4 row[2 * kTaps + 1]) {
 }
 #endif
 
-#if AQ_BLOCKS
-// Word `row` (0 or 1) of a block, in column `column` (0 or 1).
-uint block_word(uvec4 words, int column, int row) {
-  uvec2 pair = row == 0 ? words.xy : words.zw;
-  return column == 0 ? pair.x : pair.y;
-}
-#endif
-
 #if AQ_BLOCKS && AQ_AXIS == 0
 #if AQ_BLOCKS_IN
 // Pixels x0 - kTaps .. x0 + 1 + kTaps of rows y0 and y0 + 1 (x0 and y0 even): the kTaps + 1
@@ -107,7 +99,7 @@ void read_block_rows(int x0, int y0, out vec4 texels[2][2 * kTaps + 2]) {
     int y = min(y0 + r, last.y);
     for (int i = 0; i < 2 * kTaps + 2; ++i) {
       int x = clamp(x0 - kTaps + i, 0, last.x);
-      texels[r][i] = aq_hdr8_word_decode(block_word(blocks[i >> 1], x & 1, y & 1));
+      texels[r][i] = aq_hdr8_word_decode(aq_hdr8_block_word(blocks[i >> 1], x & 1, y & 1));
     }
   }
 }
@@ -166,7 +158,7 @@ void main() {
     int source = clamp(first + i, 0, last_row);
     // Block of row first + i: index i >> 1 from an even start, (i + 1) >> 1 from an odd one.
     uvec4 words = odd ? blocks[(i + 1) >> 1] : blocks[i >> 1];
-    row[i] = aq_hdr8_word_decode(block_word(words, column, source & 1));
+    row[i] = aq_hdr8_word_decode(aq_hdr8_block_word(words, column, source & 1));
   }
   o_color = aq_epilogue(blur_row(gl_FragCoord.xy, row));
 #if AQ_ENCODE_HDR8
